@@ -1,0 +1,142 @@
+#include "core/fbm.h"
+
+#include <cmath>
+
+#include "core/interpolant.h"
+#include "core/limits.h"
+
+namespace relief {
+
+namespace {
+
+// The plan's double constants rounded once to Real.
+template <class Real>
+struct FbmConstants {
+  int count = 0;
+  Real frequency[limits::kMaxOctaves];
+  Real amplitude[limits::kMaxOctaves];
+  Real offset_x[limits::kMaxOctaves];
+  Real offset_z[limits::kMaxOctaves];
+  Real inv_scale, base_height, height_scale;
+  bool warp;
+  Real c1x, c1z, c2x, c2z, c3x, c3z, r0x, r0z, t0x, t0z, roughness0, guard_sq, min_rotation_sq;
+  Real lacunarity;
+
+  explicit FbmConstants(const TerrainPlan& plan) {
+    const OctaveTable& o = plan.octaves;
+    count = o.count;
+    for (int n = 0; n < count; ++n) {
+      frequency[n] = Real(o.frequency[n]);
+      amplitude[n] = Real(o.amplitude[n]);
+      offset_x[n] = Real(o.offset_x[n]);
+      offset_z[n] = Real(o.offset_z[n]);
+    }
+    inv_scale = Real(plan.inv_horizontal_scale);
+    base_height = Real(plan.base_height);
+    height_scale = Real(plan.amplitude);
+    const WarpPlan& w = plan.warp;
+    warp = w.enabled;
+    c1x = Real(w.c1x), c1z = Real(w.c1z), c2x = Real(w.c2x), c2z = Real(w.c2z);
+    c3x = Real(w.c3x), c3z = Real(w.c3z), r0x = Real(w.r0x), r0z = Real(w.r0z);
+    t0x = Real(w.t0x), t0z = Real(w.t0z);
+    roughness0 = Real(w.roughness0);
+    guard_sq = Real(w.guard_sq);
+    min_rotation_sq = Real(limits::kMinRotationLengthSq);
+    lacunarity = Real(w.lacunarity);
+  }
+};
+
+template <Interpolant kKind, class Real>
+Real fbm_point(const FbmConstants<Real>& c, const NoiseLattice& lattice, Real dx, Real dz,
+               Real nu) {
+  const Real ux = dx * c.inv_scale;
+  const Real uz = dz * c.inv_scale;
+  const Real whole = std::floor(nu);
+  const int full_octaves = whole < Real(c.count) ? static_cast<int>(whole) : c.count;
+  const Real fraction = nu - whole;
+  Real h = Real(0);
+  Real wx = c.t0x, wz = c.t0z;  // W_n, §2.2, in lattice cells of octave n
+  Real rx = c.r0x, rz = c.r0z;  // rot_n, §2.2
+  for (int n = 0; n < c.count; ++n) {
+    // §4.1: floor(nu) whole octaves, then one weighted by the fractional part.
+    const Real weight = n < full_octaves ? Real(1) : fraction;
+    if (n > full_octaves || weight == Real(0)) {
+      break;
+    }
+    // Eq. 1: S(r^k x), camera-relative, displaced by the warp.
+    const Real px = c.offset_x[n] + c.frequency[n] * ux + wx;
+    const Real pz = c.offset_z[n] + c.frequency[n] * uz + wz;
+    h = h + (weight * c.amplitude[n]) * sample_lattice<kKind>(lattice, px, pz);
+    if (!c.warp || n == full_octaves || n + 1 == c.count) {
+      continue;  // no further octave reads W
+    }
+    // §2.2: roughness R_n = R0 - H_n and the guarded 1/R_n (limits.h, kRoughnessGuard).
+    const Real roughness = c.roughness0 - h;
+    const Real inv_roughness = roughness / (roughness * roughness + c.guard_sq);
+    // §2.2: r_{n+1} = c1 R_n + c2 + r_n, renormalised; kept when its length vanishes
+    // (the sqrt's domain: length_sq > kMinRotationLengthSq > 0).
+    const Real vx = c.c1x * roughness + c.c2x + rx;
+    const Real vz = c.c1z * roughness + c.c2z + rz;
+    const Real length_sq = vx * vx + vz * vz;
+    if (length_sq > c.min_rotation_sq) {
+      const Real inv_length = Real(1) / std::sqrt(length_sq);
+      rx = vx * inv_length;
+      rz = vz * inv_length;
+    }
+    // §2.2: t_{n+1} = c3 H_n / R_n; W_{n+1} = r (Rot(r_{n+1}) W_n + t_{n+1}): rotate and
+    // translate in octave n's cells, then rescale to octave n+1's cells.
+    const Real height_over_roughness = h * inv_roughness;
+    const Real next_wx = (rx * wx - rz * wz) + c.c3x * height_over_roughness;
+    const Real next_wz = (rz * wx + rx * wz) + c.c3z * height_over_roughness;
+    wx = c.lacunarity * next_wx;
+    wz = c.lacunarity * next_wz;
+  }
+  return c.base_height + c.height_scale * h;
+}
+
+template <Interpolant kKind, class Real>
+void evaluate_range(const FbmConstants<Real>& c, const NoiseLattice& lattice, IndexRange range,
+                    std::span<const Real> dx, std::span<const Real> dz, std::span<const Real> nu,
+                    std::span<Real> height) {
+  for (std::size_t k = range.begin; k < range.end; ++k) {
+    height[k] = fbm_point<kKind>(c, lattice, dx[k], dz[k], nu[k]);
+  }
+}
+
+}  // namespace
+
+template <class Real>
+void evaluate_fbm(const TerrainPlan& plan, IndexRange range, std::span<const Real> dx,
+                  std::span<const Real> dz, std::span<const Real> nu, std::span<Real> height) {
+  const FbmConstants<Real> constants(plan);
+  switch (plan.interpolant) {
+    case Interpolant::kLinear:
+      return evaluate_range<Interpolant::kLinear>(constants, *plan.lattice, range, dx, dz, nu,
+                                                  height);
+    case Interpolant::kCubic:
+      return evaluate_range<Interpolant::kCubic>(constants, *plan.lattice, range, dx, dz, nu,
+                                                 height);
+    case Interpolant::kQuintic:
+      return evaluate_range<Interpolant::kQuintic>(constants, *plan.lattice, range, dx, dz, nu,
+                                                   height);
+  }
+}
+
+template <class Real>
+Real fbm_height(const TerrainPlan& plan, Real dx, Real dz, Real nu) {
+  Real height = 0;
+  evaluate_fbm<Real>(plan, IndexRange{0, 1}, std::span<const Real>(&dx, 1),
+                     std::span<const Real>(&dz, 1), std::span<const Real>(&nu, 1),
+                     std::span<Real>(&height, 1));
+  return height;
+}
+
+template void evaluate_fbm<float>(const TerrainPlan&, IndexRange, std::span<const float>,
+                                  std::span<const float>, std::span<const float>, std::span<float>);
+template void evaluate_fbm<double>(const TerrainPlan&, IndexRange, std::span<const double>,
+                                   std::span<const double>, std::span<const double>,
+                                   std::span<double>);
+template float fbm_height<float>(const TerrainPlan&, float, float, float);
+template double fbm_height<double>(const TerrainPlan&, double, double, double);
+
+}  // namespace relief

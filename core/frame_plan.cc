@@ -1,0 +1,74 @@
+#include "core/frame_plan.h"
+
+#include <cmath>
+
+#include "core/limits.h"
+
+namespace relief {
+
+LodPlan make_lod_plan(const TerrainSettings& terrain) {
+  // The finest octave worth summing has continuous index kappa; octaves k0 .. kappa make
+  // nu = kappa + bias - k0 + 1 octaves (so that kappa = k0 gives one whole octave).
+  //   amplitude (§4.1): amplitude r^(-kappa H) = sigma
+  //       kappa = (log2 amplitude - log2 sigma) / (H log2 r)
+  //   Nyquist: the octave's lattice cell, scale r^-kappa, spans two grid spacings
+  //       kappa = (log2 scale - 1 - log2 sigma) / log2 r
+  // with log2 sigma = log2(sigma^2) / 2.
+  const double log2_r = std::log2(terrain.r);
+  const double offset = terrain.lod.bias - terrain.first_octave + 1.0;
+  LodPlan lod;
+  if (terrain.lod.criterion == LodCriterion::kAmplitude) {
+    lod.c0 = std::log2(terrain.amplitude) / (terrain.H * log2_r) + offset;
+    lod.c1 = 0.5 / (terrain.H * log2_r);
+  } else {
+    lod.c0 = (std::log2(terrain.horizontal_scale) - 1.0) / log2_r + offset;
+    lod.c1 = 0.5 / log2_r;
+  }
+  lod.nu_max = terrain.last_octave - terrain.first_octave + 1;
+  return lod;
+}
+
+TerrainPlan make_terrain_plan(const TerrainSettings& terrain, const NoiseLattice& lattice,
+                              const Vec3d& camera_position) {
+  TerrainPlan plan;
+  plan.lattice = &lattice;
+  plan.interpolant = terrain.interpolant;
+  plan.octaves = make_octave_table(terrain, lattice.size, camera_position);
+  plan.inv_horizontal_scale = 1.0 / terrain.horizontal_scale;
+  plan.base_height = terrain.base_height;
+  plan.amplitude = terrain.amplitude;
+  const WarpSettings& w = terrain.warp;
+  WarpPlan& warp = plan.warp;
+  warp.enabled = w.enabled;
+  warp.c1x = w.c1[0];
+  warp.c1z = w.c1[1];
+  warp.c2x = w.c2[0];
+  warp.c2z = w.c2[1];
+  warp.c3x = w.c3[0];
+  warp.c3z = w.c3[1];
+  const double r0_length = std::hypot(w.r0[0], w.r0[1]);  // > 0: validate_scene
+  warp.r0x = w.r0[0] / r0_length;
+  warp.r0z = w.r0[1] / r0_length;
+  warp.t0x = w.t0[0];
+  warp.t0z = w.t0[1];
+  warp.roughness0 = std::pow(terrain.r, terrain.H);
+  warp.lacunarity = terrain.r;
+  warp.guard_sq = limits::kRoughnessGuard * limits::kRoughnessGuard;
+  return plan;
+}
+
+FramePlan make_frame_plan(const Scene& scene, const NoiseLattice& lattice) {
+  FramePlan plan;
+  plan.camera = make_camera_frame(scene.camera, scene.viewport);
+  plan.bounds = derive_height_bounds(lattice, scene.terrain);
+  plan.projector = make_projector(plan.camera, plan.bounds, scene.terrain.base_height);
+  plan.screen = make_screen_grid(scene.grid, plan.projector.coverage);
+  plan.layout = make_grid_layout(scene.grid.width, scene.grid.height);
+  plan.lod = make_lod_plan(scene.terrain);
+  plan.terrain = make_terrain_plan(scene.terrain, lattice, scene.camera.position);
+  plan.water_enabled = scene.terrain.water_level.has_value();
+  plan.water_level = scene.terrain.water_level.value_or(0.0);
+  return plan;
+}
+
+}  // namespace relief

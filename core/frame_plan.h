@@ -1,0 +1,68 @@
+// The FramePlan: everything derived once per frame from the scene (design.md). Stages read
+// it and never re-derive it: projector and screen grid (stages 1-2), LOD constants (stage 2),
+// octave table and warp constants (stage 3), water (stage 4).
+#pragma once
+
+#include "core/camera.h"
+#include "core/grid_buffers.h"
+#include "core/height_bounds.h"
+#include "core/lattice.h"
+#include "core/octaves.h"
+#include "core/projector.h"
+#include "core/scene.h"
+#include "core/screen_grid.h"
+
+namespace relief {
+
+// §4.1 octave count: nu = clamp(c0 - c1 log2(sigma^2), 1, N), the log taken of the squared
+// spacing so that no square root is needed. See make_lod_plan for c0 and c1.
+struct LodPlan {
+  double c0 = 0;
+  double c1 = 0;
+  double nu_max = 1;  // N: all octaves
+};
+
+// §2.2 domain warping constants, Relief's reading (docs/paper-reading.md).
+struct WarpPlan {
+  bool enabled = false;
+  double c1x = 0, c1z = 0, c2x = 0, c2z = 0, c3x = 0, c3z = 0;
+  double r0x = 1, r0z = 0;  // initial rotation, normalised
+  double t0x = 0, t0z = 0;  // initial displacement, base-domain cells
+  double roughness0 = 1;    // R0 = r^H
+  double lacunarity = 2;    // r: rescales W from one octave's cells to the next's
+  double guard_sq = 0;      // kRoughnessGuard^2
+};
+
+// What the fractal of stage 3 needs: the terrain as a function of camera-relative position.
+struct TerrainPlan {
+  const NoiseLattice* lattice = nullptr;
+  Interpolant interpolant = Interpolant::kQuintic;
+  OctaveTable octaves;
+  WarpPlan warp;
+  double inv_horizontal_scale = 1;  // world units to octave-0 lattice cells
+  double base_height = 0;
+  double amplitude = 1;
+};
+
+struct FramePlan {
+  CameraFrame camera;
+  HeightBounds bounds;
+  Projector projector;
+  ScreenGrid screen;  // stage 1
+  GridLayout layout;
+  LodPlan lod;
+  TerrainPlan terrain;
+  bool water_enabled = false;
+  double water_level = 0;
+};
+
+// Precondition: the scene passed validate_scene and the lattice was built from its seed and
+// lattice_size.
+FramePlan make_frame_plan(const Scene& scene, const NoiseLattice& lattice);
+
+TerrainPlan make_terrain_plan(const TerrainSettings& terrain, const NoiseLattice& lattice,
+                              const Vec3d& camera_position);
+
+LodPlan make_lod_plan(const TerrainSettings& terrain);
+
+}  // namespace relief

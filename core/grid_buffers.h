@@ -1,0 +1,112 @@
+// Structure-of-arrays buffers for the grid stages: one planar array per field, each row
+// padded to a whole number of widest vectors and 64-byte aligned (style.md, Highway), so a
+// kernel may always load full vectors. Index of vertex (i, j) = j * pitch + i; padding
+// entries hold finite, unused values (valid = 0).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <new>
+#include <span>
+#include <vector>
+
+#include "core/limits.h"
+
+namespace relief {
+
+template <class T>
+struct AlignedAllocator {
+  using value_type = T;
+  AlignedAllocator() = default;
+  template <class U>
+  AlignedAllocator(const AlignedAllocator<U>&) {}  // NOLINT: allocator rebind
+  T* allocate(std::size_t n) {
+    return static_cast<T*>(
+        ::operator new(n * sizeof(T), std::align_val_t(limits::kBufferAlignBytes)));
+  }
+  void deallocate(T* p, std::size_t) {
+    ::operator delete(p, std::align_val_t(limits::kBufferAlignBytes));
+  }
+  template <class U>
+  bool operator==(const AlignedAllocator<U>&) const {
+    return true;
+  }
+};
+
+template <class T>
+using AlignedVector = std::vector<T, AlignedAllocator<T>>;
+
+struct GridLayout {
+  int width = 0;
+  int height = 0;
+  int pitch = 0;  // width rounded up to kRowAlignFloats
+
+  std::size_t size() const { return static_cast<std::size_t>(pitch) * height; }
+  std::size_t index(int i, int j) const { return static_cast<std::size_t>(j) * pitch + i; }
+};
+
+inline GridLayout make_grid_layout(int width, int height) {
+  const int align = limits::kRowAlignFloats;
+  return GridLayout{width, height, (width + align - 1) / align * align};
+}
+
+// Rows [begin, end) of a grid: the unit of work of the grid stages.
+struct RowRange {
+  int begin = 0;
+  int end = 0;
+};
+
+// Elements [begin, end) of a flat buffer: the unit of work of element-wise stages.
+struct IndexRange {
+  std::size_t begin = 0;
+  std::size_t end = 0;
+};
+
+// Outputs of stage 2.
+template <class Real>
+struct DomainSpans {
+  std::span<Real> dx;  // camera-relative base-domain position, world units
+  std::span<Real> dz;
+  std::span<Real> sigma;  // local grid spacing, world units
+  std::span<Real> nu;     // octave count in [1, N]
+  std::span<std::uint8_t> valid;
+};
+
+// Outputs of stage 4.
+template <class Real>
+struct SurfaceSpans {
+  std::span<Real> nx;  // unit normal
+  std::span<Real> ny;
+  std::span<Real> nz;
+  std::span<Real> slope;        // |grad h|, rise over run
+  std::span<Real> water_depth;  // max(0, water level - h); 0 without water
+};
+
+// Every per-vertex field of stages 2-4.
+template <class Real>
+struct GridBuffers {
+  GridLayout layout;
+  AlignedVector<Real> dx, dz, sigma, nu;
+  AlignedVector<std::uint8_t> valid;
+  AlignedVector<Real> height;
+  AlignedVector<Real> nx, ny, nz, slope, water_depth;
+
+  explicit GridBuffers(GridLayout grid)
+      : layout(grid),
+        dx(grid.size()),
+        dz(grid.size()),
+        sigma(grid.size()),
+        nu(grid.size()),
+        valid(grid.size()),
+        height(grid.size()),
+        nx(grid.size()),
+        ny(grid.size()),
+        nz(grid.size()),
+        slope(grid.size()),
+        water_depth(grid.size()) {}
+
+  DomainSpans<Real> domain() { return {dx, dz, sigma, nu, valid}; }
+  SurfaceSpans<Real> surface() { return {nx, ny, nz, slope, water_depth}; }
+};
+
+}  // namespace relief

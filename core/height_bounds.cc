@@ -1,0 +1,25 @@
+#include "core/height_bounds.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/limits.h"
+
+namespace relief {
+
+HeightBounds derive_height_bounds(const NoiseLattice& lattice, const TerrainSettings& terrain) {
+  double amplitude_sum = 0.0;
+  for (int k = terrain.first_octave; k <= terrain.last_octave; ++k) {
+    amplitude_sum += std::pow(terrain.r, -k * terrain.H);
+  }
+  HeightBounds bounds;
+  bounds.fbm_min = amplitude_sum * std::min(0.0, static_cast<double>(lattice.min_value));
+  bounds.fbm_max = amplitude_sum * std::max(0.0, static_cast<double>(lattice.max_value));
+  const double slack =
+      limits::kHeightBoundSlack * std::max(std::abs(bounds.fbm_min), std::abs(bounds.fbm_max));
+  bounds.world_min = terrain.base_height + terrain.amplitude * (bounds.fbm_min - slack);
+  bounds.world_max = terrain.base_height + terrain.amplitude * (bounds.fbm_max + slack);
+  return bounds;
+}
+
+}  // namespace relief

@@ -1,0 +1,25 @@
+// The range of heights the terrain can take, derived from the fBm (Eq. 1), not guessed: §4.1
+// needs "the maximum height of the terrain ... a priori" to build the projector frustum.
+//
+// Every octave samples S, a convex combination of lattice values (interpolant.h), so S lies in
+// [Lmin, Lmax]. The LOD weights of the octaves lie in [0, 1] and the amplitudes r^(-kH) are
+// positive, hence
+//   sum_k a_k min(Lmin, 0) <= fBm <= sum_k a_k max(Lmax, 0),   k = k0 .. k1.
+// Domain warping moves where S is sampled, never its range, so the bound holds warped too.
+#pragma once
+
+#include "core/lattice.h"
+#include "core/scene.h"
+
+namespace relief {
+
+struct HeightBounds {
+  double fbm_min = 0;  // bounds of the dimensionless sum of Eq. 1
+  double fbm_max = 0;
+  double world_min = 0;  // base_height + amplitude * fbm bound, widened by kHeightBoundSlack
+  double world_max = 0;
+};
+
+HeightBounds derive_height_bounds(const NoiseLattice& lattice, const TerrainSettings& terrain);
+
+}  // namespace relief

@@ -1,0 +1,36 @@
+// Stages 1-4 of a frame, in order, over a row range: the reference pipeline, single
+// threaded. Parallel callers split the grid into row chunks and call the stage functions
+// themselves (stage 4 reads one row beyond its range, so it runs after stage 3 has finished
+// the neighbouring rows).
+#pragma once
+
+#include "core/fbm.h"
+#include "core/frame_plan.h"
+#include "core/grid_buffers.h"
+#include "core/projected_domain.h"
+#include "core/surface.h"
+
+namespace relief {
+
+template <class Real>
+SurfaceInputs<Real> surface_inputs(const GridBuffers<Real>& buffers) {
+  return {buffers.dx, buffers.dz, buffers.height, buffers.valid};
+}
+
+// Stage 3 over whole rows [rows.begin, rows.end).
+template <class Real>
+void evaluate_fbm_rows(const FramePlan& plan, RowRange rows, GridBuffers<Real>& buffers) {
+  const IndexRange range{buffers.layout.index(0, rows.begin), buffers.layout.index(0, rows.end)};
+  evaluate_fbm<Real>(plan.terrain, range, buffers.dx, buffers.dz, buffers.nu, buffers.height);
+}
+
+// Stages 2, 3 and 4 over the whole grid.
+template <class Real>
+void run_terrain_stages(const FramePlan& plan, GridBuffers<Real>& buffers) {
+  const RowRange all{0, buffers.layout.height};
+  project_domain<Real>(plan, all, buffers.domain());
+  evaluate_fbm_rows<Real>(plan, all, buffers);
+  surface_pass<Real>(plan, all, surface_inputs(buffers), buffers.surface());
+}
+
+}  // namespace relief

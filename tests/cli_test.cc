@@ -1,0 +1,141 @@
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <stb_image.h>
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "core/frame_plan.h"
+#include "core/lattice.h"
+#include "core/scene_json.h"
+#include "core/terrain_stages.h"
+#include "test_support.h"
+#include "tools/cli.h"
+
+namespace relief {
+namespace {
+
+using Catch::Matchers::Contains;
+
+struct CliResult {
+  int code;
+  std::string out;
+  std::string err;
+};
+
+CliResult run(std::vector<std::string> args) {
+  args.insert(args.begin(), "relief");
+  std::ostringstream out, err;
+  const int code = run_cli(args, out, err);
+  return {code, out.str(), err.str()};
+}
+
+std::string write_text(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+std::vector<unsigned char> read_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST_CASE("helpExplainsTheCommandsAndOptions", "[cli]") {
+  const CliResult top = run({"--help"});
+  CHECK(top.code == 0);
+  CHECK_THAT(top.out, Contains("stages"));
+  CHECK_THAT(top.out, Contains("scene"));
+  const CliResult stages = run({"stages", "--help"});
+  CHECK(stages.code == 0);
+  CHECK_THAT(stages.out, Contains("--set"));
+  CHECK_THAT(stages.out, Contains("--out"));
+  CHECK_THAT(stages.out, Contains("lava"));
+}
+
+TEST_CASE("sceneCommandPrintsTheEffectiveSceneAsJson", "[cli]") {
+  const CliResult r = run({"scene", "lava", "--set", "terrain.H=0.85"});
+  REQUIRE(r.code == 0);
+  const nlohmann::json printed = nlohmann::json::parse(r.out);
+  CHECK(printed["terrain"]["H"] == 0.85);
+  CHECK(printed["terrain"]["warp"]["enabled"] == true);
+}
+
+TEST_CASE("badInputExitsWithCodeTwoAndWritesNoFile", "[cli]") {
+  test::TempDir dir("bad-input");
+  const std::filesystem::path out = dir.path() / "out";
+  const std::vector<std::vector<std::string>> cases = {
+      {"stages", write_text(dir.path() / "a.json", R"({"terrain": {"r": 1}})"), "--out",
+       out.string()},
+      {"stages", write_text(dir.path() / "b.json", R"({"terrain": {"q": 1}})"), "--out",
+       out.string()},
+      {"stages", write_text(dir.path() / "c.json", R"({"grid": {"width": 1}})"), "--out",
+       out.string()},
+      {"stages", write_text(dir.path() / "d.json", R"({"terrain": {"r": 1e400}})"), "--out",
+       out.string()},
+      {"stages", write_text(dir.path() / "e.json", R"({"terrain": )"), "--out", out.string()},
+      {"stages", "--set", "terrain.H=nan", "--out", out.string()},
+      {"stages", "--set", "viewport.width=16385", "--out", out.string()},
+      {"stages", "no-such-preset", "--out", out.string()},
+      {"stages", "--threads", "0", "--out", out.string()},
+      {"stages", "--bogus", "--out", out.string()},
+  };
+  for (const auto& args : cases) {
+    const CliResult r = run(args);
+    INFO(r.err);
+    CHECK(r.code == kExitBadInput);
+    CHECK_THAT(r.err, Contains("relief: error:"));
+    CHECK_FALSE(std::filesystem::exists(out));
+  }
+  // Only the scene files the test wrote are in the directory: no partial outputs.
+  int entries = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path())) {
+    ++entries;
+  }
+  CHECK(entries == 5);
+}
+
+TEST_CASE("stagesCommandWritesEveryBufferAsPngAndPfm", "[cli]") {
+  test::TempDir dir("stages");
+  const CliResult r = run({"stages", "--set", "grid.width=40", "--set", "grid.height=30", "--out",
+                           dir.path().string()});
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.out, Contains("stage 3"));
+  const nlohmann::json manifest = nlohmann::json::parse(std::ifstream(dir.path() / "stages.json"));
+  for (const char* name : {"domain", "sigma", "nu", "height", "normal", "slope", "water_depth"}) {
+    INFO(name);
+    REQUIRE(manifest["files"].contains(name));
+    const std::vector<unsigned char> png = read_bytes(dir.path() / (std::string(name) + ".png"));
+    int w = 0, h = 0, channels = 0;
+    unsigned char* pixels =
+        stbi_load_from_memory(png.data(), static_cast<int>(png.size()), &w, &h, &channels, 3);
+    REQUIRE(pixels != nullptr);
+    stbi_image_free(pixels);
+    CHECK(w == 40);
+    CHECK(h == 30);
+  }
+  // The raw height file holds exactly the stage-3 buffer (rows bottom-to-top).
+  const Scene scene = resolve_scene("default", {"grid.width=40", "grid.height=30"});
+  const NoiseLattice lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
+  const FramePlan plan = make_frame_plan(scene, lattice);
+  GridBuffers<float> b(plan.layout);
+  run_terrain_stages(plan, b);
+  const std::vector<unsigned char> pfm = read_bytes(dir.path() / "height.pfm");
+  const std::string header = "Pf\n40 30\n-1.0\n";
+  REQUIRE(pfm.size() == header.size() + 40 * 30 * 4);
+  CHECK(std::string(pfm.begin(), pfm.begin() + header.size()) == header);
+  for (int j = 0; j < 30; ++j) {
+    for (int i = 0; i < 40; ++i) {
+      float v;
+      std::memcpy(&v, pfm.data() + header.size() + (j * 40 + i) * 4, 4);
+      REQUIRE(v == b.height[b.layout.index(i, j)]);
+    }
+  }
+  const std::vector<unsigned char> domain = read_bytes(dir.path() / "domain.pfm");
+  CHECK(std::string(domain.begin(), domain.begin() + 3) == "PF\n");
+}
+
+}  // namespace
+}  // namespace relief

@@ -1,0 +1,22 @@
+// Encoders for the images Relief writes. 8-bit images are sRGB-encoded PNG (stb_image_write),
+// float buffers are PFM. Both take rows bottom-to-top, as every buffer in Relief is stored
+// (GL's window convention); PNG rows are flipped to top-to-bottom only here, when written.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace relief {
+
+// `rgb`: width * height * 3 bytes, row 0 = bottom row.
+std::vector<unsigned char> encode_png_rgb(int width, int height, std::span<const std::uint8_t> rgb);
+
+// PFM (Portable Float Map): ASCII header "Pf" (1 channel) or "PF" (3 channels), then
+// "width height", then "-1" (negative: little-endian), each on its own line, then
+// width * height * channels IEEE-754 binary32 values, rows bottom-to-top, channels interleaved.
+// `values` has row 0 = bottom row, `stride` floats between row starts.
+std::vector<unsigned char> encode_pfm(int width, int height, int channels,
+                                      std::span<const float> values, std::size_t stride);
+
+}  // namespace relief
