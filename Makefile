@@ -1,7 +1,6 @@
 # Relief: the two commands a user needs on a fresh Debian 12 machine (as root).
 #
-#   make render   install what is missing, build, render the default scene (until the
-#                 rasteriser lands: the stage pictures of the default scene, in stages/)
+#   make render   install what is missing, build, render the default scene to relief.png
 #   make test     install what is missing, build, run the whole test suite (ctest),
 #                 then build again with ASan + UBSan and run the suite once more
 #
@@ -15,7 +14,8 @@ SCENE      ?= default
 
 PACKAGES := cmake make g++ pkg-config \
             libtbb-dev libglm-dev libstb-dev catch2 libbenchmark-dev \
-            nlohmann-json3-dev libcli11-dev
+            nlohmann-json3-dev libcli11-dev \
+            libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri
 
 .PHONY: all deps build render test test-release test-sanitize format clean
 
@@ -38,7 +38,7 @@ build: deps
 	cmake --build $(BUILD) -j $(JOBS)
 
 render: build
-	./$(BUILD)/tools/relief stages $(SCENE) --out stages
+	./$(BUILD)/tools/relief render $(SCENE) -o relief.png
 
 test-release: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)

@@ -66,6 +66,7 @@ FramePlan make_frame_plan(const Scene& scene, const NoiseLattice& lattice) {
   plan.layout = make_grid_layout(scene.grid.width, scene.grid.height);
   plan.lod = make_lod_plan(scene.terrain);
   plan.terrain = make_terrain_plan(scene.terrain, lattice, scene.camera.position);
+  plan.clip = make_clip_transform(plan.camera);
   plan.water_enabled = scene.terrain.water_level.has_value();
   plan.water_level = scene.terrain.water_level.value_or(0.0);
   return plan;

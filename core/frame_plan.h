@@ -11,6 +11,7 @@
 #include "core/projector.h"
 #include "core/scene.h"
 #include "core/screen_grid.h"
+#include "core/vertex_transform.h"
 
 namespace relief {
 
@@ -52,6 +53,7 @@ struct FramePlan {
   GridLayout layout;
   LodPlan lod;
   TerrainPlan terrain;
+  ClipTransform clip;  // stage 5
   bool water_enabled = false;
   double water_level = 0;
 };

@@ -137,5 +137,100 @@ TEST_CASE("stagesCommandWritesEveryBufferAsPngAndPfm", "[cli]") {
   CHECK(std::string(domain.begin(), domain.begin() + 3) == "PF\n");
 }
 
+TEST_CASE("renderCommandWritesAnSrgbPngOfTheViewportSize", "[cli]") {
+  test::TempDir dir("render");
+  const std::string path = (dir.path() / "terrain.png").string();
+  const CliResult r =
+      run({"render", "lava", "--set", "viewport.width=160", "--set", "viewport.height=120", "--set",
+           "grid.width=64", "--set", "grid.height=64", "-o", path});
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.out, Contains("stage 6   rasterisation"));
+  const std::vector<unsigned char> png = read_bytes(path);
+  int w = 0, h = 0, channels = 0;
+  unsigned char* pixels =
+      stbi_load_from_memory(png.data(), static_cast<int>(png.size()), &w, &h, &channels, 3);
+  REQUIRE(pixels != nullptr);
+  // The top row is sky (blue dominates), the bottom row terrain (it does not).
+  CHECK(pixels[2] > pixels[0]);
+  const unsigned char* bottom = pixels + (static_cast<std::size_t>(h) - 1) * w * 3;
+  CHECK(bottom[2] <= bottom[0]);
+  stbi_image_free(pixels);
+  CHECK(w == 160);
+  CHECK(h == 120);
+}
+
+TEST_CASE("renderRejectsBadInputWithoutWritingAFile", "[cli]") {
+  test::TempDir dir("render-bad");
+  const std::string png = (dir.path() / "x.png").string();
+  for (const auto& args :
+       std::vector<std::vector<std::string>>{{"render", "-o", (dir.path() / "x.jpg").string()},
+                                             {"render", "--set", "camera.fov_y_deg=0", "-o", png},
+                                             {"render", "--set", "grid.margin=99", "-o", png},
+                                             {"render", "--repeat", "0", "-o", png}}) {
+    const CliResult r = run(args);
+    INFO(r.err);
+    CHECK(r.code == kExitBadInput);
+    CHECK_THAT(r.err, Contains("relief: error:"));
+  }
+  CHECK(dir.empty());
+}
+
+TEST_CASE("rasterCommandWritesTheDocumentedBuffers", "[cli]") {
+  test::TempDir dir("raster");
+  const std::string soup = write_text(dir.path() / "soup.txt",
+                                      "# two triangles\n"
+                                      "8 6\n"
+                                      "0 0 0.5   8 0 0.5   0 6 0.5\n"
+                                      "8 0 0.75  8 6 0.75  0 6 0.75   # nearer, reverse-Z\n");
+  const std::string prefix = (dir.path() / "out" / "soup").string();
+  const CliResult r = run({"raster", soup, "--out", prefix});
+  REQUIRE(r.code == 0);
+  const std::vector<unsigned char> ids = read_bytes(prefix + ".primitive.bin");
+  REQUIRE(ids.size() == 8 * 6 * 4);
+  std::uint32_t first = 0, last = 0;
+  std::memcpy(&first, ids.data(), 4);                   // pixel (0, 0): only triangle 0
+  std::memcpy(&last, ids.data() + (8 * 6 - 1) * 4, 4);  // pixel (7, 5): only triangle 1
+  CHECK(first == 0);
+  CHECK(last == 1);
+  const std::vector<unsigned char> depth = read_bytes(prefix + ".depth.pfm");
+  CHECK(std::string(depth.begin(), depth.begin() + 12) == "Pf\n8 6\n-1.0\n");
+  const std::vector<unsigned char> bary = read_bytes(prefix + ".barycentric.pfm");
+  CHECK(std::string(bary.begin(), bary.begin() + 12) == "PF\n8 6\n-1.0\n");
+  CHECK(std::filesystem::exists(prefix + ".coverage.png"));
+  CHECK(std::filesystem::exists(prefix + ".json"));
+}
+
+TEST_CASE("rasterRejectsMalformedSoupsNamingTheLine", "[cli]") {
+  test::TempDir dir("raster-bad");
+  const std::string prefix = (dir.path() / "out").string();
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"", "empty"},
+      {"8\n", ":1: the header must be 'W H'"},
+      {"0 6\n", ":1: the header must be 'W H'"},
+      {"8 6\n1 2 3 4 5 6 7 8 9 10\n", ":2: a triangle is 9 numbers"},
+      {"8 6\n0 0 0.5 8 0 0.5 0 nan 0.5\n", ":2: 'nan' is not a finite number"},
+      {"8 6\n0 0 0.5 8 0 0.5 0 6 1.5\n", ":2: vertex 2 has depth z = 1.5"},
+      {"8 6\n0 0 0.5 8 0 0.5 0 3e6 0.5\n", ":2: vertex 2 lies outside the guard band"},
+      {"8 6\n0 0 0.5 8 0 0.5 0 6 0.5\n0 0 0 1 1 0 0 1 0 1 0 1\n", ":3: clip coordinates, but"},
+      {"8 6\n0 0 0.5 8 0 0.5 0 6 0.5 x\n", "'x' is not a finite number"},
+  };
+  int k = 0;
+  for (const auto& [text, message] : cases) {
+    const std::string soup = write_text(dir.path() / ("soup" + std::to_string(k++)), text);
+    const CliResult r = run({"raster", soup, "--out", prefix});
+    INFO(r.err);
+    CHECK(r.code == kExitBadInput);
+    CHECK_THAT(r.err, Contains(message));
+  }
+  const CliResult missing = run({"raster", (dir.path() / "none.txt").string(), "--out", prefix});
+  CHECK(missing.code == kExitBadInput);
+  const CliResult viewport = run({"raster", (dir.path() / "soup3").string(), "--out", prefix,
+                                  "--viewport", "0", "0", "0", "5"});
+  CHECK(viewport.code == kExitBadInput);
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
+    CHECK(entry.path().filename().string().rfind("soup", 0) == 0);  // only the inputs
+  }
+}
+
 }  // namespace
 }  // namespace relief

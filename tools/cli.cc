@@ -12,6 +12,7 @@
 #include "core/scene_json.h"
 #include "tools/atomic_file.h"
 #include "tools/commands.h"
+#include "tools/soup.h"
 
 namespace relief {
 
@@ -89,6 +90,51 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       ->check(CLI::Range(1, 1000));
   add_threads(stages_cmd, threads);
 
+  RenderOptions render;
+  CLI::App* render_cmd =
+      app.add_subcommand("render",
+                         "Render the scene to an sRGB PNG (stages 1-7 and, until the shading stage "
+                         "lands, diagnostic Lambert shading) and print the stage times.");
+  add_scene_args(render_cmd, scene_args);
+  render_cmd->add_option("-o,--output", render.output,
+                         "PNG file to write (default: the scene's output.image, relief.png)");
+  render_cmd
+      ->add_option("--repeat", render.repeat,
+                   "Render this many times and report the median stage times")
+      ->check(CLI::Range(1, 1000));
+  add_threads(render_cmd, threads);
+
+  RasterOptions raster_options;
+  CLI::App* raster_cmd = app.add_subcommand(
+      "raster",
+      "Rasterise a triangle soup (README.md, 'Triangle soups') and write the primitive "
+      "id, depth and barycentric buffers, for comparison with a GPU.");
+  raster_cmd->add_option("FILE", raster_options.soup, "Triangle soup text file")->required();
+  raster_cmd
+      ->add_option("--out", raster_options.prefix,
+                   "Output prefix: writes PREFIX.primitive.bin, "
+                   "PREFIX.depth.pfm, PREFIX.barycentric.pfm, "
+                   "PREFIX.coverage.png, PREFIX.json")
+      ->required();
+  raster_cmd->add_option("--cull", raster_options.cull, "Face culling: none (default), back, front")
+      ->check(CLI::IsMember({"none", "back", "front"}));
+  raster_cmd
+      ->add_option("--front-face", raster_options.front_face,
+                   "Front-facing winding in GL window coordinates: ccw (default) or cw")
+      ->check(CLI::IsMember({"ccw", "cw"}));
+  raster_cmd
+      ->add_option("--depth-test", raster_options.depth_test,
+                   "Depth test: greater (default, reverse-Z; depth cleared to 0), gequal, "
+                   "less, lequal (cleared to 1), equal, always, never")
+      ->check(CLI::IsMember({"greater", "gequal", "less", "lequal", "equal", "always", "never"}));
+  raster_cmd
+      ->add_option("--viewport", raster_options.viewport,
+                   "glViewport X Y WIDTH HEIGHT for clip-coordinate soups (default: the "
+                   "framebuffer); may exceed the framebuffer")
+      ->expected(4)
+      ->check(CLI::Range(-1e6, 1e6));
+  add_threads(raster_cmd, threads);
+
   std::vector<const char*> argv;
   for (const std::string& a : args) {
     argv.push_back(a.c_str());
@@ -110,6 +156,15 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
         tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   }
   try {
+    if (raster_cmd->parsed()) {
+      const auto& v = raster_options.viewport;
+      if (!v.empty() && (v[2] < 1 || v[3] < 1 || v[2] > 16384 || v[3] > 16384)) {
+        err << "relief: error: --viewport " << v[2] << "x" << v[3]
+            << " is out of range; allowed 1 <= width, height <= 16384\n";
+        return kExitBadInput;
+      }
+      return run_raster_command(raster_options, out);
+    }
     // The scene is validated completely before any work starts.
     const Scene scene = resolve_scene(scene_args.scene, scene_args.overrides);
     if (scene_cmd->parsed()) {
@@ -119,7 +174,20 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     if (stages_cmd->parsed()) {
       return run_stages_command(scene, stages, out);
     }
+    if (render_cmd->parsed()) {
+      const std::string& o = render.output;
+      if (!o.empty() && (o.size() < 4 || (o.compare(o.size() - 4, 4, ".png") != 0 &&
+                                          o.compare(o.size() - 4, 4, ".PNG") != 0))) {
+        err << "relief: error: -o " << o
+            << ": the image is written as PNG; give a file name ending in .png\n";
+        return kExitBadInput;
+      }
+      return run_render_command(scene, render, out);
+    }
   } catch (const SceneError& e) {
+    err << "relief: error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const SoupError& e) {
     err << "relief: error: " << e.what() << "\n";
     return kExitBadInput;
   } catch (const OutputError& e) {

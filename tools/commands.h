@@ -3,6 +3,7 @@
 
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 #include "core/scene.h"
 
@@ -15,5 +16,26 @@ struct StagesOptions {
 
 // `relief stages`: stages 1-4, stage times (median over `repeat` runs), stage outputs.
 int run_stages_command(const Scene& scene, const StagesOptions& options, std::ostream& out);
+
+struct RenderOptions {
+  std::string output;  // empty: scene.output.image
+  int repeat = 1;
+};
+
+// `relief render`: the whole frame to an sRGB PNG, with the stage times.
+int run_render_command(const Scene& scene, const RenderOptions& options, std::ostream& out);
+
+struct RasterOptions {
+  std::string soup;    // triangle soup file (README.md, "Triangle soups")
+  std::string prefix;  // output files PREFIX.*
+  std::string cull = "none";
+  std::string front_face = "ccw";
+  std::string depth_test = "greater";
+  std::vector<double> viewport;  // x y width height; empty: the framebuffer
+};
+
+// `relief raster`: a triangle soup through the rasteriser, buffers written for comparison.
+// Throws SceneError-like InputError for a bad soup (see soup.h).
+int run_raster_command(const RasterOptions& options, std::ostream& out);
 
 }  // namespace relief

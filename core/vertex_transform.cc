@@ -1,0 +1,46 @@
+#include "core/vertex_transform.h"
+
+namespace relief {
+
+ClipTransform make_clip_transform(const CameraFrame& camera) {
+  const double sx = 1.0 / camera.tan_half_fov_x;
+  const double sy = 1.0 / camera.tan_half_fov_y;
+  ClipTransform t;
+  for (int c = 0; c < 3; ++c) {
+    t.row_x[c] = camera.right[c] * sx;
+    t.row_y[c] = camera.up[c] * sy;
+    t.row_w[c] = camera.forward[c];
+  }
+  t.z_clip = camera.near;
+  t.camera_y = camera.position.y;
+  return t;
+}
+
+template <class Real>
+void transform_vertices(const ClipTransform& t, IndexRange range, std::span<const Real> dx,
+                        std::span<const Real> dz, std::span<const Real> height,
+                        ClipSpans<Real> clip) {
+  const Real x0 = Real(t.row_x[0]), x1 = Real(t.row_x[1]), x2 = Real(t.row_x[2]);
+  const Real y0 = Real(t.row_y[0]), y1 = Real(t.row_y[1]), y2 = Real(t.row_y[2]);
+  const Real w0 = Real(t.row_w[0]), w1 = Real(t.row_w[1]), w2 = Real(t.row_w[2]);
+  const Real z = Real(t.z_clip);
+  const Real camera_y = Real(t.camera_y);
+  for (std::size_t k = range.begin; k < range.end; ++k) {
+    const Real px = dx[k];
+    const Real py = height[k] - camera_y;
+    const Real pz = dz[k];
+    clip.x[k] = x0 * px + x1 * py + x2 * pz;
+    clip.y[k] = y0 * px + y1 * py + y2 * pz;
+    clip.z[k] = z;
+    clip.w[k] = w0 * px + w1 * py + w2 * pz;
+  }
+}
+
+template void transform_vertices<float>(const ClipTransform&, IndexRange, std::span<const float>,
+                                        std::span<const float>, std::span<const float>,
+                                        ClipSpans<float>);
+template void transform_vertices<double>(const ClipTransform&, IndexRange, std::span<const double>,
+                                         std::span<const double>, std::span<const double>,
+                                         ClipSpans<double>);
+
+}  // namespace relief

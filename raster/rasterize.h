@@ -1,0 +1,46 @@
+// Stage 6: rasterisation into the visibility buffer (design.md), the way GL hardware does it.
+//
+// 1. Setup, in parallel over fixed chunks of kSetupChunk triangles (triangle_setup.h), and
+//    binning of each chunk's triangles into 64 x 64 screen tiles, in submission order.
+// 2. Each tile is rasterised independently (its own task; no two tasks write the same pixel),
+//    visiting the chunks in order and each chunk's triangles in order: the depth test sees
+//    triangles in submission order, so on equal depth the first submitted wins under GREATER
+//    and LESS, as in GL. The buffer is therefore identical for every thread count.
+#pragma once
+
+#include <cstdint>
+
+#include "raster/raster_types.h"
+#include "raster/topology.h"
+#include "raster/triangle_setup.h"
+
+namespace relief::raster {
+
+struct RasterStats {
+  std::uint64_t triangles = 0;    // triangles submitted
+  std::uint64_t setup = 0;        // rasterisable pieces after culling and clipping
+  std::uint64_t bin_entries = 0;  // (triangle, tile) pairs
+};
+
+// Clears `out` to (kNoPrimitive, depth_clear) at the state's size and draws every triangle of
+// `source`. Vertex positions are indexed by the source's vertex indices.
+template <class Source>
+RasterStats rasterize(const RasterState& state, ClipVertices vertices, const Source& source,
+                      VisibilityBuffer& out);
+template <class Source>
+RasterStats rasterize(const RasterState& state, WindowVertices vertices, const Source& source,
+                      VisibilityBuffer& out);
+
+// Calls f(px, py) for every pixel the triangle covers, row by row from the bottom.
+template <class F>
+void for_each_covered_pixel(const RasterTriangle& t, F&& f) {
+  for (int py = t.y0; py <= t.y1; ++py) {
+    for (int px = t.x0; px <= t.x1; ++px) {
+      if (t.covers(px, py)) {
+        f(px, py);
+      }
+    }
+  }
+}
+
+}  // namespace relief::raster

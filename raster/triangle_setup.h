@@ -1,0 +1,73 @@
+// Triangle setup (stage 6, first half): clip, viewport transform, snap, cull, and build the
+// integer edge functions and the depth plane of each triangle that can cover a pixel.
+//
+// Edge functions (16.8 fixed point, pixel centres at multiples of 256, raster_types.h): for a
+// counter-clockwise triangle (positive area in GL's y-up window coordinates) edge i from v_i
+// to v_i+1 is E_i(X, Y) = a_i X + b_i Y + c_i, a_i = y_i - y_i+1, b_i = x_i+1 - x_i; positive
+// inside. Fill rule, GL's window coordinates: a pixel centre exactly on an edge belongs to
+// left edges (dy < 0) and bottom edges (dy = 0, dx > 0), not to right or top ones (D3D's
+// top-left rule seen with y flipped; llvmpipe's rule for GL framebuffers). It is folded into
+// c_i (+1 on inclusive edges), so "inside" is E_i > 0 for all three, in exact int64 arithmetic:
+// every pixel of a closed mesh is covered exactly once.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "raster/clip.h"
+#include "raster/raster_types.h"
+
+namespace relief::raster {
+
+struct RasterTriangle {
+  std::int64_t c[3];  // edge constants, fill-rule bias included
+  std::int32_t a[3];  // edge coefficients per fixed-point unit
+  std::int32_t b[3];
+  std::int32_t x0, y0, x1, y1;  // inclusive pixel bounds, inside viewport and framebuffer
+  // Depth at pixel (px, py): z0 + dzdx px + dzdy py, from the plane through the (unsnapped)
+  // window coordinates, in double, then clamped to [0, 1] (GL's depth range) and rounded to
+  // float.
+  double z0, dzdx, dzdy;
+  std::uint32_t primitive;
+
+  bool covers(int px, int py) const {
+    const std::int64_t x = static_cast<std::int64_t>(px) * kSubpixelScale;
+    const std::int64_t y = static_cast<std::int64_t>(py) * kSubpixelScale;
+    return a[0] * x + b[0] * y + c[0] > 0 && a[1] * x + b[1] * y + c[1] > 0 &&
+           a[2] * x + b[2] * y + c[2] > 0;
+  }
+  float depth(int px, int py) const {
+    const double z = z0 + dzdx * px + dzdy * py;
+    return static_cast<float>(z < 0.0 ? 0.0 : (z > 1.0 ? 1.0 : z));
+  }
+};
+
+// Per-frame constants of setup, derived from the raster state.
+class TriangleSetup {
+ public:
+  explicit TriangleSetup(const RasterState& state);
+
+  // Appends the rasterisable pieces of one clip-space triangle (none if culled, clipped away,
+  // zero-area or outside the pixel region; several if clipping made a polygon).
+  void setup_clip(std::uint32_t primitive, const ClipVertex v[3],
+                  std::vector<RasterTriangle>& out) const;
+
+  // Appends one triangle given in window coordinates (precondition: within the guard band).
+  void setup_window(std::uint32_t primitive, const float x[3], const float y[3], const float z[3],
+                    std::vector<RasterTriangle>& out) const;
+
+  // Window x, y, z of a clip-space vertex: x/w * scale + translate, in float, in the order GL
+  // implementations evaluate it.
+  void to_window(const ClipVertex& v, float& x, float& y, float& z) const;
+
+ private:
+  const RasterState& state_;
+  ClipPlanes planes_;
+  float scale_x_, scale_y_, translate_x_, translate_y_;
+  int region_x0_, region_y0_, region_x1_, region_y1_;  // inclusive pixel region
+};
+
+// Round-half-to-even of (coordinate - 0.5) * 256 in float: llvmpipe's snapping, exactly.
+std::int32_t snap_to_fixed(float window_coordinate);
+
+}  // namespace relief::raster

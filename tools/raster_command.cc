@@ -1,0 +1,139 @@
+#include <cstring>
+#include <fstream>
+#include <ostream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/counter_hash.h"
+#include "raster/rasterize.h"
+#include "raster/resolve.h"
+#include "tools/atomic_file.h"
+#include "tools/cli.h"
+#include "tools/commands.h"
+#include "tools/image_io.h"
+#include "tools/soup.h"
+
+namespace relief {
+
+namespace {
+
+raster::CullMode cull_mode(const std::string& name) {
+  return name == "back"    ? raster::CullMode::kBack
+         : name == "front" ? raster::CullMode::kFront
+                           : raster::CullMode::kNone;
+}
+
+raster::DepthTest depth_test(const std::string& name) {
+  if (name == "gequal")
+    return raster::DepthTest::kGreaterEqual;
+  if (name == "less")
+    return raster::DepthTest::kLess;
+  if (name == "lequal")
+    return raster::DepthTest::kLessEqual;
+  if (name == "equal")
+    return raster::DepthTest::kEqual;
+  if (name == "always")
+    return raster::DepthTest::kAlways;
+  if (name == "never")
+    return raster::DepthTest::kNever;
+  return raster::DepthTest::kGreater;
+}
+
+std::span<const unsigned char> bytes_of(const std::string& text) {
+  return {reinterpret_cast<const unsigned char*>(text.data()), text.size()};
+}
+
+}  // namespace
+
+int run_raster_command(const RasterOptions& options, std::ostream& out) {
+  std::ifstream file(options.soup);
+  if (!file) {
+    throw SoupError(options.soup + ": cannot be opened for reading");
+  }
+  const TriangleSoup soup = parse_triangle_soup(file, options.soup);
+  raster::RasterState state;
+  state.width = soup.width;
+  state.height = soup.height;
+  state.viewport = {0.0, 0.0, double(soup.width), double(soup.height)};
+  if (!options.viewport.empty()) {
+    state.viewport = {options.viewport[0], options.viewport[1], options.viewport[2],
+                      options.viewport[3]};
+  }
+  state.cull = cull_mode(options.cull);
+  state.front_face = options.front_face == "cw" ? raster::FrontFace::kClockwise
+                                                : raster::FrontFace::kCounterClockwise;
+  state.depth_test = depth_test(options.depth_test);
+  state.depth_clear = state.depth_test == raster::DepthTest::kLess ||
+                              state.depth_test == raster::DepthTest::kLessEqual
+                          ? 1.0f
+                          : 0.0f;
+
+  const raster::IndexedTriangles triangles{soup.indices};
+  raster::VisibilityBuffer visibility;
+  raster::RasterStats stats;
+  raster::VertexPositions positions;
+  if (soup.clip_coordinates) {
+    const raster::ClipVertices clip{soup.x, soup.y, soup.z, soup.w};
+    stats = raster::rasterize(state, clip, triangles, visibility);
+    positions = raster::VertexPositions::from_clip(clip, state.viewport);
+  } else {
+    const raster::WindowVertices window{soup.x, soup.y, soup.z};
+    stats = raster::rasterize(state, window, triangles, visibility);
+    positions = raster::VertexPositions::from_window(window);
+  }
+  raster::ResolvedFrame resolved;
+  raster::resolve(visibility, positions, triangles, {}, resolved);
+
+  const std::filesystem::path prefix(options.prefix);
+  if (prefix.has_parent_path()) {
+    ensure_directory(prefix.parent_path());
+  }
+  const std::size_t pixels = visibility.primitive.size();
+  std::vector<unsigned char> ids(pixels * 4);
+  std::memcpy(ids.data(), visibility.primitive.data(), ids.size());  // little-endian host
+  std::vector<float> barycentric(pixels * 3);
+  std::vector<std::uint8_t> coverage(pixels * 3, 0);
+  std::size_t covered = 0;
+  for (std::size_t k = 0; k < pixels; ++k) {
+    barycentric[3 * k] = resolved.b0[k];
+    barycentric[3 * k + 1] = resolved.b1[k];
+    barycentric[3 * k + 2] = resolved.b2[k];
+    if (visibility.primitive[k] != raster::kNoPrimitive) {
+      ++covered;
+      const std::uint64_t h = mix64(visibility.primitive[k] + kGoldenGamma);
+      coverage[3 * k] = static_cast<std::uint8_t>(64 + (h & 0xbf));
+      coverage[3 * k + 1] = static_cast<std::uint8_t>(64 + ((h >> 8) & 0xbf));
+      coverage[3 * k + 2] = static_cast<std::uint8_t>(64 + ((h >> 16) & 0xbf));
+    }
+  }
+  const std::string p = options.prefix;
+  write_file_atomically(p + ".primitive.bin", ids);
+  write_file_atomically(p + ".depth.pfm", encode_pfm(soup.width, soup.height, 1, visibility.depth,
+                                                     static_cast<std::size_t>(soup.width)));
+  write_file_atomically(p + ".barycentric.pfm",
+                        encode_pfm(soup.width, soup.height, 3, barycentric,
+                                   static_cast<std::size_t>(soup.width) * 3));
+  write_file_atomically(p + ".coverage.png", encode_png_rgb(soup.width, soup.height, coverage));
+  const nlohmann::json manifest = {
+      {"width", soup.width},
+      {"height", soup.height},
+      {"triangles", soup.triangle_count()},
+      {"pieces_after_clipping_and_culling", stats.setup},
+      {"covered_pixels", covered},
+      {"files",
+       {{"primitive", p + ".primitive.bin: uint32 little-endian per pixel, rows bottom to top, "
+                          "4294967295 where uncovered"},
+        {"depth", p + ".depth.pfm: window depth of the winning triangle (the clear value where "
+                      "uncovered)"},
+        {"barycentric", p + ".barycentric.pfm: perspective-correct barycentrics of the winning "
+                            "triangle, 0 where uncovered"},
+        {"coverage", p + ".coverage.png: a colour per primitive, black where uncovered"}}}};
+  write_file_atomically(p + ".json", bytes_of(manifest.dump(2) + "\n"));
+  out << soup.triangle_count() << " triangles (" << stats.setup << " pieces after clipping and "
+      << "culling), " << covered << " of " << pixels << " pixels covered\nwrote " << p
+      << ".{primitive.bin,depth.pfm,barycentric.pfm,coverage.png,json}\n";
+  return kExitOk;
+}
+
+}  // namespace relief

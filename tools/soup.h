@@ -1,0 +1,36 @@
+// Triangle soups: the text format of `relief raster` (README.md, "Triangle soups").
+//
+//   # comment                 ('#' to the end of the line; blank lines are ignored)
+//   W H                       framebuffer size, 1..16384
+//   x y z  x y z  x y z       a triangle in window coordinates: pixels, depth z in [0, 1]
+//   x y z w  x y z w  x y z w a triangle in clip coordinates
+//
+// One kind per file. Triangle k (0-based, in file order) is primitive k.
+#pragma once
+
+#include <cstdint>
+#include <istream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace relief {
+
+// A malformed soup; the message names the file, the line and the rule broken.
+class SoupError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct TriangleSoup {
+  int width = 0;
+  int height = 0;
+  bool clip_coordinates = false;
+  std::vector<float> x, y, z, w;       // 3 vertices per triangle; w = 1 for window coordinates
+  std::vector<std::uint32_t> indices;  // 0, 1, 2, 3, ...
+  std::uint32_t triangle_count() const { return static_cast<std::uint32_t>(indices.size() / 3); }
+};
+
+TriangleSoup parse_triangle_soup(std::istream& in, const std::string& name);
+
+}  // namespace relief
