@@ -56,16 +56,19 @@ void BM_Raster_DefaultTerrain(benchmark::State& state) {
       benchmark::Counter(double(stats.setup) * state.iterations(), benchmark::Counter::kIsRate);
 }
 
-// Stage 7 (three attribute streams: the normal) on the default frame.
+// Stage 7 as the renderer runs it (eight attribute streams, derivatives of three) on the
+// default frame.
 void BM_Resolve_DefaultTerrain(benchmark::State& state) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                             static_cast<std::size_t>(state.range(0)));
   const TerrainFrame& f = terrain().frame;
-  const std::span<const float> streams[3] = {f.grid.nx, f.grid.ny, f.grid.nz};
+  const std::span<const float> streams[8] = {f.grid.dx,    f.grid.dz,         f.grid.height,
+                                             f.grid.nx,    f.grid.ny,         f.grid.nz,
+                                             f.grid.slope, f.grid.water_depth};
   raster::ResolvedFrame out;
   for (auto _ : state) {
     raster::resolve(f.visibility, raster::VertexPositions::from_clip(f.clip(), f.state.viewport),
-                    f.triangles(), std::span<const std::span<const float>>(streams), out);
+                    f.triangles(), std::span<const std::span<const float>>(streams), 3, out);
     benchmark::DoNotOptimize(out.b0.data());
   }
 }

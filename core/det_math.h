@@ -94,4 +94,62 @@ Real log_det(Real x) {
   return log2_det(x) * Real(0.69314718055994531);
 }
 
+namespace det_math_detail {
+
+// (ln 2)^k / k!, k = 0..13: the Taylor series of 2^f = e^(f ln 2).
+inline constexpr double kExp2Coeffs[14] = {1.0,
+                                           0.6931471805599453,
+                                           0.2402265069591007,
+                                           0.055504108664821576,
+                                           0.009618129107628477,
+                                           0.0013333558146428441,
+                                           0.00015403530393381606,
+                                           1.5252733804059838e-05,
+                                           1.3215486790144305e-06,
+                                           1.0178086009239696e-07,
+                                           7.054911620801121e-09,
+                                           4.44553827187081e-10,
+                                           2.5678435993488196e-11,
+                                           1.3691488853904124e-12};
+
+template <class Real>
+struct Exp2Terms;
+template <>
+struct Exp2Terms<float> {
+  // |f| <= 1/2: (ln2/2)^9 / 9! < 2e-10, below 2^-25.
+  static constexpr int kTerms = 9;
+};
+template <>
+struct Exp2Terms<double> {
+  // (ln2/2)^14 / 14! < 4e-18, below 2^-54.
+  static constexpr int kTerms = 14;
+};
+
+}  // namespace det_math_detail
+
+// 2^x for finite x, within 2 ulp, from + - * and exact bit manipulation only. Domain: x in
+// [-125, 125] for float, [-1021, 1021] for double; outside it the argument is clamped to the
+// domain's end (the result then under- or overflows gracefully to a tiny or huge finite value,
+// never to 0, infinity or NaN), which keeps every stage that exponentiates total.
+// Method: n = round(x) by the 1.5 * 2^52 trick, f = x - n in [-1/2, 1/2], 2^f by Horner on
+// its Taylor series, times 2^n built in the exponent field.
+template <class Real>
+Real exp2_det(Real x) {
+  static_assert(std::is_floating_point_v<Real>);
+  using B = det_math_detail::FloatBits<Real>;
+  using Int = typename B::Int;
+  const Real limit = Real(B::kExponentBias - 2);
+  x = x < -limit ? -limit : (x > limit ? limit : x);
+  const double magic = 6755399441055744.0;  // 1.5 * 2^52: rounds to the nearest integer
+  const Real n = Real((double(x) + magic) - magic);
+  const Real f = x - n;
+  constexpr int kTerms = det_math_detail::Exp2Terms<Real>::kTerms;
+  Real series = Real(det_math_detail::kExp2Coeffs[kTerms - 1]);
+  for (int k = kTerms - 2; k >= 0; --k) {
+    series = series * f + Real(det_math_detail::kExp2Coeffs[k]);
+  }
+  const Int exponent = static_cast<Int>(static_cast<int>(n) + B::kExponentBias) << B::kMantissaBits;
+  return series * std::bit_cast<Real>(exponent);
+}
+
 }  // namespace relief

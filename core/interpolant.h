@@ -29,6 +29,18 @@ constexpr Real fade(Real t) {
   }
 }
 
+// d fade / dt, for analytic gradients of S.
+template <Interpolant kKind, class Real>
+constexpr Real fade_slope(Real t) {
+  if constexpr (kKind == Interpolant::kLinear) {
+    return Real(1);
+  } else if constexpr (kKind == Interpolant::kCubic) {
+    return Real(6) * t * (Real(1) - t);
+  } else {
+    return Real(30) * t * t * (t - Real(1)) * (t - Real(1));
+  }
+}
+
 template <class Real>
 constexpr Real fade(Interpolant kind, Real t) {
   switch (kind) {
@@ -52,30 +64,63 @@ Real wrap_period(Real p, Real period, Real inv_period) {
   return p - period * std::floor(p * inv_period);
 }
 
-// S(px, pz): the lattice interpolated at lattice coordinates (px, pz), with period P in both
-// axes. Lerps are written a + w (b - a) so that w = 0 returns a exactly (S passes through the
-// lattice values bit for bit). The operation order is the specification: SIMD and GLSL copies
-// follow it literally.
-template <Interpolant kKind, class Real>
-Real sample_lattice(const NoiseLattice& lattice, Real px, Real pz) {
+// The lattice cell holding (px, pz): its corner indices and the position inside it, in [0, 1).
+template <class Real>
+struct LatticeCell {
+  int i0, j0, i1, j1;
+  Real fx, fz;
+};
+
+template <class Real>
+LatticeCell<Real> locate_cell(const NoiseLattice& lattice, Real px, Real pz) {
   const Real period = Real(lattice.size);
   const Real inv_period = Real(1) / period;  // exact: P is a power of two
   const Real wx = wrap_period(px, period, inv_period);
   const Real wz = wrap_period(pz, period, inv_period);
   const Real fx = std::floor(wx);
   const Real fz = std::floor(wz);
-  const int i0 = static_cast<int>(fx) & lattice.mask;
-  const int j0 = static_cast<int>(fz) & lattice.mask;
-  const int i1 = (i0 + 1) & lattice.mask;
-  const int j1 = (j0 + 1) & lattice.mask;
-  const Real tx = fade<kKind>(wx - fx);
-  const Real tz = fade<kKind>(wz - fz);
-  const Real v00 = lattice.at(i0, j0);
-  const Real v10 = lattice.at(i1, j0);
-  const Real v01 = lattice.at(i0, j1);
-  const Real v11 = lattice.at(i1, j1);
+  LatticeCell<Real> cell;
+  cell.i0 = static_cast<int>(fx) & lattice.mask;
+  cell.j0 = static_cast<int>(fz) & lattice.mask;
+  cell.i1 = (cell.i0 + 1) & lattice.mask;
+  cell.j1 = (cell.j0 + 1) & lattice.mask;
+  cell.fx = wx - fx;
+  cell.fz = wz - fz;
+  return cell;
+}
+
+// S(px, pz): the lattice interpolated at lattice coordinates (px, pz), with period P in both
+// axes. Lerps are written a + w (b - a) so that w = 0 returns a exactly (S passes through the
+// lattice values bit for bit). The operation order is the specification: SIMD and GLSL copies
+// follow it literally.
+template <Interpolant kKind, class Real>
+Real sample_lattice(const NoiseLattice& lattice, Real px, Real pz) {
+  const LatticeCell<Real> c = locate_cell(lattice, px, pz);
+  const Real tx = fade<kKind>(c.fx);
+  const Real tz = fade<kKind>(c.fz);
+  const Real v00 = lattice.at(c.i0, c.j0);
+  const Real v10 = lattice.at(c.i1, c.j0);
+  const Real v01 = lattice.at(c.i0, c.j1);
+  const Real v11 = lattice.at(c.i1, c.j1);
   const Real bottom = v00 + tx * (v10 - v00);
   const Real top = v01 + tx * (v11 - v01);
+  return bottom + tz * (top - bottom);
+}
+
+// S and its gradient (dS/dpx, dS/dpz) at (px, pz): the operations of sample_lattice for the
+// value, plus the fade slopes.
+template <Interpolant kKind, class Real>
+Real sample_lattice_gradient(const NoiseLattice& lattice, Real px, Real pz, Real& dpx, Real& dpz) {
+  const LatticeCell<Real> c = locate_cell(lattice, px, pz);
+  const Real tx = fade<kKind>(c.fx);
+  const Real tz = fade<kKind>(c.fz);
+  const Real v00 = lattice.at(c.i0, c.j0), v10 = lattice.at(c.i1, c.j0);
+  const Real v01 = lattice.at(c.i0, c.j1), v11 = lattice.at(c.i1, c.j1);
+  const Real bottom = v00 + tx * (v10 - v00);
+  const Real top = v01 + tx * (v11 - v01);
+  const Real slope_bottom = v10 - v00, slope_top = v11 - v01;
+  dpx = fade_slope<kKind>(c.fx) * (slope_bottom + tz * (slope_top - slope_bottom));
+  dpz = fade_slope<kKind>(c.fz) * (top - bottom);
   return bottom + tz * (top - bottom);
 }
 

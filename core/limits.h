@@ -58,6 +58,15 @@ inline constexpr double kMaxAmplitude = 1e7;
 inline constexpr double kMaxBaseHeight = 1e7;
 inline constexpr double kMaxWarpComponent = 100.0;
 
+// --- Shading ---------------------------------------------------------------------------------
+
+// Material layers are blended per pixel; 8 is more than any of the seeds uses (Scape: 4) and
+// keeps the per-pixel weight arrays on the stack.
+inline constexpr std::size_t kMaxMaterialLayers = 8;
+// Loaded proto-textures: square powers of two (the mip chain halves them exactly).
+inline constexpr int kMinTextureSize = 4;
+inline constexpr int kMaxTextureSize = 4096;
+
 // --- Numeric guards (each division or log in a stage names the guard it uses) -------------
 
 // §2.2 divides by the roughness R_i, which crosses zero wherever the partial height reaches

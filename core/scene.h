@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/interpolant.h"
 
@@ -18,10 +19,10 @@ using Vec3d = std::array<double, 3>;
 struct CameraSettings {
   // World: right-handed, y up. Position in double (design.md): only camera-relative offsets
   // are ever stored in float.
-  Vec3d position = {0.0, 420.0, 0.0};
+  Vec3d position = {0.0, 700.0, 0.0};
   // Yaw about +y in degrees: 0 looks along -z, 90 along +x. Pitch: positive looks up.
   double yaw_deg = 30.0;
-  double pitch_deg = -6.0;
+  double pitch_deg = -8.0;
   double fov_y_deg = 60.0;
   double near = 0.5;
   // Distance along the view direction to which terrain is generated: the far plane of the
@@ -68,22 +69,78 @@ struct TerrainSettings {
   int lattice_size = 256;  // P
   Interpolant interpolant = Interpolant::kQuintic;
   double r = 2.0;        // lacunarity (Eq. 1)
-  double H = 0.8;        // Hurst exponent, H = 3 - D (Eq. 1)
+  double H = 0.85;       // Hurst exponent, H = 3 - D (Eq. 1)
   int first_octave = 0;  // k0 (Eq. 1): the global structure
   int last_octave = 14;  // the finest octave the LOD may ever add
   LodSettings lod;
   WarpSettings warp;
   // World units spanned by one lattice cell of octave 0: the size of the largest features.
-  double horizontal_scale = 2400.0;
-  double base_height = 0.0;  // world height of the base domain (fBm value 0)
-  double amplitude = 260.0;  // world units per unit of fBm (the N(0,1) lattice)
+  double horizontal_scale = 3000.0;
+  double base_height = 100.0;  // world height of the base domain (fBm value 0)
+  double amplitude = 360.0;    // world units per unit of fBm (the N(0,1) lattice)
   // Water surface height; nullopt: no water (the water pass is skipped).
   std::optional<double> water_level = 0.0;
+};
+
+// One proto-texture layer (§4.2) with the height/slope ranges of Scape's layers.
+struct MaterialLayer {
+  std::string name;
+  // "builtin:NAME" (sand, grass, rock, snow, bed, basalt, dune: synthesised at start-up) or a
+  // PNG file: square, a power of two from 4 to 4096 pixels, 8-bit RGB or RGBA (alpha ignored).
+  std::string texture;
+  double tile_size = 40.0;                // world units per repeat of the texture
+  Vec2d height = {-1e7, 1e7};             // world heights where the layer is present
+  bool height_relative_to_water = false;  // height range measured from terrain.water_level
+  Vec2d slope_deg = {0.0, 90.0};          // slope angles where the layer is present (atan |grad h|)
+  double height_spread = 25.0;            // half-width of the height transitions, world units
+  double slope_spread_deg = 4.0;          // half-width of the slope transitions, degrees
+  double specular = 0.0;                  // Phong specular strength in [0, 1]
+};
+
+struct ShadingSettings {
+  std::vector<MaterialLayer> layers;  // the default set is in scene_defaults.cc
+  int texture_size = 256;             // side of the built-in textures, power of two
+  double mip_blend = 0.3;     // §4.2: each mip level blended this far toward the mean colour
+  bool triplanar = true;      // Mekala, Scape: three projections weighted by squared normals
+  double dither = 0.6;        // Scape: transition dithering, in units of each layer's spreads
+  double dither_scale = 9.0;  // world units per lattice cell of the dithering noise
+};
+
+struct LightingSettings {
+  double sun_azimuth_deg = 230.0;  // 0: the sun stands toward -z, 90: toward +x
+  double sun_elevation_deg = 24.0;
+  Vec3d sun_color = {1.0, 0.93, 0.82};
+  double sun_intensity = 1.8;
+  Vec3d sky_color = {0.42, 0.58, 0.85};     // hemispherical light from above (Scape)
+  Vec3d ground_color = {0.22, 0.20, 0.16};  // and from below
+  double sky_intensity = 0.25;
+  double ambient = 0.03;
+  double shininess = 48.0;  // Phong exponent of the layers' specular term
+  double exposure = 0.75;   // linear radiance scale before sRGB encoding
+};
+
+// §4.3 water; the level is terrain.water_level.
+struct WaterSettings {
+  Vec3d shallow_color = {0.08, 0.30, 0.28};
+  Vec3d deep_color = {0.015, 0.09, 0.085};  // "deep oceans get the green-ish hue"
+  Vec3d extinction = {0.42, 0.11, 0.075};   // per world unit of transmitted path, RGB
+  double full_depth = 14.0;                 // depth at which water looks deep and reflects fully
+  double wave_length = 7.0;                 // world units, the largest wave of the normal map
+  double wave_strength = 0.2;               // slope of the wave normal map in deep water
+  double wave_speed = 1.2;                  // world units per second
+};
+
+struct SkySettings {
+  Vec3d zenith_color = {0.17, 0.33, 0.70};
+  Vec3d horizon_color = {0.66, 0.75, 0.86};
+  double sun_disc_deg = 0.6;    // angular radius of the sun disc
+  double fog_density = 2.2e-5;  // per world unit: fog = 1 - exp(-density distance)
 };
 
 struct OutputSettings {
   std::string image = "relief.png";
   std::string stages_dir = "stages";
+  std::optional<std::string> float_image;  // linear radiance as PFM; nullopt: none
 };
 
 struct Scene {
@@ -91,7 +148,14 @@ struct Scene {
   ViewportSettings viewport;
   GridSettings grid;
   TerrainSettings terrain;
+  ShadingSettings shading = default_shading();
+  LightingSettings lighting;
+  WaterSettings water;
+  SkySettings sky;
+  double time = 0.0;  // seconds: animates the water's wave normal map
   OutputSettings output;
+
+  static ShadingSettings default_shading();
 };
 
 }  // namespace relief

@@ -390,6 +390,242 @@ void apply_terrain(const LayerReader& in, const json& value, const std::string& 
       });
 }
 
+constexpr std::string_view kBuiltinPrefix = "builtin:";
+
+const std::vector<std::string>& builtin_texture_names() {
+  static const std::vector<std::string> names = {"sand", "grass",  "rock", "snow",
+                                                 "bed",  "basalt", "dune"};
+  return names;
+}
+
+// A layer given as an object: every key optional, applied onto `layer`.
+void apply_material_layer(const LayerReader& in, const json& value, const std::string& path,
+                          MaterialLayer& layer, const std::filesystem::path& base_dir) {
+  in.object(
+      value, path,
+      Handlers{
+          {"name", [&](const json& v, const std::string& p) { layer.name = in.string(v, p); }},
+          {"texture",
+           [&](const json& v, const std::string& p) {
+             std::string texture = in.string(v, p);
+             if (texture.rfind(kBuiltinPrefix, 0) == 0) {
+               const std::string name = texture.substr(kBuiltinPrefix.size());
+               const auto& names = builtin_texture_names();
+               if (std::find(names.begin(), names.end(), name) == names.end()) {
+                 in.fail(p, p + " = " + v.dump() + " names no built-in texture; allowed: builtin:" +
+                                join(names, ", builtin:") + ", or a PNG file");
+               }
+             } else if (!base_dir.empty() && std::filesystem::path(texture).is_relative()) {
+               texture = (base_dir / texture).lexically_normal().string();
+             }
+             layer.texture = texture;
+           }},
+          {"tile_size",
+           [&](const json& v, const std::string& p) {
+             layer.tile_size = in.number(v, p, Range{0.0, 1e6, true});
+           }},
+          {"height",
+           [&](const json& v, const std::string& p) {
+             layer.height =
+                 in.vector<2>(v, p, Range{-limits::kMaxBaseHeight, limits::kMaxBaseHeight});
+             if (!(layer.height[0] < layer.height[1])) {
+               in.fail(p, p + " = " + v.dump() + " is empty; allowed [low, high] with low < high");
+             }
+           }},
+          {"height_relative_to_water",
+           [&](const json& v, const std::string& p) {
+             layer.height_relative_to_water = in.boolean(v, p);
+           }},
+          {"slope_deg",
+           [&](const json& v, const std::string& p) {
+             layer.slope_deg = in.vector<2>(v, p, Range{0.0, 90.0});
+             if (!(layer.slope_deg[0] < layer.slope_deg[1])) {
+               in.fail(p, p + " = " + v.dump() + " is empty; allowed [low, high] with low < high");
+             }
+           }},
+          {"height_spread",
+           [&](const json& v, const std::string& p) {
+             layer.height_spread = in.number(v, p, Range{0.0, 1e6});
+           }},
+          {"slope_spread_deg",
+           [&](const json& v, const std::string& p) {
+             layer.slope_spread_deg = in.number(v, p, Range{0.0, 45.0});
+           }},
+          {"specular",
+           [&](const json& v, const std::string& p) {
+             layer.specular = in.number(v, p, Range{0.0, 1.0});
+           }},
+      });
+}
+
+// shading.layers: an array replaces the whole list; an object {"2": {...}} patches layer 2
+// (that is what --set shading.layers.2.slope_deg=[30,90] produces).
+void apply_material_layers(const LayerReader& in, const json& value, const std::string& path,
+                           std::vector<MaterialLayer>& layers,
+                           const std::filesystem::path& base_dir) {
+  if (value.is_array()) {
+    if (value.empty() || value.size() > limits::kMaxMaterialLayers) {
+      in.fail(path, path + " has " + std::to_string(value.size()) + " layers; allowed 1 to " +
+                        std::to_string(limits::kMaxMaterialLayers));
+    }
+    std::vector<MaterialLayer> replaced(value.size());
+    for (std::size_t k = 0; k < value.size(); ++k) {
+      const std::string p = path + "[" + std::to_string(k) + "]";
+      if (!value[k].is_object() || !value[k].contains("texture")) {
+        in.fail(p, p + " must be an object with at least a \"texture\"");
+      }
+      replaced[k].name = "layer" + std::to_string(k);
+      apply_material_layer(in, value[k], p, replaced[k], base_dir);
+    }
+    layers = std::move(replaced);
+    return;
+  }
+  if (!value.is_object()) {
+    in.fail(path, path + " = " + value.dump() +
+                      " must be an array of layers, or an object patching layers by index");
+  }
+  for (const auto& [key, item] : value.items()) {
+    std::size_t index = 0;
+    const auto [end, ec] = std::from_chars(key.data(), key.data() + key.size(), index);
+    if (ec != std::errc() || end != key.data() + key.size() || index >= layers.size()) {
+      in.fail(path, "no layer '" + key + "' in " + path + "; allowed indices 0 to " +
+                        std::to_string(layers.size() - 1));
+    }
+    apply_material_layer(in, item, path + "[" + key + "]", layers[index], base_dir);
+  }
+}
+
+void apply_shading(const LayerReader& in, const json& value, const std::string& path,
+                   ShadingSettings& shading, const std::filesystem::path& base_dir) {
+  in.object(value, path,
+            Handlers{
+                {"layers",
+                 [&](const json& v, const std::string& p) {
+                   apply_material_layers(in, v, p, shading.layers, base_dir);
+                 }},
+                {"texture_size",
+                 [&](const json& v, const std::string& p) {
+                   const long long size = in.integer(v, p, 16, 2048);
+                   if (!std::has_single_bit(static_cast<unsigned long long>(size))) {
+                     in.fail(p, p + " = " + v.dump() +
+                                    " is not a power of two; allowed 16, 32, ..., 2048");
+                   }
+                   shading.texture_size = static_cast<int>(size);
+                 }},
+                {"mip_blend",
+                 [&](const json& v, const std::string& p) {
+                   shading.mip_blend = in.number(v, p, Range{0.0, 1.0});
+                 }},
+                {"triplanar", [&](const json& v,
+                                  const std::string& p) { shading.triplanar = in.boolean(v, p); }},
+                {"dither",
+                 [&](const json& v, const std::string& p) {
+                   shading.dither = in.number(v, p, Range{0.0, 4.0});
+                 }},
+                {"dither_scale",
+                 [&](const json& v, const std::string& p) {
+                   shading.dither_scale = in.number(v, p, Range{0.0, 1e6, true});
+                 }},
+            });
+}
+
+void apply_lighting(const LayerReader& in, const json& value, const std::string& path,
+                    LightingSettings& l) {
+  const Range color{0.0, 1000.0};
+  in.object(
+      value, path,
+      Handlers{
+          {"sun_azimuth_deg",
+           [&](const json& v, const std::string& p) {
+             l.sun_azimuth_deg = in.number(v, p, Range{-360.0, 360.0});
+           }},
+          {"sun_elevation_deg",
+           [&](const json& v, const std::string& p) {
+             l.sun_elevation_deg = in.number(v, p, Range{-90.0, 90.0});
+           }},
+          {"sun_color",
+           [&](const json& v, const std::string& p) { l.sun_color = in.vector<3>(v, p, color); }},
+          {"sun_intensity",
+           [&](const json& v, const std::string& p) { l.sun_intensity = in.number(v, p, color); }},
+          {"sky_color",
+           [&](const json& v, const std::string& p) { l.sky_color = in.vector<3>(v, p, color); }},
+          {"ground_color",
+           [&](const json& v, const std::string& p) {
+             l.ground_color = in.vector<3>(v, p, color);
+           }},
+          {"sky_intensity",
+           [&](const json& v, const std::string& p) { l.sky_intensity = in.number(v, p, color); }},
+          {"ambient",
+           [&](const json& v, const std::string& p) { l.ambient = in.number(v, p, color); }},
+          {"shininess",
+           [&](const json& v, const std::string& p) {
+             l.shininess = in.number(v, p, Range{1.0, 10000.0});
+           }},
+          {"exposure",
+           [&](const json& v, const std::string& p) {
+             l.exposure = in.number(v, p, Range{0.0, 1000.0, true});
+           }},
+      });
+}
+
+void apply_water(const LayerReader& in, const json& value, const std::string& path,
+                 WaterSettings& w) {
+  const Range unit{0.0, 1.0};
+  in.object(
+      value, path,
+      Handlers{
+          {"shallow_color",
+           [&](const json& v, const std::string& p) {
+             w.shallow_color = in.vector<3>(v, p, unit);
+           }},
+          {"deep_color",
+           [&](const json& v, const std::string& p) { w.deep_color = in.vector<3>(v, p, unit); }},
+          {"extinction",
+           [&](const json& v, const std::string& p) {
+             w.extinction = in.vector<3>(v, p, Range{0.0, 100.0});
+           }},
+          {"full_depth",
+           [&](const json& v, const std::string& p) {
+             w.full_depth = in.number(v, p, Range{0.0, 1e6, true});
+           }},
+          {"wave_length",
+           [&](const json& v, const std::string& p) {
+             w.wave_length = in.number(v, p, Range{0.0, 1e6, true});
+           }},
+          {"wave_strength",
+           [&](const json& v, const std::string& p) {
+             w.wave_strength = in.number(v, p, Range{0.0, 10.0});
+           }},
+          {"wave_speed",
+           [&](const json& v, const std::string& p) {
+             w.wave_speed = in.number(v, p, Range{0.0, 1e6});
+           }},
+      });
+}
+
+void apply_sky(const LayerReader& in, const json& value, const std::string& path, SkySettings& s) {
+  const Range color{0.0, 1000.0};
+  in.object(value, path,
+            Handlers{
+                {"zenith_color",
+                 [&](const json& v, const std::string& p) {
+                   s.zenith_color = in.vector<3>(v, p, color);
+                 }},
+                {"horizon_color",
+                 [&](const json& v, const std::string& p) {
+                   s.horizon_color = in.vector<3>(v, p, color);
+                 }},
+                {"sun_disc_deg",
+                 [&](const json& v, const std::string& p) {
+                   s.sun_disc_deg = in.number(v, p, Range{0.0, 10.0});
+                 }},
+                {"fog_density",
+                 [&](const json& v, const std::string& p) {
+                   s.fog_density = in.number(v, p, Range{0.0, 1.0});
+                 }},
+            });
+}
+
 void apply_output(const LayerReader& in, const json& value, const std::string& path,
                   OutputSettings& output) {
   in.object(
@@ -398,6 +634,14 @@ void apply_output(const LayerReader& in, const json& value, const std::string& p
           {"image", [&](const json& v, const std::string& p) { output.image = in.string(v, p); }},
           {"stages_dir",
            [&](const json& v, const std::string& p) { output.stages_dir = in.string(v, p); }},
+          {"float_image",
+           [&](const json& v, const std::string& p) {
+             if (v.is_null()) {
+               output.float_image.reset();
+             } else {
+               output.float_image = in.string(v, p);
+             }
+           }},
       });
 }
 
@@ -434,7 +678,8 @@ json read_scene_file(const std::filesystem::path& file) {
 
 }  // namespace
 
-void apply_scene_layer(Scene& scene, const json& layer, std::string_view source) {
+void apply_scene_layer(Scene& scene, const json& layer, std::string_view source,
+                       const std::filesystem::path& base_dir) {
   const LayerReader in(source);
   in.object(
       layer, "",
@@ -446,6 +691,19 @@ void apply_scene_layer(Scene& scene, const json& layer, std::string_view source)
           {"grid", [&](const json& v, const std::string& p) { apply_grid(in, v, p, scene.grid); }},
           {"terrain",
            [&](const json& v, const std::string& p) { apply_terrain(in, v, p, scene.terrain); }},
+          {"shading",
+           [&](const json& v, const std::string& p) {
+             apply_shading(in, v, p, scene.shading, base_dir);
+           }},
+          {"lighting",
+           [&](const json& v, const std::string& p) { apply_lighting(in, v, p, scene.lighting); }},
+          {"water",
+           [&](const json& v, const std::string& p) { apply_water(in, v, p, scene.water); }},
+          {"sky", [&](const json& v, const std::string& p) { apply_sky(in, v, p, scene.sky); }},
+          {"time",
+           [&](const json& v, const std::string& p) {
+             scene.time = in.number(v, p, Range{-1e9, 1e9});
+           }},
           {"output",
            [&](const json& v, const std::string& p) { apply_output(in, v, p, scene.output); }},
       });
@@ -501,6 +759,16 @@ void validate_scene(const Scene& scene) {
              " gives a horizontal field of view of " + format_number(horizontal_fov_deg) +
              " degrees; allowed at most " + format_number(limits::kMaxHorizontalFovDeg));
   }
+  const std::vector<MaterialLayer>& layers = scene.shading.layers;
+  for (std::size_t a = 0; a < layers.size(); ++a) {
+    for (std::size_t b = a + 1; b < layers.size(); ++b) {
+      if (layers[a].name == layers[b].name) {
+        fail("shading.layers", "shading.layers[" + std::to_string(a) + "] and [" +
+                                   std::to_string(b) + "] are both named '" + layers[a].name +
+                                   "'; layer names must be unique");
+      }
+    }
+  }
   const WarpSettings& w = scene.terrain.warp;
   if (w.r0[0] == 0.0 && w.r0[1] == 0.0) {
     fail("terrain.warp.r0",
@@ -540,7 +808,50 @@ json scene_to_json(const Scene& scene) {
       {"base_height", t.base_height},
       {"amplitude", t.amplitude},
       {"water_level", t.water_level ? json(*t.water_level) : json(nullptr)}};
-  out["output"] = {{"image", scene.output.image}, {"stages_dir", scene.output.stages_dir}};
+  json layers = json::array();
+  for (const MaterialLayer& l : scene.shading.layers) {
+    layers.push_back({{"name", l.name},
+                      {"texture", l.texture},
+                      {"tile_size", l.tile_size},
+                      {"height", vec_json(l.height)},
+                      {"height_relative_to_water", l.height_relative_to_water},
+                      {"slope_deg", vec_json(l.slope_deg)},
+                      {"height_spread", l.height_spread},
+                      {"slope_spread_deg", l.slope_spread_deg},
+                      {"specular", l.specular}});
+  }
+  const ShadingSettings& sh = scene.shading;
+  out["shading"] = {{"layers", layers},          {"texture_size", sh.texture_size},
+                    {"mip_blend", sh.mip_blend}, {"triplanar", sh.triplanar},
+                    {"dither", sh.dither},       {"dither_scale", sh.dither_scale}};
+  const LightingSettings& li = scene.lighting;
+  out["lighting"] = {{"sun_azimuth_deg", li.sun_azimuth_deg},
+                     {"sun_elevation_deg", li.sun_elevation_deg},
+                     {"sun_color", vec_json(li.sun_color)},
+                     {"sun_intensity", li.sun_intensity},
+                     {"sky_color", vec_json(li.sky_color)},
+                     {"ground_color", vec_json(li.ground_color)},
+                     {"sky_intensity", li.sky_intensity},
+                     {"ambient", li.ambient},
+                     {"shininess", li.shininess},
+                     {"exposure", li.exposure}};
+  const WaterSettings& wa = scene.water;
+  out["water"] = {{"shallow_color", vec_json(wa.shallow_color)},
+                  {"deep_color", vec_json(wa.deep_color)},
+                  {"extinction", vec_json(wa.extinction)},
+                  {"full_depth", wa.full_depth},
+                  {"wave_length", wa.wave_length},
+                  {"wave_strength", wa.wave_strength},
+                  {"wave_speed", wa.wave_speed}};
+  out["sky"] = {{"zenith_color", vec_json(scene.sky.zenith_color)},
+                {"horizon_color", vec_json(scene.sky.horizon_color)},
+                {"sun_disc_deg", scene.sky.sun_disc_deg},
+                {"fog_density", scene.sky.fog_density}};
+  out["time"] = scene.time;
+  out["output"] = {
+      {"image", scene.output.image},
+      {"stages_dir", scene.output.stages_dir},
+      {"float_image", scene.output.float_image ? json(*scene.output.float_image) : json(nullptr)}};
   return out;
 }
 
@@ -605,7 +916,7 @@ Scene resolve_scene(std::string_view scene_arg, const std::vector<std::string>& 
   const std::filesystem::path file(name);
   std::error_code ec;
   if (std::filesystem::is_regular_file(file, ec)) {
-    apply_scene_layer(scene, read_scene_file(file), "scene file " + name);
+    apply_scene_layer(scene, read_scene_file(file), "scene file " + name, file.parent_path());
   } else if (name == "default") {
     // The defaults are the member initialisers of scene.h.
   } else if (is_preset(name)) {

@@ -32,8 +32,10 @@ class SceneError : public std::runtime_error {
 };
 
 // Applies one layer onto `scene`. `source` says where the layer came from ("scene file
-// a.json", "--set terrain.H=2") and starts every message. Throws SceneError.
-void apply_scene_layer(Scene& scene, const nlohmann::json& layer, std::string_view source);
+// a.json", "--set terrain.H=2") and starts every message; relative texture paths are taken
+// relative to `base_dir` (a scene file's directory). Throws SceneError.
+void apply_scene_layer(Scene& scene, const nlohmann::json& layer, std::string_view source,
+                       const std::filesystem::path& base_dir = {});
 
 // Cross-field rules (octave range, grid versus margin, near versus far, field of view versus
 // aspect). Throws SceneError.

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 
@@ -19,20 +20,54 @@ inline double srgb_decode(double encoded) {
   return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
 }
 
-// The 8-bit code of a linear value: the number of decision points
-// t_k = srgb_decode((k + 1/2) / 255), k = 0..254, at or below it, i.e. round(255 srgb_encode(x))
-// without a pow per pixel (a binary search over 255 doubles computed once).
-inline std::uint8_t srgb_byte(double linear) {
-  static const std::array<double, 255> kDecisionPoints = [] {
-    std::array<double, 255> points{};
+namespace srgb_detail {
+
+// t_k = srgb_decode((k + 1/2) / 255), k = 0..254: the linear values where the 8-bit code steps.
+inline const std::array<double, 255>& decision_points() {
+  static const std::array<double, 255> points = [] {
+    std::array<double, 255> p{};
     for (int k = 0; k < 255; ++k) {
-      points[k] = srgb_decode((k + 0.5) / 255.0);
+      p[k] = srgb_decode((k + 0.5) / 255.0);
     }
-    return points;
+    return p;
   }();
-  return static_cast<std::uint8_t>(
-      std::upper_bound(kDecisionPoints.begin(), kDecisionPoints.end(), linear) -
-      kDecisionPoints.begin());
+  return points;
+}
+
+// For each float in (0, 1) sharing its top 16 bits (a bucket of 1/128 relative width): the
+// code of the bucket's smallest value. A bucket spans at most two codes, so one or two
+// comparisons finish the job.
+inline const std::array<std::uint8_t, 0x3f81>& bucket_codes() {
+  static const std::array<std::uint8_t, 0x3f81> codes = [] {
+    std::array<std::uint8_t, 0x3f81> c{};
+    const auto& points = decision_points();
+    for (std::uint32_t bucket = 0; bucket < c.size(); ++bucket) {
+      const double lowest = std::bit_cast<float>(bucket << 16);
+      c[bucket] = static_cast<std::uint8_t>(std::upper_bound(points.begin(), points.end(), lowest) -
+                                            points.begin());
+    }
+    return c;
+  }();
+  return codes;
+}
+
+}  // namespace srgb_detail
+
+// The 8-bit code of a linear value: the number of decision points t_k at or below it, i.e.
+// round(255 srgb_encode(x)) without a pow per pixel. Below 0 (and NaN): 0; from 1 up: 255.
+inline std::uint8_t srgb_byte(float linear) {
+  if (!(linear > 0.0f)) {
+    return 0;
+  }
+  if (linear >= 1.0f) {
+    return 255;
+  }
+  const auto& points = srgb_detail::decision_points();
+  unsigned code = srgb_detail::bucket_codes()[std::bit_cast<std::uint32_t>(linear) >> 16];
+  while (code < 255 && double(linear) >= points[code]) {
+    ++code;
+  }
+  return static_cast<std::uint8_t>(code);
 }
 
 }  // namespace relief

@@ -67,7 +67,7 @@ bool PerspectivePlane::barycentrics(double u, double v, double b[3]) const {
 template <class Source>
 void resolve(const VisibilityBuffer& visibility, const VertexPositions& positions,
              const Source& source, std::span<const std::span<const float>> attributes,
-             ResolvedFrame& out) {
+             std::size_t derivative_streams, ResolvedFrame& out) {
   const int width = visibility.width;
   const int height = visibility.height;
   const std::size_t size = static_cast<std::size_t>(width) * height;
@@ -78,8 +78,9 @@ void resolve(const VisibilityBuffer& visibility, const VertexPositions& position
   out.b1.assign(size, 0.0f);
   out.b2.assign(size, 0.0f);
   out.value.assign(streams, AlignedVector<float>(size, 0.0f));
-  out.ddx.assign(streams, AlignedVector<float>(size, 0.0f));
-  out.ddy.assign(streams, AlignedVector<float>(size, 0.0f));
+  derivative_streams = std::min(derivative_streams, streams);
+  out.ddx.assign(derivative_streams, AlignedVector<float>(size, 0.0f));
+  out.ddy.assign(derivative_streams, AlignedVector<float>(size, 0.0f));
   const int quad_rows = (height + 1) / 2;
   tbb::parallel_for(tbb::blocked_range<int>(0, quad_rows), [&](const tbb::blocked_range<int>& r) {
     std::uint32_t cached = kNoPrimitive;
@@ -122,6 +123,9 @@ void resolve(const VisibilityBuffer& visibility, const VertexPositions& position
           const std::span<const float> a = attributes[s];
           const double value = b[0] * a[v[0]] + b[1] * a[v[1]] + b[2] * a[v[2]];
           out.value[s][k] = static_cast<float>(value);
+          if (s >= derivative_streams) {
+            continue;
+          }
           if (has_x) {
             const double other = bx[0] * a[v[0]] + bx[1] * a[v[1]] + bx[2] * a[v[2]];
             out.ddx[s][k] = static_cast<float>(sign_x * (other - value));
@@ -138,9 +142,10 @@ void resolve(const VisibilityBuffer& visibility, const VertexPositions& position
 
 template void resolve<IndexedTriangles>(const VisibilityBuffer&, const VertexPositions&,
                                         const IndexedTriangles&,
-                                        std::span<const std::span<const float>>, ResolvedFrame&);
+                                        std::span<const std::span<const float>>, std::size_t,
+                                        ResolvedFrame&);
 template void resolve<GridTriangles>(const VisibilityBuffer&, const VertexPositions&,
                                      const GridTriangles&, std::span<const std::span<const float>>,
-                                     ResolvedFrame&);
+                                     std::size_t, ResolvedFrame&);
 
 }  // namespace relief::raster

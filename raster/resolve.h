@@ -42,19 +42,20 @@ struct ResolvedFrame {
   int height = 0;
   AlignedVector<float> b0, b1, b2;          // perspective-correct barycentrics; 0 where uncovered
   std::vector<AlignedVector<float>> value;  // per attribute stream: value at the pixel,
-  std::vector<AlignedVector<float>> ddx;    // and its fine derivatives
+  std::vector<AlignedVector<float>> ddx;    // and its fine derivatives (the first streams)
   std::vector<AlignedVector<float>> ddy;
 };
 
-// `attributes[s][v]` is stream s at vertex v. Uncovered pixels resolve to zeros. Division
-// domain: sum of the three cross products != 0 (it vanishes only where the pixel's ray is
+// `attributes[s][v]` is stream s at vertex v; the first `derivative_streams` streams also get
+// their derivatives (out.ddx, out.ddy have that many entries). Uncovered pixels resolve to zeros.
+// Division domain: sum of the three cross products != 0 (it vanishes only where the pixel's ray is
 // parallel to the triangle's plane); a covered pixel failing it gets b = (1/3, 1/3, 1/3),
 // a helper pixel failing it gives a zero derivative. Parallel over quad rows; the result does
 // not depend on the thread count.
 template <class Source>
 void resolve(const VisibilityBuffer& visibility, const VertexPositions& positions,
              const Source& source, std::span<const std::span<const float>> attributes,
-             ResolvedFrame& out);
+             std::size_t derivative_streams, ResolvedFrame& out);
 
 // The three cross products above are linear in (u, v) (the u v terms cancel):
 // l_i(u, v) = k_i + ku_i u + kv_i v, so a triangle's are set up once and evaluated per pixel.

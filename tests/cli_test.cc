@@ -14,6 +14,7 @@
 #include "core/terrain_stages.h"
 #include "test_support.h"
 #include "tools/cli.h"
+#include "tools/image_io.h"
 
 namespace relief {
 namespace {
@@ -140,9 +141,8 @@ TEST_CASE("stagesCommandWritesEveryBufferAsPngAndPfm", "[cli]") {
 TEST_CASE("renderCommandWritesAnSrgbPngOfTheViewportSize", "[cli]") {
   test::TempDir dir("render");
   const std::string path = (dir.path() / "terrain.png").string();
-  const CliResult r =
-      run({"render", "lava", "--set", "viewport.width=160", "--set", "viewport.height=120", "--set",
-           "grid.width=64", "--set", "grid.height=64", "-o", path});
+  const CliResult r = run({"render", "--set", "viewport.width=160", "--set", "viewport.height=120",
+                           "--set", "grid.width=64", "--set", "grid.height=64", "-o", path});
   REQUIRE(r.code == 0);
   CHECK_THAT(r.out, Contains("stage 6   rasterisation"));
   const std::vector<unsigned char> png = read_bytes(path);
@@ -151,9 +151,11 @@ TEST_CASE("renderCommandWritesAnSrgbPngOfTheViewportSize", "[cli]") {
       stbi_load_from_memory(png.data(), static_cast<int>(png.size()), &w, &h, &channels, 3);
   REQUIRE(pixels != nullptr);
   // The top row is sky (blue dominates), the bottom row terrain (it does not).
-  CHECK(pixels[2] > pixels[0]);
   const unsigned char* bottom = pixels + (static_cast<std::size_t>(h) - 1) * w * 3;
-  CHECK(bottom[2] <= bottom[0]);
+  const int top_red = pixels[0], top_blue = pixels[2];
+  const int bottom_red = bottom[0], bottom_blue = bottom[2];
+  CHECK(top_blue > top_red);
+  CHECK(bottom_blue <= bottom_red);
   stbi_image_free(pixels);
   CHECK(w == 160);
   CHECK(h == 120);
@@ -173,6 +175,42 @@ TEST_CASE("renderRejectsBadInputWithoutWritingAFile", "[cli]") {
     CHECK_THAT(r.err, Contains("relief: error:"));
   }
   CHECK(dir.empty());
+}
+
+TEST_CASE("renderRejectsUnusableTextureFilesNamingTheLayer", "[cli]") {
+  test::TempDir dir("textures");
+  // A 6 x 4 PNG (not square), written with stb, and a file that is not a PNG at all.
+  const std::vector<std::uint8_t> pixels(6 * 4 * 3, 128);
+  const std::vector<unsigned char> png = encode_png_rgb(6, 4, pixels);
+  std::ofstream(dir.path() / "wide.png", std::ios::binary)
+      .write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
+  write_text(dir.path() / "text.png", "not an image");
+  const std::string out = (dir.path() / "x.png").string();
+  for (const auto& [file, message] : std::vector<std::pair<std::string, std::string>>{
+           {"wide.png", "is 6x4 pixels; allowed: square"},
+           {"text.png", "is not a PNG image"},
+           {"missing.png", "cannot be opened"}}) {
+    const std::string texture = (dir.path() / file).string();
+    const CliResult r = run({"render", "--set", "shading.layers.3.texture=" + texture, "--set",
+                             "viewport.width=32", "--set", "viewport.height=32", "-o", out});
+    INFO(r.err);
+    CHECK(r.code == kExitBadInput);
+    CHECK_THAT(r.err, Contains("shading.layers[3].texture"));
+    CHECK_THAT(r.err, Contains(message));
+    CHECK_FALSE(std::filesystem::exists(out));
+  }
+  // A valid texture file is accepted, relative to the scene file's directory.
+  const std::vector<std::uint8_t> square(8 * 8 * 3, 90);
+  const std::vector<unsigned char> good = encode_png_rgb(8, 8, square);
+  std::ofstream(dir.path() / "good.png", std::ios::binary)
+      .write(reinterpret_cast<const char*>(good.data()), std::streamsize(good.size()));
+  const std::string scene = write_text(
+      dir.path() / "scene.json",
+      R"({"shading": {"layers": {"3": {"texture": "good.png"}}}, "viewport": {"width": 32, "height": 32}, "grid": {"width": 24, "height": 24}})");
+  const CliResult ok = run({"render", scene, "-o", out});
+  INFO(ok.err);
+  CHECK(ok.code == 0);
+  CHECK(std::filesystem::exists(out));
 }
 
 TEST_CASE("rasterCommandWritesTheDocumentedBuffers", "[cli]") {

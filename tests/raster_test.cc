@@ -235,7 +235,7 @@ TEST_CASE("resolveInterpolatesPerspectiveCorrectlyWithQuadDerivatives", "[raster
   ResolvedFrame frame;
   const std::span<const float> streams[1] = {attribute};
   resolve(b, VertexPositions::from_clip(clip, state.viewport), IndexedTriangles{indices},
-          std::span<const std::span<const float>>(streams), frame);
+          std::span<const std::span<const float>>(streams), 1, frame);
   // Ray through pixel centre (u, v) meets the plane through the quad: x(u, v) in closed form.
   const glm::dvec3 p0(world[0][0], world[0][1], world[0][2]);
   const glm::dvec3 normal =

@@ -1,5 +1,6 @@
 // The first image: the projected grid rasterised as a closed surface, with no holes at the
 // viewport borders and no cracks, for a set of cameras.
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -9,6 +10,9 @@
 #include "core/fbm.h"
 #include "core/lattice.h"
 #include "core/scene_json.h"
+#include "core/shade.h"
+#include "core/shading_plan.h"
+#include "raster/resolve.h"
 #include "tools/render_frame.h"
 
 namespace relief {
@@ -69,13 +73,72 @@ TEST_CASE("terrainImageHasNoHolesAtTheBordersAndNoCracks", "[render]") {
 TEST_CASE("renderedImageIsIdenticalForEveryThreadCount", "[render]") {
   const Scene scene = resolve_scene(
       "lava", {"viewport.width=200", "viewport.height=160", "grid.width=120", "grid.height=120"});
-  const NoiseLattice lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
+  const SceneResources resources = load_scene_resources(scene);
   FrameTimings timings;
-  const RenderedImage reference = render_diagnostic_frame(scene, lattice, timings);
+  const RenderedImage reference = render_frame(scene, resources, timings);
   for (int threads : {1, 3}) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    CHECK(render_diagnostic_frame(scene, lattice, timings).rgb == reference.rgb);
+    const RenderedImage image = render_frame(scene, resources, timings);
+    CHECK(image.rgb == reference.rgb);
+    CHECK(image.linear == reference.linear);
   }
+}
+
+TEST_CASE("everyPresetRendersWithoutNanOrInfinity", "[render]") {
+  for (const std::string& preset : preset_names()) {
+    const Scene scene = resolve_scene(
+        preset, {"viewport.width=192", "viewport.height=144", "grid.width=96", "grid.height=96"});
+    const SceneResources resources = load_scene_resources(scene);
+    FrameTimings timings;
+    const RenderedImage image = render_frame(scene, resources, timings);
+    INFO(preset);
+    REQUIRE(image.linear.size() == 192u * 144u * 3u);
+    int covered = 0;
+    for (std::size_t k = 0; k < image.linear.size(); ++k) {
+      REQUIRE(std::isfinite(image.linear[k]));
+      REQUIRE(image.linear[k] >= 0.0f);
+    }
+    const TerrainFrame frame = rasterize_terrain(scene, resources.lattice, timings);
+    for (std::uint32_t p : frame.visibility.primitive) {
+      covered += p != raster::kNoPrimitive;
+    }
+    CHECK(covered > 192 * 144 / 5);  // every preset shows terrain
+  }
+}
+
+TEST_CASE("waterCoversOnlyPixelsBelowTheWaterLevel", "[render]") {
+  const Scene scene = resolve_scene(
+      "lake", {"viewport.width=160", "viewport.height=120", "grid.width=96", "grid.height=96"});
+  const SceneResources resources = load_scene_resources(scene);
+  FrameTimings timings;
+  const TerrainFrame frame = rasterize_terrain(scene, resources.lattice, timings);
+  const raster::ResolvedFrame r = resolve_for_shading(frame);
+  const ShadingInputs in = shading_inputs(frame, r);
+  ShadingPlan with_water =
+      make_shading_plan(scene, frame.plan, resources.textures, resources.lattice);
+  ShadingPlan without_water = with_water;
+  without_water.water.enabled = false;
+  std::vector<float> a(160 * 120 * 3), b(a.size());
+  shade_pixels<float>(with_water, in, RowRange{0, 120}, a);
+  shade_pixels<float>(without_water, in, RowRange{0, 120}, b);
+  int wet = 0, dry = 0;
+  for (std::size_t k = 0; k < 160 * 120; ++k) {
+    if (frame.visibility.primitive[k] == raster::kNoPrimitive) {
+      continue;
+    }
+    const bool above = r.value[2][k] >= float(*scene.terrain.water_level);
+    const bool same =
+        a[3 * k] == b[3 * k] && a[3 * k + 1] == b[3 * k + 1] && a[3 * k + 2] == b[3 * k + 2];
+    if (above) {
+      ++dry;
+      REQUIRE(same);
+    } else {
+      ++wet;
+      CHECK_FALSE(same);
+    }
+  }
+  CHECK(wet > 100);
+  CHECK(dry > 100);
 }
 
 }  // namespace

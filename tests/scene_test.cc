@@ -146,5 +146,35 @@ TEST_CASE("unknownSceneNamesListThePresets", "[scene]") {
   }
 }
 
+TEST_CASE("alpinePresetIsTheBuiltInDefault", "[scene]") {
+  // scenes/alpine.json spells out every field: it must stay equal to the built-in defaults.
+  CHECK(scene_to_json(resolve_scene("alpine", {})) == scene_to_json(Scene{}));
+  CHECK(scene_to_json(resolve_scene("default", {})) == scene_to_json(Scene{}));
+}
+
+TEST_CASE("sceneValidatesMaterialLayers", "[scene]") {
+  CHECK_THAT(error_of(R"({"shading": {"layers": [{"texture": "builtin:marble"}]}})"),
+             Contains("names no built-in texture"));
+  CHECK_THAT(error_of(R"({"shading": {"layers": []}})"), Contains("allowed 1 to 8"));
+  CHECK_THAT(error_of(R"({"shading": {"layers": [{"name": "a"}]}})"),
+             Contains("must be an object with at least a \"texture\""));
+  CHECK_THAT(error_of(R"({"shading": {"layers": {"9": {"tile_size": 2}}}})"),
+             Contains("no layer '9'"));
+  CHECK_THAT(error_of(R"({"shading": {"layers": {"1": {"slope_deg": [40, 20]}}}})"),
+             Contains("is empty; allowed [low, high] with low < high"));
+  CHECK_THAT(error_of(R"({"shading": {"layers": {"1": {"tile_size": 0}}}})"),
+             Contains("0 < shading.layers[1].tile_size"));
+  CHECK_THAT(error_of(R"({"shading": {"layers": [{"name": "x", "texture": "builtin:sand"},
+                                                 {"name": "x", "texture": "builtin:rock"}]}})"),
+             Contains("are both named 'x'"));
+  CHECK_THAT(error_of(R"({"water": {"deep_color": [0, 2, 0]}})"),
+             Contains("allowed 0 <= water.deep_color[1] <= 1"));
+  CHECK_THAT(error_of(R"({"lighting": {"exposure": 0}})"), Contains("0 < lighting.exposure"));
+  // A patch by index, as --set shading.layers.2.slope_deg=[0,20] writes it.
+  const Scene patched = resolve_scene("alpine", {"shading.layers.2.slope_deg=[0,20]"});
+  CHECK(patched.shading.layers[2].slope_deg == Vec2d{0, 20});
+  CHECK(patched.shading.layers[2].texture == "builtin:grass");
+}
+
 }  // namespace
 }  // namespace relief

@@ -93,11 +93,15 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   RenderOptions render;
   CLI::App* render_cmd =
       app.add_subcommand("render",
-                         "Render the scene to an sRGB PNG (stages 1-7 and, until the shading stage "
-                         "lands, diagnostic Lambert shading) and print the stage times.");
+                         "Render the scene to an sRGB PNG (stages 1-9: projected grid, fractal, "
+                         "surface, rasterisation, proto-texture shading, water, sky) and print the "
+                         "stage times.");
   add_scene_args(render_cmd, scene_args);
   render_cmd->add_option("-o,--output", render.output,
                          "PNG file to write (default: the scene's output.image, relief.png)");
+  render_cmd->add_option("--float", render.float_output,
+                         "Also write the linear radiance as a PFM file (default: the scene's "
+                         "output.float_image, if set)");
   render_cmd
       ->add_option("--repeat", render.repeat,
                    "Render this many times and report the median stage times")
@@ -180,6 +184,12 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
                                           o.compare(o.size() - 4, 4, ".PNG") != 0))) {
         err << "relief: error: -o " << o
             << ": the image is written as PNG; give a file name ending in .png\n";
+        return kExitBadInput;
+      }
+      const std::string& f = render.float_output;
+      if (!f.empty() && (f.size() < 4 || f.compare(f.size() - 4, 4, ".pfm") != 0)) {
+        err << "relief: error: --float " << f
+            << ": linear radiance is written as PFM; give a file name ending in .pfm\n";
         return kExitBadInput;
       }
       return run_render_command(scene, render, out);

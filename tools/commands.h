@@ -18,7 +18,8 @@ struct StagesOptions {
 int run_stages_command(const Scene& scene, const StagesOptions& options, std::ostream& out);
 
 struct RenderOptions {
-  std::string output;  // empty: scene.output.image
+  std::string output;        // empty: scene.output.image
+  std::string float_output;  // empty: scene.output.float_image (or none)
   int repeat = 1;
 };
 

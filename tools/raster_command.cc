@@ -83,7 +83,7 @@ int run_raster_command(const RasterOptions& options, std::ostream& out) {
     positions = raster::VertexPositions::from_window(window);
   }
   raster::ResolvedFrame resolved;
-  raster::resolve(visibility, positions, triangles, {}, resolved);
+  raster::resolve(visibility, positions, triangles, {}, 0, resolved);
 
   const std::filesystem::path prefix(options.prefix);
   if (prefix.has_parent_path()) {

@@ -1,38 +1,39 @@
 #include <algorithm>
+#include <chrono>
 #include <iomanip>
 #include <ostream>
 #include <vector>
 
-#include "core/lattice.h"
 #include "tools/atomic_file.h"
 #include "tools/cli.h"
 #include "tools/commands.h"
 #include "tools/image_io.h"
 #include "tools/render_frame.h"
+#include "tools/statistics.h"
 
 namespace relief {
 
-namespace {
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
-}  // namespace
-
 int run_render_command(const Scene& scene, const RenderOptions& options, std::ostream& out) {
   const std::string path = options.output.empty() ? scene.output.image : options.output;
-  const NoiseLattice lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
+  const std::string float_path =
+      options.float_output.empty() ? scene.output.float_image.value_or("") : options.float_output;
+  const auto setup_start = std::chrono::steady_clock::now();
+  const SceneResources resources = load_scene_resources(scene);  // validates texture files
+  const double setup_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - setup_start)
+          .count();
   RenderedImage image;
   std::vector<FrameTimings> runs;
   for (int run = 0; run < options.repeat; ++run) {
     FrameTimings timings;
-    image = render_diagnostic_frame(scene, lattice, timings);
+    image = render_frame(scene, resources, timings);
     runs.push_back(timings);
   }
   write_file_atomically(path, encode_png_rgb(image.width, image.height, image.rgb));
+  if (!float_path.empty()) {
+    write_file_atomically(float_path, encode_pfm(image.width, image.height, 3, image.linear,
+                                                 std::size_t(image.width) * 3));
+  }
   auto stage = [&](const char* name, auto field) {
     std::vector<double> values;
     for (const FrameTimings& t : runs) {
@@ -51,10 +52,16 @@ int run_render_command(const Scene& scene, const RenderOptions& options, std::os
   stage("stage 5   vertex transform", [](const FrameTimings& t) { return t.transform_ms; });
   stage("stage 6   rasterisation", [](const FrameTimings& t) { return t.raster_ms; });
   stage("stage 7   resolve", [](const FrameTimings& t) { return t.resolve_ms; });
-  stage("diagnostic shading", [](const FrameTimings& t) { return t.shade_ms; });
+  stage("stage 8   shading", [](const FrameTimings& t) { return t.shade_ms; });
+  stage("stage 9   sRGB encoding", [](const FrameTimings& t) { return t.encode_ms; });
+  stage("total", [](const FrameTimings& t) {
+    return t.terrain.projected_domain_ms + t.terrain.fbm_ms + t.terrain.surface_ms +
+           t.transform_ms + t.raster_ms + t.resolve_ms + t.shade_ms + t.encode_ms;
+  });
   const raster::RasterStats& s = runs.back().raster;
-  out << "  triangles submitted " << s.triangles << ", set up " << s.setup << "\n"
-      << "wrote " << path << "\n";
+  out << "  scene set-up (lattice, textures, mip chains) " << setup_ms << " ms, once\n"
+      << "  triangles submitted " << s.triangles << ", set up " << s.setup << "\n"
+      << "wrote " << path << (float_path.empty() ? "" : " and " + float_path) << "\n";
   return kExitOk;
 }
 

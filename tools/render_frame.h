@@ -1,7 +1,7 @@
-// A whole frame on all cores: stages 1-4 (frame_runner.h), stage 5 vertex transform, stage 6
-// rasterisation of the projected grid, stage 7 resolve of the vertex normals, and, until the
-// shading stage lands, a plain diagnostic shading: Lambert with the interpolated vertex
-// normal under a fixed sun, and a sky gradient where no terrain covers the pixel.
+// A whole frame on all cores: stages 1-4 (frame_runner.h), 5 (vertex transform), 6
+// (rasterisation of the projected grid), 7 (resolve of the attributes stage 8 reads), 8
+// (proto-texture shading), then sRGB encoding. Each stage runs over fixed chunks with oneTBB,
+// so the image is bit-identical for every thread count.
 #pragma once
 
 #include <cstdint>
@@ -9,10 +9,12 @@
 
 #include "core/frame_plan.h"
 #include "core/grid_buffers.h"
-#include "core/lattice.h"
 #include "core/scene.h"
+#include "core/shade.h"
 #include "raster/rasterize.h"
+#include "raster/resolve.h"
 #include "tools/frame_runner.h"
+#include "tools/scene_resources.h"
 
 namespace relief {
 
@@ -21,14 +23,9 @@ struct FrameTimings {
   double transform_ms = 0;  // stage 5
   double raster_ms = 0;     // stage 6
   double resolve_ms = 0;    // stage 7
-  double shade_ms = 0;      // diagnostic shading and sRGB encoding
+  double shade_ms = 0;      // stage 8
+  double encode_ms = 0;     // stage 9: sRGB encoding (file writing not included)
   raster::RasterStats raster;
-};
-
-struct RenderedImage {
-  int width = 0;
-  int height = 0;
-  std::vector<std::uint8_t> rgb;  // sRGB, row 0 = bottom
 };
 
 // Stages 1-6 of a frame: the grid buffers, clip coordinates and visibility buffer.
@@ -46,8 +43,21 @@ struct TerrainFrame {
 TerrainFrame rasterize_terrain(const Scene& scene, const NoiseLattice& lattice,
                                FrameTimings& timings);
 
-RenderedImage render_diagnostic_frame(const Scene& scene, const NoiseLattice& lattice,
-                                      FrameTimings& timings);
+// Stage 7 as stage 8 reads it: eight streams (dx, dz, height, nx, ny, nz, slope, water
+// depth), with the derivatives of the first three (the texture LOD); and the view of the
+// result that stage 8 takes.
+raster::ResolvedFrame resolve_for_shading(const TerrainFrame& frame);
+ShadingInputs shading_inputs(const TerrainFrame& frame, const raster::ResolvedFrame& resolved);
+
+struct RenderedImage {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgb;  // sRGB, row 0 = bottom
+  std::vector<float> linear;      // linear radiance (exposure applied), row 0 = bottom
+};
+
+RenderedImage render_frame(const Scene& scene, const SceneResources& resources,
+                           FrameTimings& timings);
 
 // The raster state of a scene's frame: its viewport, back faces culled (the terrain's
 // underside is never seen from above), GREATER depth test with depth cleared to 0.

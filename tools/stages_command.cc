@@ -9,18 +9,9 @@
 #include "tools/commands.h"
 #include "tools/frame_runner.h"
 #include "tools/stage_outputs.h"
+#include "tools/statistics.h"
 
 namespace relief {
-
-namespace {
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
-}  // namespace
 
 int run_stages_command(const Scene& scene, const StagesOptions& options, std::ostream& out) {
   const NoiseLattice lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);

@@ -1,0 +1,27 @@
+// Proto-texture layer weights (§4.2's "height/slope-dependent weighting function"; Scape's
+// ranged layers with a spread and noise-dithered transitions).
+//
+// Slope is the paper's |grad h| (§4.2: "at steep rock formations (where |grad H| is large)"),
+// not Mekala's up . N: it is what stage 4 computes, and a layer's range in degrees maps to it
+// through tan, once per frame. Each layer's weight is the product of four ramps (rising and
+// falling in height, rising and falling in slope), each a cubic step of width 2 spread
+// centred on its edge, the ramp's position shifted by the dither offset:
+//   ramp(x) = smooth01((x - start) / (end - start) + dither_offset)
+// The weights are then renormalised to sum to one; where every layer is zero (a gap the scene
+// left in its ranges) all layers share equally.
+#pragma once
+
+#include "core/limits.h"
+#include "core/shading_plan.h"
+
+namespace relief {
+
+template <class Real>
+Real ramp_weight(const Ramp& ramp, Real x, Real dither_offset);
+
+// Writes plan.layers.size() weights summing to 1. dither_offset = dither amount * noise / 2.
+template <class Real>
+void layer_weights(const ShadingPlan& plan, Real height, Real slope, Real dither_offset,
+                   Real weights[limits::kMaxMaterialLayers]);
+
+}  // namespace relief

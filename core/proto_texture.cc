@@ -1,0 +1,103 @@
+#include "core/proto_texture.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+#include "core/det_math.h"
+
+namespace relief {
+
+namespace {
+
+// The four texels around (u, v), bilinearly weighted, with repeat wrapping.
+Rgb sample_bilinear(const RgbImage& level, float u, float v) {
+  const int n = level.size;
+  const float s = u * float(n) - 0.5f;
+  const float t = v * float(n) - 0.5f;
+  const float fs = std::floor(s), ft = std::floor(t);
+  const float a = s - fs, b = t - ft;
+  // Power-of-two wrap by mask (two's complement keeps negatives right). Domain: |s|, |t| <
+  // 2^31, which the callers' per-frame offsets guarantee (|u| is at most a few thousand).
+  const int i0 = static_cast<int>(fs) & (n - 1), j0 = static_cast<int>(ft) & (n - 1);
+  const int i1 = (i0 + 1) & (n - 1), j1 = (j0 + 1) & (n - 1);
+  const float* p00 = &level.rgb[3 * (std::size_t(j0) * n + i0)];
+  const float* p10 = &level.rgb[3 * (std::size_t(j0) * n + i1)];
+  const float* p01 = &level.rgb[3 * (std::size_t(j1) * n + i0)];
+  const float* p11 = &level.rgb[3 * (std::size_t(j1) * n + i1)];
+  Rgb out;
+  for (int c = 0; c < 3; ++c) {
+    const float bottom = p00[c] + a * (p10[c] - p00[c]);
+    const float top = p01[c] + a * (p11[c] - p01[c]);
+    out[c] = bottom + b * (top - bottom);
+  }
+  return out;
+}
+
+}  // namespace
+
+ProtoTexture build_proto_texture(const RgbImage& image, double mip_blend) {
+  assert(image.size > 0 && (image.size & (image.size - 1)) == 0);
+  ProtoTexture texture;
+  double sum[3] = {0, 0, 0};
+  for (std::size_t k = 0; k < image.rgb.size(); k += 3) {
+    for (int c = 0; c < 3; ++c) {
+      sum[c] += image.rgb[k + c];
+    }
+  }
+  const double texels = double(image.size) * image.size;
+  for (int c = 0; c < 3; ++c) {
+    texture.mean[c] = static_cast<float>(sum[c] / texels);
+  }
+  texture.levels.push_back(image);
+  while (texture.levels.back().size > 1) {
+    const RgbImage& fine = texture.levels.back();
+    RgbImage coarse;
+    coarse.size = fine.size / 2;
+    coarse.rgb.resize(3 * std::size_t(coarse.size) * coarse.size);
+    for (int j = 0; j < coarse.size; ++j) {
+      for (int i = 0; i < coarse.size; ++i) {
+        for (int c = 0; c < 3; ++c) {
+          const auto at = [&](int x, int y) {
+            return double(fine.rgb[3 * (std::size_t(y) * fine.size + x) + c]);
+          };
+          const double box = 0.25 * (at(2 * i, 2 * j) + at(2 * i + 1, 2 * j) +
+                                     at(2 * i, 2 * j + 1) + at(2 * i + 1, 2 * j + 1));
+          coarse.rgb[3 * (std::size_t(j) * coarse.size + i) + c] =
+              static_cast<float>((1.0 - mip_blend) * box + mip_blend * texture.mean[c]);
+        }
+      }
+    }
+    texture.levels.push_back(std::move(coarse));
+  }
+  return texture;
+}
+
+float texture_lod(int texture_size, float dudx, float dvdx, float dudy, float dvdy) {
+  const float n = float(texture_size);
+  const float ax = dudx * n, bx = dvdx * n, ay = dudy * n, by = dvdy * n;
+  const float rho_sq = std::max(ax * ax + bx * bx, ay * ay + by * by);
+  // Domain of the log: rho^2 > 0 and finite; below FLT_MIN it is magnification anyway.
+  if (!(rho_sq > 1e-30f)) {
+    return kMagnificationLod;
+  }
+  return 0.5f * log2_det(rho_sq);
+}
+
+Rgb sample_trilinear(const ProtoTexture& texture, float u, float v, float lod) {
+  const int last = static_cast<int>(texture.levels.size()) - 1;
+  if (!(lod > 0.0f)) {
+    return sample_bilinear(texture.levels[0], u, v);  // magnification: GL_LINEAR on level 0
+  }
+  if (lod >= float(last)) {
+    return sample_bilinear(texture.levels[last], u, v);
+  }
+  const int level = static_cast<int>(lod);
+  const float fraction = lod - float(level);
+  const Rgb a = sample_bilinear(texture.levels[level], u, v);
+  const Rgb b = sample_bilinear(texture.levels[level + 1], u, v);
+  return {a[0] + fraction * (b[0] - a[0]), a[1] + fraction * (b[1] - a[1]),
+          a[2] + fraction * (b[2] - a[2])};
+}
+
+}  // namespace relief

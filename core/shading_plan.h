@@ -1,0 +1,91 @@
+// What stage 8 (proto-texture shading, §4.2-§4.3) derives once per frame: layer ranges in the
+// units the pixels use, texture-coordinate offsets of the camera (reduced in double, as the
+// terrain's lattice offsets are), light, sky and water constants.
+#pragma once
+
+#include <vector>
+
+#include "core/camera.h"
+#include "core/frame_plan.h"
+#include "core/lattice.h"
+#include "core/limits.h"
+#include "core/proto_texture.h"
+#include "core/scene.h"
+
+namespace relief {
+
+// One ramp of a layer's range: weight rises from 0 at `start` to 1 at `end` (a step where
+// start == end); `open` ramps are always 1 (a range reaching the domain's end).
+struct Ramp {
+  double start = 0;
+  double end = 0;
+  bool open = true;
+};
+
+struct LayerPlan {
+  const ProtoTexture* texture = nullptr;
+  double inv_tile = 1;  // texture repeats per world unit
+  // Camera position in texture repeats, reduced modulo 1: u = offset_x + dx * inv_tile.
+  double offset_x = 0, offset_y = 0, offset_z = 0;
+  Ramp height_up, height_down;  // world heights, water level applied
+  Ramp slope_up, slope_down;    // |grad h| (tangents of the slope angles)
+  double specular = 0;
+};
+
+struct LightPlan {
+  glm::dvec3 sun_direction;  // unit, toward the sun
+  glm::dvec3 sun;            // radiance: colour * intensity
+  glm::dvec3 sky, ground;    // hemispherical light (Scape)
+  double ambient = 0;
+  double shininess = 1;
+  double exposure = 1;
+};
+
+struct SkyPlan {
+  glm::dvec3 zenith, horizon;
+  double sun_cos_inner = 1, sun_cos_outer = 1;  // the disc's smooth edge
+  double fog_density_log2 = 0;                  // density / ln 2, for exp2
+};
+
+inline constexpr int kWaveOctaves = 3;
+
+struct WaterPlan {
+  bool enabled = false;  // water level set and the camera above it
+  double level = 0;      // water level relative to the camera (negative: below it)
+  glm::dvec3 shallow, deep;
+  glm::dvec3 extinction_log2;  // per world unit, / ln 2
+  double inv_full_depth = 1;
+  double strength = 0;
+  const NoiseLattice* lattice = nullptr;
+  double wave_inv_length[kWaveOctaves]{};  // lattice cells per world unit
+  double wave_offset_x[kWaveOctaves]{};    // (camera + velocity time) in cells, mod P
+  double wave_offset_z[kWaveOctaves]{};
+  double wave_amplitude[kWaveOctaves]{};
+};
+
+struct DitherPlan {
+  double amount = 0;  // 0: no dithering
+  const NoiseLattice* lattice = nullptr;
+  double inv_scale = 1;
+  double offset_x = 0, offset_z = 0;  // camera in lattice cells, mod P
+};
+
+struct ShadingPlan {
+  std::vector<LayerPlan> layers;
+  bool triplanar = true;
+  LightPlan light;
+  SkyPlan sky;
+  WaterPlan water;
+  DitherPlan dither;
+  CameraFrame camera;
+  int width = 0, height = 0;  // the image
+  double pixel_angle = 0;     // radians subtended by one pixel (vertical field / height)
+};
+
+// `textures[k]` is the proto-texture of scene layer k; `lattice` the terrain's noise lattice
+// (the dithering and the waves reuse it). The plan refers to both; they must outlive it.
+ShadingPlan make_shading_plan(const Scene& scene, const FramePlan& frame,
+                              const std::vector<ProtoTexture>& textures,
+                              const NoiseLattice& lattice);
+
+}  // namespace relief

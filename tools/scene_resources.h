@@ -1,0 +1,26 @@
+// What a scene needs before its first frame, built once: the noise lattice and the
+// proto-texture of every material layer (built-in textures synthesised, PNG files loaded and
+// checked), each with the variance-reduced mip chain of §4.2.
+#pragma once
+
+#include <vector>
+
+#include "core/lattice.h"
+#include "core/proto_texture.h"
+#include "core/scene.h"
+
+namespace relief {
+
+struct SceneResources {
+  NoiseLattice lattice;
+  std::vector<ProtoTexture> textures;  // one per scene.shading.layers entry
+};
+
+// Throws SceneError naming the layer for a texture file that cannot be read, is not a PNG, or
+// is not square with a power-of-two side from 4 to 4096.
+SceneResources load_scene_resources(const Scene& scene);
+
+// The proto-texture image of one layer, linear RGB (PNG files are sRGB-decoded).
+RgbImage load_layer_texture(const MaterialLayer& layer, int builtin_size, const std::string& path);
+
+}  // namespace relief
