@@ -1,0 +1,33 @@
+// The fields of each scene section and their rules (README.md, "Scene reference"). Each
+// function applies one section of a layer onto the scene; scene_json.cc dispatches to them.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/json_fields.h"
+#include "core/scene.h"
+
+namespace relief {
+
+void apply_camera(const LayerReader& in, const json& value, const std::string& path,
+                  CameraSettings& camera);
+void apply_viewport(const LayerReader& in, const json& value, const std::string& path,
+                    ViewportSettings& viewport);
+void apply_grid(const LayerReader& in, const json& value, const std::string& path,
+                GridSettings& grid);
+void apply_terrain(const LayerReader& in, const json& value, const std::string& path,
+                   TerrainSettings& terrain);
+void apply_shading(const LayerReader& in, const json& value, const std::string& path,
+                   ShadingSettings& shading, const std::filesystem::path& base_dir);
+void apply_lighting(const LayerReader& in, const json& value, const std::string& path,
+                    LightingSettings& lighting);
+void apply_water(const LayerReader& in, const json& value, const std::string& path,
+                 WaterSettings& water);
+void apply_sky(const LayerReader& in, const json& value, const std::string& path, SkySettings& sky);
+void apply_output(const LayerReader& in, const json& value, const std::string& path,
+                  OutputSettings& output);
+
+}  // namespace relief
