@@ -4,6 +4,8 @@
 
 namespace relief {
 
+namespace {
+
 template <class Real>
 Real ramp_weight(const Ramp& ramp, Real x, Real dither_offset) {
   const Real start = Real(ramp.start), end = Real(ramp.end);
@@ -12,8 +14,6 @@ Real ramp_weight(const Ramp& ramp, Real x, Real dither_offset) {
   }
   return smooth01((x - start) / (end - start) + dither_offset);
 }
-
-namespace {
 
 // An open ramp (a range reaching the end of the domain) does not limit the layer.
 template <class Real>
@@ -54,8 +54,6 @@ void layer_weights(const ShadingPlan& plan, Real height, Real slope, Real dither
   }
 }
 
-template float ramp_weight<float>(const Ramp&, float, float);
-template double ramp_weight<double>(const Ramp&, double, double);
 template void layer_weights<float>(const ShadingPlan&, float, float, float, float*);
 template void layer_weights<double>(const ShadingPlan&, double, double, double, double*);
 

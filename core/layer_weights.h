@@ -16,9 +16,6 @@
 
 namespace relief {
 
-template <class Real>
-Real ramp_weight(const Ramp& ramp, Real x, Real dither_offset);
-
 // Writes plan.layers.size() weights summing to 1. dither_offset = dither amount * noise / 2.
 template <class Real>
 void layer_weights(const ShadingPlan& plan, Real height, Real slope, Real dither_offset,

@@ -75,9 +75,9 @@ Projector make_projector(const CameraFrame& camera, const HeightBounds& bounds,
     theta_max = std::max(theta_max, theta);
     farthest_sq = std::max(farthest_sq, v.x * v.x + v.z * v.z);
   }
-  projector.pitch_down_rad = 0.5 * (theta_min + theta_max);
-  const double c = std::cos(projector.pitch_down_rad);
-  const double s = std::sin(projector.pitch_down_rad);
+  const double pitch_down = 0.5 * (theta_min + theta_max);  // depression of the axis
+  const double c = std::cos(pitch_down);
+  const double s = std::sin(pitch_down);
   projector.forward = c * horizontal_forward - s * world_up;
   projector.up = s * horizontal_forward + c * world_up;
   projector.right = camera.right;  // forward x up, as for the camera

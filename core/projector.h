@@ -35,7 +35,6 @@ struct Projector {
   glm::dvec3 forward{0, -1, 0};  // projector axes, world orientation
   glm::dvec3 right{1, 0, 0};
   glm::dvec3 up{0, 0, -1};
-  double pitch_down_rad = 0;          // depression of the projector axis
   double height_above_plane = 1;      // camera height above the projection plane, > 0
   ImageBox coverage;                  // covers every footprint that can be seen
   double max_footprint_distance = 0;  // kMaxFootprintFactor x the farthest footprint

@@ -2,10 +2,6 @@
 
 #include <chrono>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/partitioner.h>
-
 #include "core/terrain_stages.h"
 
 namespace relief {
@@ -19,12 +15,7 @@ constexpr int kRowsPerTask = 4;
 template <class Body>
 double timed_parallel_rows(int rows, Body body) {
   const auto start = std::chrono::steady_clock::now();
-  tbb::parallel_for(
-      tbb::blocked_range<int>(0, rows, kRowsPerTask),
-      [&](const tbb::blocked_range<int>& r) {
-        body(RowRange{r.begin(), r.end()});
-      },
-      tbb::simple_partitioner());
+  parallel_rows(rows, kRowsPerTask, body);
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
       .count();
 }

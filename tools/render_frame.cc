@@ -23,17 +23,7 @@ double milliseconds_since(Clock::time_point start) {
 }
 
 // Image rows per task in stages 8 and 9: a 1280-pixel row shades in ~0.1 ms.
-constexpr int kRowsPerTask = 8;
-
-template <class Body>
-void parallel_rows(int rows, Body body) {
-  tbb::parallel_for(
-      tbb::blocked_range<int>(0, rows, kRowsPerTask),
-      [&](const tbb::blocked_range<int>& r) {
-        body(RowRange{r.begin(), r.end()});
-      },
-      tbb::simple_partitioner());
-}
+constexpr int kImageRowsPerTask = 8;
 
 }  // namespace
 
@@ -137,14 +127,14 @@ RenderedImage render_frame(const Scene& scene, const SceneResources& resources,
   image.height = frame.state.height;
   const std::size_t pixels = std::size_t(image.width) * image.height;
   image.linear.resize(3 * pixels);
-  parallel_rows(image.height,
+  parallel_rows(image.height, kImageRowsPerTask,
                 [&](RowRange rows) { shade_pixels<float>(plan, inputs, rows, image.linear); });
   timings.shade_ms = milliseconds_since(start);
 
   // Stage 9: sRGB encoding.
   start = Clock::now();
   image.rgb.resize(3 * pixels);
-  parallel_rows(image.height, [&](RowRange rows) {
+  parallel_rows(image.height, kImageRowsPerTask, [&](RowRange rows) {
     const std::size_t begin = 3 * std::size_t(rows.begin) * image.width;
     const std::size_t end = 3 * std::size_t(rows.end) * image.width;
     for (std::size_t k = begin; k < end; ++k) {
