@@ -12,6 +12,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/json_input.h"
+#include "core/limits.h"
 #include "core/scene_json.h"
 
 namespace relief {
@@ -70,7 +72,7 @@ class LayerReader {
                   handlers) const {
     if (!value.is_object()) {
       fail(path, (path.empty() ? std::string("the scene") : path) + " must be a JSON object, got " +
-                     value.dump());
+                     brief(value));
     }
     for (const auto& [key, item] : value.items()) {
       const auto handler = std::find_if(handlers.begin(), handlers.end(),
@@ -80,9 +82,9 @@ class LayerReader {
         for (const auto& h : handlers) {
           known.push_back(h.first);
         }
-        fail(child_path(path, key), "unknown key '" + child_path(path, key) + "'; allowed keys" +
-                                        (path.empty() ? "" : " in " + path) + ": " +
-                                        join(known, ", "));
+        const std::string unknown = brief_text(child_path(path, key));
+        fail(unknown, "unknown key '" + unknown + "'; allowed keys" +
+                          (path.empty() ? "" : " in " + path) + ": " + join(known, ", "));
       }
       handler->second(item, child_path(path, key));
     }
@@ -91,11 +93,11 @@ class LayerReader {
   double number(const json& value, const std::string& path, const Range& range) const {
     if (!value.is_number()) {
       fail(path,
-           path + " = " + value.dump() + " is not a number; allowed " + describe(range, path));
+           path + " = " + brief(value) + " is not a number; allowed " + describe(range, path));
     }
     const double v = value.get<double>();
     if (!std::isfinite(v)) {
-      fail(path, path + " = " + value.dump() + " is not a finite number");
+      fail(path, path + " = " + brief(value) + " is not a finite number");
     }
     if (!range.contains(v)) {
       fail(path,
@@ -104,27 +106,42 @@ class LayerReader {
     return v;
   }
 
+  // Integers may be written as 512 or 512.0 (or 5.12e2): JSON does not tell them apart, and a
+  // value such as 1e9 deserves "out of range", not "not an integer".
   long long integer(const json& value, const std::string& path, long long lo, long long hi) const {
     const Range range{static_cast<double>(lo), static_cast<double>(hi)};
-    if (!value.is_number_integer()) {
+    const bool integral = value.is_number_integer() ||
+                          (value.is_number_float() && std::isfinite(value.get<double>()) &&
+                           value.get<double>() == std::floor(value.get<double>()));
+    if (!integral) {
       fail(path,
-           path + " = " + value.dump() + " is not an integer; allowed " + describe(range, path));
+           path + " = " + brief(value) + " is not an integer; allowed " + describe(range, path));
     }
-    if (value.is_number_unsigned() && value.get<std::uint64_t>() > static_cast<std::uint64_t>(hi)) {
+    const bool in_range =
+        value.is_number_unsigned() ? value.get<std::uint64_t>() <= static_cast<std::uint64_t>(hi) &&
+                                         static_cast<long long>(value.get<std::uint64_t>()) >= lo
+        : value.is_number_integer() ? value.get<long long>() >= lo && value.get<long long>() <= hi
+                                    : range.contains(value.get<double>());
+    if (!in_range) {
       fail(path,
-           path + " = " + value.dump() + " is out of range; allowed " + describe(range, path));
+           path + " = " + brief(value) + " is out of range; allowed " + describe(range, path));
     }
-    const long long v = value.get<long long>();
-    if (v < lo || v > hi) {
-      fail(path,
-           path + " = " + value.dump() + " is out of range; allowed " + describe(range, path));
-    }
-    return v;
+    return value.is_number_float() ? static_cast<long long>(value.get<double>())
+                                   : value.get<long long>();
   }
 
+  // Seeds are whole numbers; 1e3 is accepted, but a float beyond 2^53 no longer says which
+  // integer it means and must be written out.
   std::uint64_t unsigned64(const json& value, const std::string& path) const {
+    if (value.is_number_float()) {
+      const double v = value.get<double>();
+      if (v >= 0.0 && v <= 0x1p53 && v == std::floor(v)) {
+        return static_cast<std::uint64_t>(v);
+      }
+    }
     if (!value.is_number_integer() || (!value.is_number_unsigned() && value.get<long long>() < 0)) {
-      fail(path, path + " = " + value.dump() + " is not an unsigned integer; allowed 0 <= " + path +
+      fail(path, path + " = " + brief(value) +
+                     " is not an unsigned integer (floats only up to 2^53); allowed 0 <= " + path +
                      " <= 18446744073709551615");
     }
     return value.get<std::uint64_t>();
@@ -132,18 +149,27 @@ class LayerReader {
 
   bool boolean(const json& value, const std::string& path) const {
     if (!value.is_boolean()) {
-      fail(path, path + " = " + value.dump() + " is not a boolean; allowed true or false");
+      fail(path, path + " = " + brief(value) + " is not a boolean; allowed true or false");
     }
     return value.get<bool>();
   }
 
+  // Paths and names: non-empty, at most kMaxStringBytes, and no NUL (a path would end there
+  // for the operating system: "a.png\u0000.txt" would open a.png).
   std::string string(const json& value, const std::string& path) const {
     if (!value.is_string()) {
-      fail(path, path + " = " + value.dump() + " is not a string");
+      fail(path, path + " = " + brief(value) + " is not a string");
     }
-    std::string s = value.get<std::string>();
+    const std::string& s = value.get_ref<const std::string&>();
     if (s.empty()) {
-      fail(path, path + " is empty; a path is required");
+      fail(path, path + " is empty; a non-empty string is required");
+    }
+    if (s.size() > limits::kMaxStringBytes) {
+      fail(path, path + " = " + brief(value) + " is longer than " +
+                     std::to_string(limits::kMaxStringBytes) + " bytes");
+    }
+    if (s.find('\0') != std::string::npos) {
+      fail(path, path + " = " + brief(value) + " contains a NUL character");
     }
     return s;
   }
@@ -162,7 +188,7 @@ class LayerReader {
         }
       }
     }
-    fail(path, path + " = " + value.dump() + " is not allowed; allowed: " + join(allowed, ", "));
+    fail(path, path + " = " + brief(value) + " is not allowed; allowed: " + join(allowed, ", "));
   }
 
   template <std::size_t N>
@@ -170,7 +196,7 @@ class LayerReader {
                                const Range& range) const {
     if (!value.is_array() || value.size() != N) {
       fail(path,
-           path + " = " + value.dump() + " must be an array of " + std::to_string(N) + " numbers");
+           path + " = " + brief(value) + " must be an array of " + std::to_string(N) + " numbers");
     }
     std::array<double, N> out{};
     for (std::size_t k = 0; k < N; ++k) {

@@ -26,6 +26,27 @@ inline constexpr int kMaxGridSide = 8192;
 // Extra rows/columns of cells projected past the covered region (stage 1 margin).
 inline constexpr int kMaxGridMargin = 64;
 
+// --- Input files and values ---------------------------------------------------------------
+
+// The deepest legitimate scene value is 4 levels (shading.layers[k].height[0]); 16 leaves room
+// and keeps every recursive walk of a parsed value shallow.
+inline constexpr int kMaxJsonDepth = 16;
+// A complete scene with eight layers is about 5 KiB; a file 3000 times larger is a mistake (or
+// /dev/zero behind a .json name), and the DOM of a JSON text takes about 10x its size.
+inline constexpr std::uintmax_t kMaxSceneFileBytes = 16u << 20;
+// Paths and names: PATH_MAX on Linux.
+inline constexpr std::size_t kMaxStringBytes = 4096;
+// A PNG of the largest texture (4096^2 RGBA, 8 bits) stored without compression is 64 MiB plus
+// 1 filter byte a row and 5 bytes of zlib framing per 64 KiB: under 65 MiB. A larger file
+// cannot be a texture Relief accepts.
+inline constexpr std::uintmax_t kMaxTextureFileBytes = 65u << 20;
+// A triangle-soup line holds at most 12 numbers; 4096 bytes is ten times what they need.
+inline constexpr std::size_t kMaxSoupLineBytes = 4096;
+// A parsed triangle takes 60 bytes (3 vertices of 4 floats, 3 indices) and its text at least
+// 18 ("0 0 0 0 0 0 0 0 0\n"): a 1 GiB soup may take 3.4 GiB parsed, and still has 32-bit
+// vertex indices to spare.
+inline constexpr std::uintmax_t kMaxSoupFileBytes = 1u << 30;
+
 // --- Camera --------------------------------------------------------------------------------
 
 // Beyond 1e12 a double position resolves only ~1e-4 units, coarser than any octave a

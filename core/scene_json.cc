@@ -5,12 +5,12 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <functional>
-#include <sstream>
 #include <utility>
 
+#include "core/input_file.h"
 #include "core/json_fields.h"
+#include "core/json_input.h"
 #include "core/limits.h"
 #include "core/scene_presets.h"
 #include "core/scene_sections.h"
@@ -36,18 +36,29 @@ bool looks_non_finite(std::string text) {
 }
 
 json read_scene_file(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) {
-    throw SceneError("", "scene file " + file.string() + ": cannot be opened for reading");
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
+  const std::string source = "scene file " + brief_text(file.string());
   try {
-    return json::parse(text.str());
-  } catch (const json::exception& e) {
-    throw SceneError("", "scene file " + file.string() + ": not valid JSON: " + e.what() +
-                             " (numbers must be finite; NaN and Infinity are not JSON)");
+    InputFile in(file, limits::kMaxSceneFileBytes);
+    return parse_json_strictly(in.read_rest(), source);
+  } catch (const InputFileError& e) {
+    throw SceneError("", source + ": " + e.what());
   }
+}
+
+// Which forms of the view direction a layer gives (camera.look_at, camera.yaw_deg/pitch_deg).
+struct DirectionForms {
+  bool look_at = false;
+  bool angles = false;
+};
+
+DirectionForms direction_forms(const json& layer) {
+  DirectionForms forms;
+  if (layer.is_object() && layer.contains("camera") && layer["camera"].is_object()) {
+    const json& camera = layer["camera"];
+    forms.look_at = camera.contains("look_at");
+    forms.angles = camera.contains("yaw_deg") || camera.contains("pitch_deg");
+  }
+  return forms;
 }
 
 }  // namespace
@@ -230,36 +241,41 @@ json scene_to_json(const Scene& scene) {
 }
 
 json parse_override(std::string_view assignment) {
+  const std::string source = "--set " + brief_text(assignment);
   const std::size_t equals = assignment.find('=');
   if (equals == std::string_view::npos || equals == 0) {
-    throw SceneError("", "--set " + std::string(assignment) +
-                             ": expected KEY=VALUE, for example --set terrain.H=0.85");
+    throw SceneError("", source + ": expected KEY=VALUE, for example --set terrain.H=0.85");
   }
   const std::string key(assignment.substr(0, equals));
   const std::string text(assignment.substr(equals + 1));
   json value;
-  try {
-    value = json::parse(text);
-  } catch (const json::out_of_range&) {
-    throw SceneError(key, "--set " + std::string(assignment) + ": " + key + " = " + text +
-                              " is not a finite number");
-  } catch (const json::parse_error&) {
-    if (looks_non_finite(text)) {
-      throw SceneError(key, "--set " + std::string(assignment) + ": " + key + " = " + text +
+  if (json::accept(text)) {
+    value = parse_json_strictly(text, source);
+  } else {
+    // Not JSON: a number beyond double's range, NaN or Infinity are errors; anything else is a
+    // bare word such as quintic.
+    double number = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), number);
+    if (looks_non_finite(text) ||
+        (ec == std::errc::result_out_of_range && end == text.data() + text.size())) {
+      throw SceneError(key, source + ": " + brief_text(key) + " = " + brief_text(text) +
                                 " is not a finite number");
     }
-    value = text;  // a bare word such as quintic
+    value = text;
   }
   // Build {"a": {"b": value}} from "a.b"; each segment is checked by apply_scene_layer.
   json layer = value;
   std::size_t end = key.size();
-  while (true) {
+  for (int segments = 1;; ++segments) {
     const std::size_t dot = key.rfind('.', end - 1);
     const std::size_t begin = dot == std::string::npos ? 0 : dot + 1;
     const std::string segment = key.substr(begin, end - begin);
     if (segment.empty()) {
-      throw SceneError(
-          key, "--set " + std::string(assignment) + ": key '" + key + "' has an empty segment");
+      throw SceneError(key, source + ": key '" + brief_text(key) + "' has an empty segment");
+    }
+    if (segments > limits::kMaxJsonDepth) {
+      throw SceneError(key, source + ": key '" + brief_text(key) + "' has more than " +
+                                std::to_string(limits::kMaxJsonDepth) + " segments");
     }
     layer = json{{segment, layer}};
     if (dot == std::string::npos) {
@@ -289,22 +305,49 @@ Scene resolve_scene(std::string_view scene_arg, const std::vector<std::string>& 
   const std::string name = scene_arg.empty() ? std::string("default") : std::string(scene_arg);
   const std::filesystem::path file(name);
   std::error_code ec;
-  if (std::filesystem::is_regular_file(file, ec)) {
-    apply_scene_layer(scene, read_scene_file(file), "scene file " + name, file.parent_path());
+  // A regular file comes first, then a preset of that name; anything else that exists under
+  // the name (a directory, a FIFO, a device) is refused by read_scene_file with the reason.
+  if (std::filesystem::is_regular_file(file, ec) ||
+      (!is_preset(name) && std::filesystem::exists(file, ec))) {
+    apply_scene_layer(scene, read_scene_file(file), "scene file " + brief_text(name),
+                      file.parent_path());
   } else if (name == "default") {
     // The defaults are the member initialisers of scene.h.
   } else if (is_preset(name)) {
     for (const ScenePreset& preset : scene_presets()) {
       if (preset.name == name) {
-        apply_scene_layer(scene, json::parse(preset.json), "preset " + name);
+        apply_scene_layer(scene, parse_json_strictly(preset.json, "preset " + name),
+                          "preset " + name);
       }
     }
   } else {
-    throw SceneError("", "scene '" + name + "' is neither a readable file nor a preset; presets: " +
+    throw SceneError("", "scene '" + brief_text(name) +
+                             "' is neither a readable file nor a preset; presets: " +
                              join(preset_names(), ", "));
   }
+  // The overrides together are one source, like a file: they may give the view direction in
+  // one form only. A look_at among them is resolved against the final camera.position, as it
+  // is within a file, whatever the order of the --set options.
+  const std::string* look_at_override = nullptr;
+  const std::string* angles_override = nullptr;
+  json look_at_layer;
   for (const std::string& assignment : overrides) {
-    apply_scene_layer(scene, parse_override(assignment), "--set " + assignment);
+    const json layer = parse_override(assignment);
+    const DirectionForms forms = direction_forms(layer);
+    if (forms.look_at) {
+      look_at_override = &assignment;
+      look_at_layer = json{{"camera", {{"look_at", layer["camera"]["look_at"]}}}};
+    }
+    angles_override = forms.angles ? &assignment : angles_override;
+    if (look_at_override && angles_override) {
+      throw SceneError("camera.look_at", "--set " + brief_text(*look_at_override) + " and --set " +
+                                             brief_text(*angles_override) +
+                                             " both set the view direction; give one or the other");
+    }
+    apply_scene_layer(scene, layer, "--set " + brief_text(assignment));
+  }
+  if (look_at_override) {
+    apply_scene_layer(scene, look_at_layer, "--set " + brief_text(*look_at_override));
   }
   validate_scene(scene);
   return scene;

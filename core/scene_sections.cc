@@ -72,7 +72,7 @@ void apply_material_layer(const LayerReader& in, const json& value, const std::s
                const std::string name = texture.substr(kBuiltinPrefix.size());
                const auto& names = builtin_texture_names();
                if (std::find(names.begin(), names.end(), name) == names.end()) {
-                 in.fail(p, p + " = " + v.dump() + " names no built-in texture; allowed: builtin:" +
+                 in.fail(p, p + " = " + brief(v) + " names no built-in texture; allowed: builtin:" +
                                 join(names, ", builtin:") + ", or a PNG file");
                }
              } else if (!base_dir.empty() && std::filesystem::path(texture).is_relative()) {
@@ -89,7 +89,7 @@ void apply_material_layer(const LayerReader& in, const json& value, const std::s
              layer.height =
                  in.vector<2>(v, p, Range{-limits::kMaxBaseHeight, limits::kMaxBaseHeight});
              if (!(layer.height[0] < layer.height[1])) {
-               in.fail(p, p + " = " + v.dump() + " is empty; allowed [low, high] with low < high");
+               in.fail(p, p + " = " + brief(v) + " is empty; allowed [low, high] with low < high");
              }
            }},
           {"height_relative_to_water",
@@ -100,7 +100,7 @@ void apply_material_layer(const LayerReader& in, const json& value, const std::s
            [&](const json& v, const std::string& p) {
              layer.slope_deg = in.vector<2>(v, p, Range{0.0, 90.0});
              if (!(layer.slope_deg[0] < layer.slope_deg[1])) {
-               in.fail(p, p + " = " + v.dump() + " is empty; allowed [low, high] with low < high");
+               in.fail(p, p + " = " + brief(v) + " is empty; allowed [low, high] with low < high");
              }
            }},
           {"height_spread",
@@ -142,14 +142,14 @@ void apply_material_layers(const LayerReader& in, const json& value, const std::
     return;
   }
   if (!value.is_object()) {
-    in.fail(path, path + " = " + value.dump() +
+    in.fail(path, path + " = " + brief(value) +
                       " must be an array of layers, or an object patching layers by index");
   }
   for (const auto& [key, item] : value.items()) {
     std::size_t index = 0;
     const auto [end, ec] = std::from_chars(key.data(), key.data() + key.size(), index);
     if (ec != std::errc() || end != key.data() + key.size() || index >= layers.size()) {
-      in.fail(path, "no layer '" + key + "' in " + path + "; allowed indices 0 to " +
+      in.fail(path, "no layer '" + brief_text(key) + "' in " + path + "; allowed indices 0 to " +
                         std::to_string(layers.size() - 1));
     }
     apply_material_layer(in, item, path + "[" + key + "]", layers[index], base_dir);
@@ -264,7 +264,7 @@ void apply_terrain(const LayerReader& in, const json& value, const std::string& 
              const long long size =
                  in.integer(v, p, limits::kMinLatticeSize, limits::kMaxLatticeSize);
              if (!std::has_single_bit(static_cast<unsigned long long>(size))) {
-               in.fail(p, p + " = " + v.dump() + " is not a power of two; allowed 4, 8, 16, ..., " +
+               in.fail(p, p + " = " + brief(v) + " is not a power of two; allowed 4, 8, 16, ..., " +
                               std::to_string(limits::kMaxLatticeSize));
              }
              terrain.lattice_size = static_cast<int>(size);
@@ -334,7 +334,7 @@ void apply_shading(const LayerReader& in, const json& value, const std::string& 
                  [&](const json& v, const std::string& p) {
                    const long long size = in.integer(v, p, 16, 2048);
                    if (!std::has_single_bit(static_cast<unsigned long long>(size))) {
-                     in.fail(p, p + " = " + v.dump() +
+                     in.fail(p, p + " = " + brief(v) +
                                     " is not a power of two; allowed 16, 32, ..., 2048");
                    }
                    shading.texture_size = static_cast<int>(size);

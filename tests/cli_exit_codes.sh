@@ -1,7 +1,10 @@
 #!/bin/sh
-# Runs the real relief binary: help exits 0; bad input exits 2 and leaves no file behind.
+# Runs the real relief binary: help exits 0; bad input exits 2 and leaves no file behind;
+# running out of memory exits 1 with a message, never an abort.
+# Usage: cli_exit_codes.sh RELIEF SANITIZED (SANITIZED: 1 in the ASan build, else 0)
 set -u
 relief="$1"
+sanitized="${2:-0}"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
@@ -14,7 +17,7 @@ expect_bad_input() {
   code=$?
   [ "$code" -eq 2 ] || fail "'$*' exited $code, expected 2"
   grep -q "relief: error:" "$work/stderr" || fail "'$*' printed no error message"
-  [ ! -e "$work/out" ] || fail "'$*' left $work/out behind"
+  [ ! -e "$work/out" ] && [ ! -e "$work/out.png" ] || fail "'$*' left an output behind"
 }
 
 printf '{"terrain": {"r": 1}}' >"$work/bad.json"
@@ -27,4 +30,23 @@ expect_bad_input render -o "$work/out.jpg"
 printf '4 4\n0 0 2\n' >"$work/soup.txt"
 expect_bad_input raster "$work/soup.txt" --out "$work/out"
 expect_bad_input nonsense-command
+expect_bad_input render --max-memory 64M -o "$work/out.png"
+mkfifo "$work/fifo.json"
+expect_bad_input render "$work/fifo.json" -o "$work/out.png"
+expect_bad_input raster /dev/zero --out "$work/out"
+
+# An allocation that fails although the estimate fitted (here: an address-space limit the
+# estimate does not read) ends with exit 1 and a message. AddressSanitizer reserves terabytes of
+# address space for its shadow memory, so the sanitizer build cannot run under such a limit.
+if [ "$sanitized" != 1 ]; then
+  (
+    ulimit -v 1500000
+    "$relief" render --set viewport.width=4096 --set viewport.height=4096 -o "$work/out.png" \
+      >"$work/stdout" 2>"$work/stderr"
+  )
+  code=$?
+  [ "$code" -eq 1 ] || fail "a render out of memory exited $code, expected 1"
+  grep -q "relief: error: out of memory" "$work/stderr" || fail "no out-of-memory message"
+  [ ! -e "$work/out.png" ] || fail "a render out of memory left $work/out.png behind"
+fi
 echo "exit codes as documented"

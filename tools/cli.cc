@@ -1,7 +1,10 @@
 #include "tools/cli.h"
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <memory>
+#include <new>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -9,9 +12,11 @@
 #include <tbb/global_control.h>
 #include <CLI/CLI.hpp>
 
+#include "core/json_input.h"
 #include "core/scene_json.h"
 #include "tools/atomic_file.h"
 #include "tools/commands.h"
+#include "tools/memory_budget.h"
 #include "tools/soup.h"
 
 namespace relief {
@@ -43,6 +48,41 @@ void add_scene_args(CLI::App* command, SceneArgs& args) {
       ->type_name("KEY=VALUE")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+}
+
+// Memory limit of a job (memory_budget.h): "2G", "512M", bytes.
+void add_max_memory(CLI::App* command, std::string& max_memory) {
+  command
+      ->add_option("--max-memory", max_memory,
+                   "Refuse the job (exit 2) if its estimated memory exceeds SIZE (for example "
+                   "512M, 2G). Default: the memory available on this machine.")
+      ->type_name("SIZE")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            return parse_memory_size(text) ? ""
+                                           : "a size from 1M to 1E: a number with an optional "
+                                             "unit K, M, G or T (powers of 1024)";
+          },
+          "SIZE"));
+}
+
+// A finite coordinate within +-1e6 (CLI::Range lets NaN through: every comparison with it is
+// false).
+const CLI::Validator kFiniteViewportValue(
+    [](std::string& text) -> std::string {
+      double v = 0;
+      const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+      if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v) ||
+          std::abs(v) > 1e6) {
+        return "'" + brief_text(text) + "' is not a finite number in [-1e6, 1e6]";
+      }
+      return "";
+    },
+    "NUMBER in [-1e6, 1e6]");
+
+// An option given with an empty value (-o ""): never silently the default.
+bool given_empty(const CLI::Option* option, const std::string& value) {
+  return option->count() > 0 && value.empty();
 }
 
 void add_threads(CLI::App* command, int& threads) {
@@ -81,14 +121,17 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       "Run stages 1-4 (screen grid, projected domain, fractal, surface) and write "
       "each stage's buffers as PNG pictures and PFM floats, with stages.json.");
   add_scene_args(stages_cmd, scene_args);
-  stages_cmd->add_option("--out", stages.out_dir,
-                         "Output directory (created if missing). Default: the scene's "
-                         "output.stages_dir");
+  const CLI::Option* stages_out =
+      stages_cmd->add_option("--out", stages.out_dir,
+                             "Output directory (created if missing). Default: the scene's "
+                             "output.stages_dir");
   stages_cmd
       ->add_option("--repeat", stages.repeat,
                    "Run the stages this many times and report the median stage times")
       ->check(CLI::Range(1, 1000));
   add_threads(stages_cmd, threads);
+  std::string max_memory;
+  add_max_memory(stages_cmd, max_memory);
 
   RenderOptions render;
   CLI::App* render_cmd =
@@ -97,16 +140,19 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
                          "surface, rasterisation, proto-texture shading, water, sky) and print the "
                          "stage times.");
   add_scene_args(render_cmd, scene_args);
-  render_cmd->add_option("-o,--output", render.output,
-                         "PNG file to write (default: the scene's output.image, relief.png)");
-  render_cmd->add_option("--float", render.float_output,
-                         "Also write the linear radiance as a PFM file (default: the scene's "
-                         "output.float_image, if set)");
+  const CLI::Option* render_out =
+      render_cmd->add_option("-o,--output", render.output,
+                             "PNG file to write (default: the scene's output.image, relief.png)");
+  const CLI::Option* render_float =
+      render_cmd->add_option("--float", render.float_output,
+                             "Also write the linear radiance as a PFM file (default: the "
+                             "scene's output.float_image, if set)");
   render_cmd
       ->add_option("--repeat", render.repeat,
                    "Render this many times and report the median stage times")
       ->check(CLI::Range(1, 1000));
   add_threads(render_cmd, threads);
+  add_max_memory(render_cmd, max_memory);
 
   RasterOptions raster_options;
   CLI::App* raster_cmd = app.add_subcommand(
@@ -114,12 +160,12 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       "Rasterise a triangle soup (README.md, 'Triangle soups') and write the primitive "
       "id, depth and barycentric buffers, for comparison with a GPU.");
   raster_cmd->add_option("FILE", raster_options.soup, "Triangle soup text file")->required();
-  raster_cmd
-      ->add_option("--out", raster_options.prefix,
-                   "Output prefix: writes PREFIX.primitive.bin, "
-                   "PREFIX.depth.pfm, PREFIX.barycentric.pfm, "
-                   "PREFIX.coverage.png, PREFIX.json")
-      ->required();
+  const CLI::Option* raster_out = raster_cmd
+                                      ->add_option("--out", raster_options.prefix,
+                                                   "Output prefix: writes PREFIX.primitive.bin, "
+                                                   "PREFIX.depth.pfm, PREFIX.barycentric.pfm, "
+                                                   "PREFIX.coverage.png, PREFIX.json")
+                                      ->required();
   raster_cmd->add_option("--cull", raster_options.cull, "Face culling: none (default), back, front")
       ->check(CLI::IsMember({"none", "back", "front"}));
   raster_cmd
@@ -136,9 +182,18 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
                    "glViewport X Y WIDTH HEIGHT for clip-coordinate soups (default: the "
                    "framebuffer); may exceed the framebuffer")
       ->expected(4)
-      ->check(CLI::Range(-1e6, 1e6));
+      ->check(kFiniteViewportValue);
   add_threads(raster_cmd, threads);
+  add_max_memory(raster_cmd, max_memory);
 
+  // CLI11 answers an unknown command with "A subcommand is required"; say what is wrong.
+  const std::vector<std::string> commands = {"scene", "stages", "render", "raster"};
+  if (args.size() > 1 && !args[1].empty() && args[1][0] != '-' &&
+      std::find(commands.begin(), commands.end(), args[1]) == commands.end()) {
+    err << "relief: error: unknown command '" << brief_text(args[1])
+        << "'; commands: scene, stages, render, raster\nRun 'relief --help' for usage.\n";
+    return kExitBadInput;
+  }
   std::vector<const char*> argv;
   for (const std::string& a : args) {
     argv.push_back(a.c_str());
@@ -150,9 +205,26 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e, out, err);
   } catch (const CLI::ParseError& e) {
-    err << "relief: error: " << e.what() << "\nRun 'relief --help' for usage.\n";
+    err << "relief: error: " << brief_text(e.what(), 3 * kBriefChars)
+        << "\nRun 'relief --help' for usage.\n";
     return kExitBadInput;
   }
+  for (const auto& [option, value] : {std::pair{stages_out, stages.out_dir},
+                                      {render_out, render.output},
+                                      {render_float, render.float_output},
+                                      {raster_out, raster_options.prefix}}) {
+    if (given_empty(option, value)) {
+      err << "relief: error: " << option->get_name()
+          << " is empty; give a file or directory name\n";
+      return kExitBadInput;
+    }
+  }
+  if (raster_cmd->parsed() && raster_options.soup.empty()) {
+    err << "relief: error: FILE is empty; give the triangle soup's file name\n";
+    return kExitBadInput;
+  }
+  const MemoryBudget budget = memory_budget(parse_memory_size(max_memory), max_memory);
+  stages.budget = render.budget = raster_options.budget = budget;
 
   std::unique_ptr<tbb::global_control> thread_limit;
   if (threads > 0) {
@@ -200,8 +272,20 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   } catch (const SoupError& e) {
     err << "relief: error: " << e.what() << "\n";
     return kExitBadInput;
+  } catch (const MemoryLimitError& e) {
+    err << "relief: error: " << e.what() << "\n";
+    return kExitBadInput;
   } catch (const OutputError& e) {
     err << "relief: error: " << e.what() << "\n";
+    return kExitOutputError;
+  } catch (const std::bad_alloc&) {
+    // The estimate (job_memory.h) missed, or another process took the memory meanwhile.
+    err << "relief: error: out of memory; nothing was written. Lower the image or grid size, or "
+           "free memory and try again.\n";
+    return kExitOutputError;
+  } catch (const std::exception& e) {
+    err << "relief: internal error: " << brief_text(e.what(), 3 * kBriefChars)
+        << "; nothing was written. Please report this with the command line.\n";
     return kExitOutputError;
   }
   return kExitOk;

@@ -6,13 +6,18 @@
 #include <vector>
 
 #include "core/scene.h"
+#include "tools/memory_budget.h"
 
 namespace relief {
 
 struct StagesOptions {
   std::string out_dir;  // empty: scene.output.stages_dir
   int repeat = 1;
+  MemoryBudget budget;
 };
+
+// Each command checks its memory estimate (job_memory.h) against options.budget before it
+// starts, and throws MemoryLimitError when the job does not fit.
 
 // `relief stages`: stages 1-4, stage times (median over `repeat` runs), stage outputs.
 int run_stages_command(const Scene& scene, const StagesOptions& options, std::ostream& out);
@@ -21,6 +26,7 @@ struct RenderOptions {
   std::string output;        // empty: scene.output.image
   std::string float_output;  // empty: scene.output.float_image (or none)
   int repeat = 1;
+  MemoryBudget budget;
 };
 
 // `relief render`: the whole frame to an sRGB PNG, with the stage times.
@@ -33,10 +39,11 @@ struct RasterOptions {
   std::string front_face = "ccw";
   std::string depth_test = "greater";
   std::vector<double> viewport;  // x y width height; empty: the framebuffer
+  MemoryBudget budget;
 };
 
 // `relief raster`: a triangle soup through the rasteriser, buffers written for comparison.
-// Throws SceneError-like InputError for a bad soup (see soup.h).
+// Throws SoupError for a bad soup (soup.h).
 int run_raster_command(const RasterOptions& options, std::ostream& out);
 
 }  // namespace relief

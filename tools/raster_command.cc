@@ -1,5 +1,4 @@
 #include <cstring>
-#include <fstream>
 #include <ostream>
 #include <string>
 
@@ -12,6 +11,7 @@
 #include "tools/cli.h"
 #include "tools/commands.h"
 #include "tools/image_io.h"
+#include "tools/job_memory.h"
 #include "tools/soup.h"
 
 namespace relief {
@@ -47,11 +47,13 @@ std::span<const unsigned char> bytes_of(const std::string& text) {
 }  // namespace
 
 int run_raster_command(const RasterOptions& options, std::ostream& out) {
-  std::ifstream file(options.soup);
-  if (!file) {
-    throw SoupError(options.soup + ": cannot be opened for reading");
-  }
-  const TriangleSoup soup = parse_triangle_soup(file, options.soup);
+  const TriangleSoup soup = read_triangle_soup(options.soup, [&](std::uintmax_t file_bytes) {
+    check_memory(estimate_soup_memory(file_bytes), options.budget, "reading this soup",
+                 "Split the soup");
+  });
+  check_memory(estimate_raster_memory(soup.triangle_count(), soup.width, soup.height),
+               options.budget, "rasterising this soup",
+               "Lower the framebuffer size or the number of triangles");
   raster::RasterState state;
   state.width = soup.width;
   state.height = soup.height;

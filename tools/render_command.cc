@@ -8,6 +8,7 @@
 #include "tools/cli.h"
 #include "tools/commands.h"
 #include "tools/image_io.h"
+#include "tools/job_memory.h"
 #include "tools/render_frame.h"
 #include "tools/statistics.h"
 
@@ -17,6 +18,8 @@ int run_render_command(const Scene& scene, const RenderOptions& options, std::os
   const std::string path = options.output.empty() ? scene.output.image : options.output;
   const std::string float_path =
       options.float_output.empty() ? scene.output.float_image.value_or("") : options.float_output;
+  check_memory(estimate_render_memory(scene, !float_path.empty()), options.budget, "this render",
+               "Lower viewport.width/height or grid.width/height");
   const auto setup_start = std::chrono::steady_clock::now();
   const SceneResources resources = load_scene_resources(scene);  // validates texture files
   const double setup_ms =

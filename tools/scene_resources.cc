@@ -1,18 +1,47 @@
 #include "tools/scene_resources.h"
 
 #include <bit>
-#include <fstream>
-#include <iterator>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include <stb_image.h>
 
+#include "core/input_file.h"
+#include "core/json_input.h"
 #include "core/limits.h"
 #include "core/scene_json.h"
 #include "core/srgb.h"
 #include "core/texture_synthesis.h"
+#include "tools/png_header.h"
 
 namespace relief {
+
+namespace {
+
+// Refuses, from its first bytes alone, a file that is no PNG or a PNG Relief cannot use.
+void check_texture_header(const std::vector<unsigned char>& bytes, const std::string& field,
+                          const std::string& path) {
+  const std::optional<PngHeader> png = parse_png_header(bytes.data(), bytes.size());
+  if (!png) {
+    throw SceneError(path, "scene: " + field + " is not a PNG image (no PNG signature and header)");
+  }
+  const std::uint32_t side = png->width;
+  if (png->width != png->height || side < std::uint32_t(limits::kMinTextureSize) ||
+      side > std::uint32_t(limits::kMaxTextureSize) || !std::has_single_bit(side)) {
+    throw SceneError(path, "scene: " + field + " is " + std::to_string(png->width) + "x" +
+                               std::to_string(png->height) +
+                               " pixels; allowed: square, a power of two from " +
+                               std::to_string(limits::kMinTextureSize) + " to " +
+                               std::to_string(limits::kMaxTextureSize));
+  }
+  if (png->bit_depth > 8) {
+    throw SceneError(path, "scene: " + field + " has " + std::to_string(png->bit_depth) +
+                               " bits per channel; allowed: 8-bit PNG");
+  }
+}
+
+}  // namespace
 
 RgbImage load_layer_texture(const MaterialLayer& layer, int builtin_size, const std::string& path) {
   static constexpr std::string_view kBuiltin = "builtin:";
@@ -20,31 +49,26 @@ RgbImage load_layer_texture(const MaterialLayer& layer, int builtin_size, const 
     return synthesize_texture(std::string_view(layer.texture).substr(kBuiltin.size()),
                               builtin_size);
   }
-  std::ifstream file(layer.texture, std::ios::binary);
-  if (!file) {
-    throw SceneError(path, "scene: " + path + " = \"" + layer.texture + "\" cannot be opened");
+  const std::string field = path + " = \"" + brief_text(layer.texture) + "\"";
+  std::vector<unsigned char> bytes;
+  try {
+    InputFile file(layer.texture, limits::kMaxTextureFileBytes);
+    bytes.resize(kPngHeaderBytes);
+    bytes.resize(file.read(bytes.data(), bytes.size()));
+    check_texture_header(bytes, field, path);
+    const std::string rest = file.read_rest();
+    bytes.insert(bytes.end(), rest.begin(), rest.end());
+  } catch (const InputFileError& e) {
+    throw SceneError(path, "scene: " + field + " " + e.what());
   }
-  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(file)),
-                                         std::istreambuf_iterator<char>());
+  // stb takes an int size; kMaxTextureFileBytes keeps the file far below 2^31.
   int width = 0, height = 0, channels = 0;
-  if (!stbi_info_from_memory(bytes.data(), static_cast<int>(bytes.size()), &width, &height,
-                             &channels) ||
-      bytes.size() < 8 || bytes[1] != 'P' || bytes[2] != 'N' || bytes[3] != 'G') {
-    throw SceneError(path, "scene: " + path + " = \"" + layer.texture + "\" is not a PNG image");
-  }
-  if (width != height || width < limits::kMinTextureSize || width > limits::kMaxTextureSize ||
-      !std::has_single_bit(static_cast<unsigned>(width)) ||
-      stbi_is_16_bit_from_memory(bytes.data(), int(bytes.size()))) {
-    throw SceneError(path, "scene: " + path + " = \"" + layer.texture + "\" is " +
-                               std::to_string(width) + "x" + std::to_string(height) +
-                               " pixels; allowed: square 8-bit images with a power-of-two side "
-                               "from 4 to 4096");
-  }
   unsigned char* pixels = stbi_load_from_memory(bytes.data(), static_cast<int>(bytes.size()),
                                                 &width, &height, &channels, 3);
-  if (!pixels) {
-    throw SceneError(path, "scene: " + path + " = \"" + layer.texture +
-                               "\" could not be decoded: " + stbi_failure_reason());
+  if (!pixels || width != height) {
+    stbi_image_free(pixels);
+    throw SceneError(path, "scene: " + field + " could not be decoded: " +
+                               (pixels ? "its header and data disagree" : stbi_failure_reason()));
   }
   RgbImage image;
   image.size = width;

@@ -9,9 +9,10 @@
 #pragma once
 
 #include <cstdint>
-#include <istream>
+#include <functional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace relief {
@@ -31,6 +32,14 @@ struct TriangleSoup {
   std::uint32_t triangle_count() const { return static_cast<std::uint32_t>(indices.size() / 3); }
 };
 
-TriangleSoup parse_triangle_soup(std::istream& in, const std::string& name);
+// Reads a soup file: a regular file of at most limits::kMaxSoupFileBytes, lines of at most
+// limits::kMaxSoupLineBytes. `check_size(file_bytes)` is called once the file is open and
+// before it is parsed (the caller may refuse a file too large for its memory budget by
+// throwing). Throws SoupError naming the file (and the line).
+TriangleSoup read_triangle_soup(const std::string& path,
+                                const std::function<void(std::uintmax_t)>& check_size);
+
+// Parses soup text; `name` starts every message.
+TriangleSoup parse_triangle_soup(std::string_view text, const std::string& name);
 
 }  // namespace relief

@@ -8,12 +8,15 @@
 #include "tools/cli.h"
 #include "tools/commands.h"
 #include "tools/frame_runner.h"
+#include "tools/job_memory.h"
 #include "tools/stage_outputs.h"
 #include "tools/statistics.h"
 
 namespace relief {
 
 int run_stages_command(const Scene& scene, const StagesOptions& options, std::ostream& out) {
+  check_memory(estimate_stages_memory(scene), options.budget, "relief stages",
+               "Lower grid.width/height");
   const NoiseLattice lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
   const FramePlan plan = make_frame_plan(scene, lattice);
   GridBuffers<float> buffers(plan.layout);

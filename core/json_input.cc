@@ -1,0 +1,146 @@
+#include "core/json_input.h"
+
+#include <charconv>
+#include <set>
+#include <vector>
+
+#include "core/limits.h"
+#include "core/scene_json.h"
+
+namespace relief {
+
+namespace {
+
+using nlohmann::json;
+
+// Where the parser is: one frame per open object or array, for duplicate keys and for the
+// JSON path of a message.
+struct OpenValue {
+  bool object = false;
+  std::set<std::string> keys;
+  std::string key;  // objects: the key being read
+  long index = -1;  // arrays: the element being read
+};
+
+std::string path_of(const std::vector<OpenValue>& open) {
+  std::string path;
+  for (const OpenValue& v : open) {
+    if (v.object && !v.key.empty()) {
+      if (!path.empty()) {
+        path += '.';
+      }
+      path += v.key;
+    } else if (!v.object && v.index >= 0) {
+      path += '[';
+      path += std::to_string(v.index);
+      path += ']';
+    }
+  }
+  return path;
+}
+
+void append_brief(const json& value, std::string& out) {
+  if (out.size() > kBriefChars) {
+    return;
+  }
+  const auto dump = [](const json& v) {
+    return v.dump(-1, ' ', false, json::error_handler_t::replace);
+  };
+  if (value.is_array() || value.is_object()) {
+    out += value.is_array() ? '[' : '{';
+    bool first = true;
+    for (auto it = value.begin(); it != value.end(); ++it) {
+      if (out.size() > kBriefChars) {
+        out += "...";
+        break;
+      }
+      out += first ? "" : ",";
+      first = false;
+      if (value.is_object()) {
+        out += dump(json(it.key())) + ":";
+      }
+      append_brief(*it, out);
+    }
+    out += value.is_array() ? ']' : '}';
+  } else if (value.is_string()) {
+    out += dump(json(brief_text(value.get_ref<const std::string&>())));
+  } else if (value.is_number_float()) {
+    char buffer[32];  // the shortest text that reads back the same: 1e+09, not 1000000000.0
+    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value.get<double>());
+    out.append(buffer, result.ptr);
+  } else {
+    out += dump(value);
+  }
+}
+
+}  // namespace
+
+std::string brief_text(std::string_view text, std::size_t limit) {
+  if (text.size() <= limit) {
+    return std::string(text);
+  }
+  std::size_t cut = limit;
+  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xc0) == 0x80) {
+    --cut;  // do not split a UTF-8 sequence
+  }
+  return std::string(text.substr(0, cut)) + "... (" + std::to_string(text.size()) + " characters)";
+}
+
+std::string brief(const json& value) {
+  std::string out;
+  append_brief(value, out);
+  return out;
+}
+
+json parse_json_strictly(std::string_view text, const std::string& source) {
+  if (const std::size_t nul = text.find('\0'); nul != std::string_view::npos) {
+    throw SceneError("", source + ": contains a NUL byte at offset " + std::to_string(nul) +
+                             "; a scene is JSON text");
+  }
+  std::vector<OpenValue> open;
+  const auto on_event = [&](int depth, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+      case json::parse_event_t::array_start:
+        if (depth >= limits::kMaxJsonDepth) {
+          throw SceneError(path_of(open), source + ": " +
+                                              (open.empty() ? "the value" : path_of(open)) +
+                                              " is nested deeper than " +
+                                              std::to_string(limits::kMaxJsonDepth) + " levels");
+        }
+        if (!open.empty() && !open.back().object) {
+          ++open.back().index;
+        }
+        open.push_back(OpenValue{event == json::parse_event_t::object_start, {}, {}, -1});
+        break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        open.pop_back();
+        break;
+      case json::parse_event_t::key: {
+        OpenValue& object = open.back();
+        object.key = parsed.get<std::string>();
+        if (!object.keys.insert(object.key).second) {
+          const std::string path = path_of(open);
+          throw SceneError(path, source + ": key '" + brief_text(path) +
+                                     "' appears twice; each key may be given once");
+        }
+        break;
+      }
+      case json::parse_event_t::value:
+        if (!open.empty() && !open.back().object) {
+          ++open.back().index;
+        }
+        break;
+    }
+    return true;
+  };
+  try {
+    return json::parse(text, on_event);
+  } catch (const json::exception& e) {
+    throw SceneError("", source + ": not valid JSON: " + brief_text(e.what(), 3 * kBriefChars) +
+                             " (numbers must be finite; NaN and Infinity are not JSON)");
+  }
+}
+
+}  // namespace relief

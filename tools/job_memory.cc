@@ -1,0 +1,120 @@
+#include "tools/job_memory.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/grid_buffers.h"
+#include "core/input_file.h"
+#include "core/limits.h"
+#include "raster/triangle_setup.h"
+#include "tools/png_header.h"
+
+namespace relief {
+
+namespace {
+
+// Bytes per element of the arrays each job holds at its peak.
+constexpr std::uintmax_t kGridVertexBytes = 10 * 4 + 1;  // GridBuffers<float>: 10 planes + valid
+constexpr std::uintmax_t kClipVertexBytes = 4 * 4;       // clip x, y, z, w
+// Visibility (id + depth) 8, resolve 17 float planes (3 barycentrics, 8 attributes, 6
+// derivatives) 68, linear RGB 12, sRGB bytes 3, PNG encoding (filtered rows, deflate output
+// and the copy handed to the writer) at most 13.
+constexpr std::uintmax_t kRenderPixelBytes = 8 + 68 + 12 + 3 + 13;
+constexpr std::uintmax_t kFloatImagePixelBytes = 12;  // the PFM encoding of --float
+// A set-up triangle, twice over for the growth of its chunk's vector.
+constexpr std::uintmax_t kSetupTriangleBytes = 2 * sizeof(raster::RasterTriangle);
+// Texture texels: float RGB (12) and the mip chain's third (4); PNG files decode through
+// 3 bytes a texel.
+constexpr std::uintmax_t kTexelBytes = 16;
+constexpr std::uintmax_t kDecodedTexelBytes = 3;
+// A parsed soup triangle: 3 vertices of 4 floats and 3 indices, twice over for vector growth.
+constexpr std::uintmax_t kSoupTriangleBytes = 2 * (3 * 16 + 3 * 4);
+// The shortest soup triangle line, "0 0 0 0 0 0 0 0 0\n".
+constexpr std::uintmax_t kMinSoupLineBytes = 18;
+// raster: visibility 8, barycentrics 12, the id/barycentric/coverage arrays 19, and the largest
+// encoding at a time (the barycentric PFM) 12.
+constexpr std::uintmax_t kRasterPixelBytes = 8 + 12 + 19 + 12;
+// stages: one field's picture (3), its PNG (13) and its raw channels with their PFM (24).
+constexpr std::uintmax_t kStagesVertexBytes = 3 + 13 + 24;
+
+std::string size_text(int width, int height) {
+  return std::to_string(width) + "x" + std::to_string(height);
+}
+
+// A PNG layer's memory: its file, decoded bytes and float texels; nullopt when the file or its
+// header is unreadable (loading the scene reports why).
+std::optional<std::uintmax_t> png_layer_bytes(const std::string& path) {
+  try {
+    InputFile file(path, limits::kMaxTextureFileBytes);
+    unsigned char header[kPngHeaderBytes];
+    const std::optional<PngHeader> png = parse_png_header(header, file.read(header, sizeof header));
+    if (png && png->width <= std::uint32_t(limits::kMaxTextureSize)) {
+      const std::uintmax_t side = png->width;
+      return file.size() + side * side * (kTexelBytes + kDecodedTexelBytes);
+    }
+  } catch (const InputFileError&) {
+  }
+  return std::nullopt;
+}
+
+void add_resources(const Scene& scene, MemoryEstimate& estimate) {
+  const std::uintmax_t lattice = std::uintmax_t(scene.terrain.lattice_size);
+  estimate.add("noise lattice " + size_text(scene.terrain.lattice_size, scene.terrain.lattice_size),
+               lattice * lattice * sizeof(float));
+  std::uintmax_t textures = 0;
+  for (const MaterialLayer& layer : scene.shading.layers) {
+    if (layer.texture.rfind("builtin:", 0) == 0) {
+      const std::uintmax_t side = std::uintmax_t(scene.shading.texture_size);
+      textures += side * side * kTexelBytes;
+    } else {
+      textures += png_layer_bytes(layer.texture).value_or(0);
+    }
+  }
+  estimate.add("textures", textures);
+}
+
+std::uintmax_t grid_vertices(const Scene& scene) {
+  return make_grid_layout(scene.grid.width, scene.grid.height).size();
+}
+
+}  // namespace
+
+MemoryEstimate estimate_render_memory(const Scene& scene, bool float_output) {
+  MemoryEstimate estimate;
+  add_resources(scene, estimate);
+  const std::uintmax_t vertices = grid_vertices(scene);
+  const std::uintmax_t triangles =
+      2 * std::uintmax_t(scene.grid.width - 1) * std::uintmax_t(scene.grid.height - 1);
+  estimate.add("grid " + size_text(scene.grid.width, scene.grid.height),
+               vertices * (kGridVertexBytes + kClipVertexBytes) + triangles * kSetupTriangleBytes);
+  const std::uintmax_t pixels = std::uintmax_t(scene.viewport.width) * scene.viewport.height;
+  estimate.add("image " + size_text(scene.viewport.width, scene.viewport.height),
+               pixels * (kRenderPixelBytes + (float_output ? kFloatImagePixelBytes : 0)));
+  return estimate;
+}
+
+MemoryEstimate estimate_stages_memory(const Scene& scene) {
+  MemoryEstimate estimate;
+  const std::uintmax_t lattice = std::uintmax_t(scene.terrain.lattice_size);
+  estimate.add("noise lattice", lattice * lattice * sizeof(float));
+  estimate.add("grid " + size_text(scene.grid.width, scene.grid.height),
+               grid_vertices(scene) * (kGridVertexBytes + kStagesVertexBytes));
+  return estimate;
+}
+
+MemoryEstimate estimate_soup_memory(std::uintmax_t file_bytes) {
+  MemoryEstimate estimate;
+  estimate.add("parsed soup", (file_bytes / kMinSoupLineBytes + 1) * kSoupTriangleBytes);
+  return estimate;
+}
+
+MemoryEstimate estimate_raster_memory(std::uintmax_t triangles, int width, int height) {
+  MemoryEstimate estimate;
+  estimate.add("soup and set-up", triangles * (kSoupTriangleBytes + kSetupTriangleBytes));
+  estimate.add("framebuffer " + size_text(width, height),
+               std::uintmax_t(width) * height * kRasterPixelBytes);
+  return estimate;
+}
+
+}  // namespace relief
