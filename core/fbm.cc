@@ -17,7 +17,7 @@ struct FbmConstants {
   Real amplitude[limits::kMaxOctaves];
   Real offset_x[limits::kMaxOctaves];
   Real offset_z[limits::kMaxOctaves];
-  Real inv_scale, base_height, height_scale;
+  Real inv_scale, relative_base_height, height_scale;
   bool warp;
   Real c1x, c1z, c2x, c2z, c3x, c3z, r0x, r0z, t0x, t0z, roughness0, guard_sq, min_rotation_sq;
   Real lacunarity;
@@ -32,7 +32,7 @@ struct FbmConstants {
       offset_z[n] = Real(o.offset_z[n]);
     }
     inv_scale = Real(plan.inv_horizontal_scale);
-    base_height = Real(plan.base_height);
+    relative_base_height = Real(plan.relative_base_height);
     height_scale = Real(plan.amplitude);
     const WarpPlan& w = plan.warp;
     warp = w.enabled;
@@ -91,7 +91,7 @@ Real fbm_point(const FbmConstants<Real>& c, const NoiseLattice& lattice, Real dx
     wx = c.lacunarity * next_wx;
     wz = c.lacunarity * next_wz;
   }
-  return c.base_height + c.height_scale * h;
+  return c.relative_base_height + c.height_scale * h;
 }
 
 template <Interpolant kKind, class Real>

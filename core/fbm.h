@@ -1,7 +1,8 @@
 // Stage 3: the octave-LOD fractal (§2.1 Eq. 1, §2.2 domain warping, §4.1 fractional octave).
 //
-//   H(x) = base + amplitude * sum_n  w_n a_n S(offset_n + f_n u + W_n)
+//   H(x) - camera_y = (base - camera_y) + amplitude * sum_n  w_n a_n S(offset_n + f_n u + W_n)
 //
+// (heights are camera-relative: base - camera_y is formed once per frame in double)
 // with u = d / horizontal_scale the camera-relative position in octave-0 lattice cells,
 // f_n = r^k and a_n = r^(-kH) for octave k = k0 + n, offset_n from the octave table
 // (octaves.h), S the interpolated lattice (interpolant.h), and the LOD weights of §4.1:
@@ -29,7 +30,8 @@
 
 namespace relief {
 
-// height[k] = H at camera-relative (dx[k], dz[k]) with octave count nu[k], for k in range.
+// height[k] = H - camera_y at camera-relative (dx[k], dz[k]) with octave count nu[k], for k in
+// range.
 // Precondition: finite inputs; nu in [0, N] is the meaningful range (nu >= N sums every
 // octave, nu <= 0 none). Output finite.
 template <class Real>

@@ -35,7 +35,7 @@ TerrainPlan make_terrain_plan(const TerrainSettings& terrain, const NoiseLattice
   plan.interpolant = terrain.interpolant;
   plan.octaves = make_octave_table(terrain, lattice.size, camera_position);
   plan.inv_horizontal_scale = 1.0 / terrain.horizontal_scale;
-  plan.base_height = terrain.base_height;
+  plan.relative_base_height = terrain.base_height - camera_position[1];
   plan.amplitude = terrain.amplitude;
   const WarpSettings& w = terrain.warp;
   WarpPlan& warp = plan.warp;
@@ -68,7 +68,7 @@ FramePlan make_frame_plan(const Scene& scene, const NoiseLattice& lattice) {
   plan.terrain = make_terrain_plan(scene.terrain, lattice, scene.camera.position);
   plan.clip = make_clip_transform(plan.camera);
   plan.water_enabled = scene.terrain.water_level.has_value();
-  plan.water_level = scene.terrain.water_level.value_or(0.0);
+  plan.relative_water_level = scene.terrain.water_level.value_or(0.0) - scene.camera.position[1];
   return plan;
 }
 

@@ -34,14 +34,17 @@ struct WarpPlan {
   double guard_sq = 0;      // kRoughnessGuard^2
 };
 
-// What the fractal of stage 3 needs: the terrain as a function of camera-relative position.
+// What the fractal of stage 3 needs: the terrain as a function of camera-relative position,
+// giving camera-relative heights (design rule: per-vertex data are camera-relative float, so
+// the float error depends on the distance from the camera to the terrain, not on where they
+// are: a base height of 1e7 seen from 700 units above it is as accurate as one of 100).
 struct TerrainPlan {
   const NoiseLattice* lattice = nullptr;
   Interpolant interpolant = Interpolant::kQuintic;
   OctaveTable octaves;
   WarpPlan warp;
   double inv_horizontal_scale = 1;  // world units to octave-0 lattice cells
-  double base_height = 0;
+  double relative_base_height = 0;  // terrain.base_height - camera y, formed in double
   double amplitude = 1;
 };
 
@@ -55,7 +58,7 @@ struct FramePlan {
   TerrainPlan terrain;
   ClipTransform clip;  // stage 5
   bool water_enabled = false;
-  double water_level = 0;
+  double relative_water_level = 0;  // terrain.water_level - camera y, formed in double
 };
 
 // Precondition: the scene passed validate_scene and the lattice was built from its seed and

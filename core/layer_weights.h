@@ -16,7 +16,8 @@
 
 namespace relief {
 
-// Writes plan.layers.size() weights summing to 1. dither_offset = dither amount * noise / 2.
+// Writes plan.layers.size() weights summing to 1. `height` is camera-relative, as the plan's
+// ramps are; dither_offset = dither amount * noise / 2.
 template <class Real>
 void layer_weights(const ShadingPlan& plan, Real height, Real slope, Real dither_offset,
                    Real weights[limits::kMaxMaterialLayers]);

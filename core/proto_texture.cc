@@ -10,15 +10,27 @@ namespace relief {
 
 namespace {
 
+// x minus a whole number of periods n (a power of two), |result| < n, exactly: x / n and
+// n trunc(x / n) are exact, and when |x| >= n both x and n trunc(x / n) are multiples of ulp(x)
+// (or x is a multiple of n and the result 0), so their difference, smaller than |x|, is exact
+// too. The fraction x - floor(x) and the texel index mod n are therefore unchanged, and floor
+// of the result converts to int without overflow however large |x| is (GL_REPEAT, GL 4.5
+// §8.14.2). Domain: finite x; anything else (never produced by stage 7) samples texel 0.
+float wrap(float x, float n) {
+  if (!std::isfinite(x)) {
+    return 0.0f;
+  }
+  return x - n * std::trunc(x / n);
+}
+
 // The four texels around (u, v), bilinearly weighted, with repeat wrapping.
 Rgb sample_bilinear(const RgbImage& level, float u, float v) {
   const int n = level.size;
-  const float s = u * float(n) - 0.5f;
-  const float t = v * float(n) - 0.5f;
+  const float s = wrap(u * float(n) - 0.5f, float(n));
+  const float t = wrap(v * float(n) - 0.5f, float(n));
   const float fs = std::floor(s), ft = std::floor(t);
   const float a = s - fs, b = t - ft;
-  // Power-of-two wrap by mask (two's complement keeps negatives right). Domain: |s|, |t| <
-  // 2^31, which the callers' per-frame offsets guarantee (|u| is at most a few thousand).
+  // -n <= fs, ft < n after the wrap; the mask wraps negatives (two's complement).
   const int i0 = static_cast<int>(fs) & (n - 1), j0 = static_cast<int>(ft) & (n - 1);
   const int i1 = (i0 + 1) & (n - 1), j1 = (j0 + 1) & (n - 1);
   const float* p00 = &level.rgb[3 * (std::size_t(j0) * n + i0)];

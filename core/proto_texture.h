@@ -41,8 +41,9 @@ inline constexpr float kMagnificationLod = -64.0f;
 
 // GL_REPEAT, GL_LINEAR_MIPMAP_LINEAR (GL_LINEAR when lambda <= 0): bilinear in the two levels
 // around lambda (clamped to the chain), blended by its fractional part. Texel centres at
-// (i + 1/2) / size. Precondition: |u|, |v| * size < 2^31 (callers keep u small by subtracting
-// the camera's position in whole repeats).
+// (i + 1/2) / size. Any finite u, v: coordinates are wrapped exactly before they become texel
+// indices (callers still keep u small, subtracting the camera's position in whole repeats, so
+// that float keeps sub-texel precision near the camera).
 Rgb sample_trilinear(const ProtoTexture& texture, float u, float v, float lod);
 
 }  // namespace relief

@@ -100,8 +100,7 @@ Real surface_footprint(const ShadingPlan& plan, Real distance, const Vec3<Real>&
 
 template <class Real>
 Vec3<Real> terrain_radiance(const ShadingPlan& plan, const ShadingInputs& in, std::size_t k) {
-  const Real camera_y = Real(plan.camera.position.y);
-  const Real relative_y = Real(in.height[k]) - camera_y;
+  const Real relative_y = Real(in.height[k]);  // camera-relative (stage 3)
   const Vec3<Real> p{Real(in.dx[k]), relative_y, Real(in.dz[k])};
   const Real distance = std::sqrt(dot(p, p));
   const Vec3<Real> forward = vec<Real>(plan.camera.forward);
@@ -119,7 +118,7 @@ Vec3<Real> terrain_radiance(const ShadingPlan& plan, const ShadingInputs& in, st
     dither_offset = Real(0.5 * plan.dither.amount) * noise;
   }
   Real weights[limits::kMaxMaterialLayers];
-  layer_weights(plan, Real(in.height[k]), Real(in.slope[k]), dither_offset, weights);
+  layer_weights(plan, relative_y, Real(in.slope[k]), dither_offset, weights);
   Vec3<Real> albedo{0, 0, 0};
   Real specular = Real(0), used = Real(0);
   for (std::size_t layer = 0; layer < plan.layers.size(); ++layer) {

@@ -22,7 +22,7 @@ namespace relief {
 // Per-pixel inputs, row 0 the bottom of the image; all spans width * height long.
 struct ShadingInputs {
   std::span<const std::uint32_t> primitive;  // 0xffffffff where no terrain covers the pixel
-  std::span<const float> dx, dz, height;     // camera-relative x, z; absolute height
+  std::span<const float> dx, dz, height;     // camera-relative x, height (y), z
   std::span<const float> dx_ddx, dx_ddy, dz_ddx, dz_ddy, height_ddx, height_ddy;
   std::span<const float> nx, ny, nz;  // interpolated normal (renormalised here)
   std::span<const float> slope;

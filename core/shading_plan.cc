@@ -56,7 +56,8 @@ ShadingPlan make_shading_plan(const Scene& scene, const FramePlan& frame,
     layer.offset_x = positive_fraction(camera.x * layer.inv_tile);
     layer.offset_y = positive_fraction(camera.y * layer.inv_tile);
     layer.offset_z = positive_fraction(camera.z * layer.inv_tile);
-    const double shift = m.height_relative_to_water ? water_level : 0.0;
+    // Ramps in the pixels' camera-relative heights, formed in double.
+    const double shift = (m.height_relative_to_water ? water_level : 0.0) - camera.y;
     const double bound = limits::kMaxBaseHeight;
     layer.height_up = make_ramp(m.height[0] + shift, m.height_spread, m.height[0] <= -bound);
     layer.height_down = make_ramp(m.height[1] + shift, m.height_spread, m.height[1] >= bound);

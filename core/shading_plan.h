@@ -27,7 +27,7 @@ struct LayerPlan {
   double inv_tile = 1;  // texture repeats per world unit
   // Camera position in texture repeats, reduced modulo 1: u = offset_x + dx * inv_tile.
   double offset_x = 0, offset_y = 0, offset_z = 0;
-  Ramp height_up, height_down;  // world heights, water level applied
+  Ramp height_up, height_down;  // heights relative to the camera, water level applied
   Ramp slope_up, slope_down;    // |grad h| (tangents of the slope angles)
   double specular = 0;
 };

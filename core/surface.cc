@@ -41,7 +41,7 @@ void surface_pass(const FramePlan& plan, RowRange rows, SurfaceInputs<Real> in,
                   SurfaceSpans<Real> out) {
   const GridLayout& layout = plan.layout;
   const Real min_sine_sq = Real(limits::kMinTangentSine * limits::kMinTangentSine);
-  const Real water_level = Real(plan.water_level);
+  const Real water_level = Real(plan.relative_water_level);  // heights are camera-relative
   const Real max_slope = Real(limits::kMaxSlope);
   for (int j = rows.begin; j < rows.end; ++j) {
     for (int i = 0; i < layout.pitch; ++i) {

@@ -12,7 +12,6 @@ ClipTransform make_clip_transform(const CameraFrame& camera) {
     t.row_w[c] = camera.forward[c];
   }
   t.z_clip = camera.near;
-  t.camera_y = camera.position.y;
   return t;
 }
 
@@ -24,10 +23,9 @@ void transform_vertices(const ClipTransform& t, IndexRange range, std::span<cons
   const Real y0 = Real(t.row_y[0]), y1 = Real(t.row_y[1]), y2 = Real(t.row_y[2]);
   const Real w0 = Real(t.row_w[0]), w1 = Real(t.row_w[1]), w2 = Real(t.row_w[2]);
   const Real z = Real(t.z_clip);
-  const Real camera_y = Real(t.camera_y);
   for (std::size_t k = range.begin; k < range.end; ++k) {
     const Real px = dx[k];
-    const Real py = height[k] - camera_y;
+    const Real py = height[k];
     const Real pz = dz[k];
     clip.x[k] = x0 * px + x1 * py + x2 * pz;
     clip.y[k] = y0 * px + y1 * py + y2 * pz;

@@ -1,8 +1,9 @@
 // Stage 5: vertex transform (design.md). Displaced grid vertices to clip space.
 //
-// Camera-relative position p = (dx, h - camera.y, dz) (float: the camera's absolute position
-// never meets a per-vertex value), then one 4x3 matrix: view rotation and an infinite
-// reverse-Z perspective projection, for glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE):
+// Camera-relative position p = (dx, h, dz), h the camera-relative height of stage 3 (float: the
+// camera's absolute position never meets a per-vertex value), then one 4x3 matrix: view rotation
+// and an infinite reverse-Z perspective projection, for glClipControl(GL_LOWER_LEFT,
+// GL_ZERO_TO_ONE):
 //   x_clip = p . right   * (1 / (tan(fov_y / 2) aspect))
 //   y_clip = p . up      * (1 / tan(fov_y / 2))
 //   z_clip = near                       (so depth z/w = near / distance: 1 at the near
@@ -22,7 +23,6 @@ struct ClipTransform {
   double row_y[3];
   double row_w[3];
   double z_clip;  // the near distance
-  double camera_y;
 };
 
 ClipTransform make_clip_transform(const CameraFrame& camera);
@@ -32,7 +32,7 @@ struct ClipSpans {
   std::span<Real> x, y, z, w;
 };
 
-// clip[k] for k in range, from camera-relative (dx, dz) and absolute height h.
+// clip[k] for k in range, from camera-relative (dx, dz) and camera-relative height h.
 template <class Real>
 void transform_vertices(const ClipTransform& transform, IndexRange range, std::span<const Real> dx,
                         std::span<const Real> dz, std::span<const Real> height,

@@ -225,7 +225,7 @@ double plain_float_error_bound(const TerrainPlan& plan, const NoiseLattice& l, d
     amplitude_sum += o.amplitude[n];
   }
   bound += o.count * e * amplitude_sum * m;
-  const double height = plan.base_height + plan.amplitude * amplitude_sum * m;
+  const double height = plan.relative_base_height + plan.amplitude * amplitude_sum * m;
   return plan.amplitude * bound * 1.01 + 2 * e * std::abs(height);
 }
 

@@ -131,6 +131,57 @@ TEST_CASE("movingTheCameraByWholePeriodsReproducesEveryBufferBitForBit", "[preci
   }
 }
 
+TEST_CASE("raisingTerrainAndCameraTogetherChangesNoBufferBecauseHeightsAreCameraRelative",
+          "[precision]") {
+  // Heights are stored relative to the camera (stage 3 adds base - camera y, formed in double),
+  // so a base height of millions seen from the same altitude above it gives the floats of a
+  // base height of 100: base - camera y is the same double, and only the projector's double
+  // arithmetic (slab bounds near 1e7, rounded at 2e-9) could move a float by an ulp. Before,
+  // heights were stored absolute: at base height 1e7 the height error against double grew from
+  // 0.02 to 0.5 and the normals' from 0.005 to 0.26.
+  const NoiseLattice lattice = make_noise_lattice(1, 256);
+  for (bool warp : {false, true}) {
+    Scene scene = test::small_scene(64);
+    scene.terrain.warp.enabled = warp;
+    scene.terrain.water_level = 40.0;
+    const FramePlan base_plan = make_frame_plan(scene, lattice);
+    GridBuffers<float> base(base_plan.layout);
+    run_terrain_stages(base_plan, base);
+    for (double shift : {-5e6, 9.9e6, 8388608.0}) {
+      Scene raised = scene;
+      raised.terrain.base_height += shift;
+      *raised.terrain.water_level += shift;
+      raised.camera.position[1] += shift;
+      const FramePlan plan = make_frame_plan(raised, lattice);
+      GridBuffers<float> b(plan.layout);
+      run_terrain_stages(plan, b);
+      INFO("warp " << warp << ", raised by " << shift);
+      double height = 0, normal = 0;
+      for (std::size_t k = 0; k < b.layout.size(); ++k) {
+        REQUIRE(b.valid[k] == base.valid[k]);
+        height = std::max(height, double(std::abs(b.height[k] - base.height[k])));
+        normal = std::max({normal, double(std::abs(b.nx[k] - base.nx[k])),
+                           double(std::abs(b.ny[k] - base.ny[k])),
+                           double(std::abs(b.nz[k] - base.nz[k]))});
+        REQUIRE(std::abs(b.water_depth[k] - base.water_depth[k]) <= 1e-3f);
+      }
+      CHECK(height <= 1e-3);  // float noise at 1000 units; absolute storage erred by 0.5
+      CHECK(normal <= 1e-4);
+    }
+  }
+  // And the float error against double at base height 1e7 is that of base height 100.
+  Scene high = test::small_scene(96);
+  const FloatError low_error = float_versus_double(high, lattice);
+  high.terrain.base_height = 1e7;
+  high.camera.position[1] += 1e7 - 100.0;
+  const FloatError high_error = float_versus_double(high, lattice);
+  INFO("base 100: height error max " << low_error.height_max << ", normal " << low_error.normal_max
+                                     << "; base 1e7: " << high_error.height_max << ", "
+                                     << high_error.normal_max);
+  CHECK(high_error.height_max <= 1.01 * low_error.height_max);
+  CHECK(high_error.normal_max <= 1.01 * low_error.normal_max);
+}
+
 TEST_CASE("stageBuffersAreIdenticalForEveryThreadCountAndEqualTheSerialReference", "[precision]") {
   const NoiseLattice lattice = make_noise_lattice(1, 256);
   Scene scene = test::small_scene(200);

@@ -126,7 +126,8 @@ TEST_CASE("waterCoversOnlyPixelsBelowTheWaterLevel", "[render]") {
     if (frame.visibility.primitive[k] == raster::kNoPrimitive) {
       continue;
     }
-    const bool above = r.value[2][k] >= float(*scene.terrain.water_level);
+    const bool above =
+        r.value[2][k] >= float(*scene.terrain.water_level - scene.camera.position[1]);
     const bool same =
         a[3 * k] == b[3 * k] && a[3 * k + 1] == b[3 * k + 1] && a[3 * k + 2] == b[3 * k + 2];
     if (above) {

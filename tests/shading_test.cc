@@ -1,6 +1,7 @@
 // Stage 8: layer weights, proto-texture mip chains and sampling, GL's LOD formula, water.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -83,7 +84,7 @@ TEST_CASE("grassVanishesOnSlopesAboveTheRockThreshold", "[shading]") {
   const double beyond = degrees_to_slope(g.slope_deg[1] + g.slope_spread_deg + 0.01);
   for (double height = 10; height < 500; height += 7) {
     double w[limits::kMaxMaterialLayers];
-    layer_weights(f.plan, height, beyond, 0.0, w);
+    layer_weights(f.plan, height - scene.camera.position[1], beyond, 0.0, w);
     CHECK(w[grass] < 1e-12);
     CHECK(w[rock] > 0.5);
   }
@@ -95,7 +96,8 @@ TEST_CASE("grassVanishesOnSlopesAboveTheRockThreshold", "[shading]") {
   const double dithered_end = end + shift * (end - start);
   for (double noise : {-4.0, -1.0, 0.0, 2.0, 4.0}) {
     double w[limits::kMaxMaterialLayers];
-    layer_weights(f.plan, 200.0, dithered_end * 1.001, 0.5 * scene.shading.dither * noise, w);
+    layer_weights(f.plan, 200.0 - scene.camera.position[1], dithered_end * 1.001,
+                  0.5 * scene.shading.dither * noise, w);
     CHECK(w[grass] < 1e-12);
   }
 }
@@ -107,16 +109,17 @@ TEST_CASE("layerHeightRangesAreRespected", "[shading]") {
   const MaterialLayer& s = scene.shading.layers[snow];
   const MaterialLayer& b = scene.shading.layers[bed];
   const double water = *scene.terrain.water_level;
+  const double camera_y = scene.camera.position[1];  // the pixels' heights are camera-relative
   for (double slope : {0.0, 0.2, 0.5}) {
     double w[limits::kMaxMaterialLayers];
-    layer_weights(f.plan, s.height[0] - s.height_spread - 1.0, slope, 0.0, w);
+    layer_weights(f.plan, s.height[0] - s.height_spread - 1.0 - camera_y, slope, 0.0, w);
     CHECK(w[snow] == 0.0);
-    layer_weights(f.plan, s.height[0] + s.height_spread + 1.0, slope, 0.0, w);
+    layer_weights(f.plan, s.height[0] + s.height_spread + 1.0 - camera_y, slope, 0.0, w);
     CHECK(w[snow] > 0.5);
     // The bed's range is measured from the water level.
-    layer_weights(f.plan, water + b.height[1] + b.height_spread + 0.5, slope, 0.0, w);
+    layer_weights(f.plan, water + b.height[1] + b.height_spread + 0.5 - camera_y, slope, 0.0, w);
     CHECK(w[bed] == 0.0);
-    layer_weights(f.plan, water - 20.0, slope, 0.0, w);
+    layer_weights(f.plan, water - 20.0 - camera_y, slope, 0.0, w);
     CHECK(w[bed] == Approx(1.0));
   }
 }
@@ -251,6 +254,34 @@ TEST_CASE("trilinearSamplingHitsTexelsRepeatsAndBlendsLevels", "[shading]") {
     CHECK(l1[c] == level1.rgb[c]);
     CHECK(mid[c] == Approx(0.5 * (l0[c] + l1[c])).margin(1e-6));
   }
+}
+
+TEST_CASE("textureCoordinatesWrapWithoutOverflowFarAwayAndForTinyTiles", "[shading]") {
+  // Far from the camera or with tiny tiles u * size exceeds 2^31 (UBSan saw 3e9 converted to
+  // int). The sampler wraps before converting; here the texel it must fetch is worked out
+  // independently, in double and 64-bit integers, from the same float s = u * 64 - 0.5.
+  const ProtoTexture t = build_proto_texture(synthesize_texture("rock", 64), 0.3);
+  const RgbImage& level0 = t.levels[0];
+  const float v = 0.5f / 64;  // a texel centre of row 0: no blending in v
+  for (float u : {3e9f, -3e9f, 2147483648.0f, 1.5e10f, -7.77e12f, 1e30f, -3.4e38f, 0x1.fffffep127f,
+                  33554431.75f, -16777217.0f, 1234567.125f}) {
+    float s = u * 64.0f - 0.5f;
+    s = std::isfinite(s) ? s : 0.0f;  // u * 64 overflows float: the sampler fetches texel 0
+    const double floor_s = std::floor(double(s));
+    const double a = double(s) - floor_s;
+    const auto i0 = static_cast<std::int64_t>(std::fmod(floor_s, 64.0) + 64.0) % 64;
+    const std::int64_t i1 = (i0 + 1) % 64;
+    const Rgb sample = sample_trilinear(t, u, v, 0.0f);
+    for (int c = 0; c < 3; ++c) {
+      const double expected =
+          level0.rgb[3 * i0 + c] + a * (level0.rgb[3 * i1 + c] - level0.rgb[3 * i0 + c]);
+      INFO("u = " << u << ", channel " << c);
+      CHECK(sample[c] == Approx(expected).margin(1e-6));
+    }
+  }
+  // Non-finite coordinates (never produced by stage 7) sample texel 0 rather than convert NaN.
+  const Rgb nan_sample = sample_trilinear(t, std::nanf(""), v, 0.0f);
+  CHECK(nan_sample[0] == level0.rgb[0]);
 }
 
 TEST_CASE("srgbBytesAreTheRoundedTransferFunction", "[shading]") {

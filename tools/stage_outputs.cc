@@ -163,8 +163,11 @@ void write_stage_outputs(const std::filesystem::path& dir, const Scene& scene,
 
   const ValueRange height_range = valid_range(b, b.height);
   out.field(
-      "height", "terrain height (gray from the lowest to the highest valid vertex)", "world units",
-      {channel(b.height)},
+      "height",
+      "terrain height relative to the camera, h - camera_position[1], as stage 3 computes it in "
+      "float (gray from the lowest to the highest valid vertex); add camera_position[1] for the "
+      "world height",
+      "world units", {channel(b.height)},
       [&](std::size_t k) { return gray_color(normalise(b.height[k], height_range)); },
       height_range);
 
