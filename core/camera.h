@@ -1,5 +1,5 @@
-// The camera in double precision (design.md, Conventions): world axes right-handed, y up,
-// OpenGL view convention (the camera looks along -z when yaw = pitch = 0).
+// The camera in double precision (docs/architecture.md, Conventions): world axes right-handed, y
+// up, OpenGL view convention (the camera looks along -z when yaw = pitch = 0).
 #pragma once
 
 #include <glm/glm.hpp>

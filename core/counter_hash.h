@@ -1,4 +1,4 @@
-// The counter-based hash behind every random number in Relief (design.md, Determinism).
+// The counter-based hash behind every random number in Relief (docs/architecture.md, Determinism).
 // Specified in docs/noise-lattice.md; changing it changes every golden hash.
 #pragma once
 

@@ -1,7 +1,7 @@
 // Deterministic elementary functions: results depend only on IEEE-754 basic operations
 // (+ - * /, exact bit manipulation), so every compiler, libm and SIMD target that rounds to
 // nearest produces the same bits. Library log/exp use target-specific polynomials and FMA
-// (design.md, Determinism) and may not be used inside stages.
+// (docs/architecture.md, Determinism) and may not be used inside stages.
 #pragma once
 
 #include <bit>

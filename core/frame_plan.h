@@ -1,5 +1,5 @@
-// The FramePlan: everything derived once per frame from the scene (design.md). Stages read
-// it and never re-derive it: projector and screen grid (stages 1-2), LOD constants (stage 2),
+// The FramePlan: everything derived once per frame from the scene (docs/architecture.md). Stages
+// read it and never re-derive it: projector and screen grid (stages 1-2), LOD constants (stage 2),
 // octave table and warp constants (stage 3), water (stage 4).
 #pragma once
 

@@ -1,7 +1,7 @@
 // Structure-of-arrays buffers for the grid stages: one planar array per field, each row
-// padded to a whole number of widest vectors and 64-byte aligned (style.md, Highway), so a
-// kernel may always load full vectors. Index of vertex (i, j) = j * pitch + i; padding
-// entries hold finite, unused values (valid = 0).
+// padded to a whole number of widest vectors and 64-byte aligned (as Highway's planar images are),
+// so a kernel may always load full vectors. Index of vertex (i, j) = j * pitch + i; padding entries
+// hold finite, unused values (valid = 0).
 #pragma once
 
 #include <cstddef>

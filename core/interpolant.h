@@ -91,8 +91,8 @@ LatticeCell<Real> locate_cell(const NoiseLattice& lattice, Real px, Real pz) {
 
 // S(px, pz): the lattice interpolated at lattice coordinates (px, pz), with period P in both
 // axes. Lerps are written a + w (b - a) so that w = 0 returns a exactly (S passes through the
-// lattice values bit for bit). The operation order is the specification: SIMD and GLSL copies
-// follow it literally.
+// lattice values bit for bit). The operation order is the specification: the SIMD and GLSL ports to
+// come follow it literally.
 template <Interpolant kKind, class Real>
 Real sample_lattice(const NoiseLattice& lattice, Real px, Real pz) {
   const LatticeCell<Real> c = locate_cell(lattice, px, pz);

@@ -1,6 +1,6 @@
 // The noise lattice of §2.1: a periodic P x P grid of N(0,1) values, a pure function of
 // (seed, i, j) through counter_hash, so it is bit-identical on every machine and can be
-// uploaded unchanged to the GLSL path. The specification is docs/noise-lattice.md.
+// uploaded unchanged to a GPU. The specification is docs/noise-lattice.md.
 #pragma once
 
 #include <cstdint>

@@ -17,7 +17,7 @@ inline constexpr std::size_t kBufferAlignBytes = 64;
 // --- Viewport and grid ---------------------------------------------------------------------
 
 // 16384 is the largest framebuffer side current GL implementations guarantee
-// (GL_MAX_VIEWPORT_DIMS on desktop GPUs); the GLSL path must be able to match us.
+// (GL_MAX_VIEWPORT_DIMS on desktop GPUs): OpenGL must be able to draw the same frame.
 inline constexpr int kMaxViewportSide = 16384;
 // A grid needs at least one cell; 8192 vertices a side is 64 Mi vertices, far beyond the
 // paper's 512 x 512 and still addressable with 32-bit vertex indices.
@@ -61,7 +61,8 @@ inline constexpr double kMaxViewDistance = 1e9;
 // --- Terrain -------------------------------------------------------------------------------
 
 // Lattice sides are powers of two so that the periodic wrap is a bit mask in every path
-// (scalar, SIMD, GLSL). 4096^2 floats is 64 MiB, a sensible upper bound for a noise tile.
+// (scalar now; the same in the SIMD and GLSL ports to come). 4096^2 floats is 64 MiB, a sensible
+// upper bound for a noise tile.
 inline constexpr int kMinLatticeSize = 4;
 inline constexpr int kMaxLatticeSize = 4096;
 // Octave tables are fixed-size arrays; 24 octaves at r = 2 span 1:16.7 million in feature

@@ -7,8 +7,8 @@
 //   r^k x / scale + omega_k = offset_k + r^k d / scale,
 //   offset_k = (r^k camera / scale + omega_k) mod P,
 // and offset_k is reduced here, in double, with an exact product, so a kernel never adds a
-// large number to a small one (design.md, Conventions). A camera 1e9 units from the origin
-// gets offsets in [0, P) just as one at the origin does.
+// large number to a small one (docs/architecture.md, Conventions). A camera 1e9 units from the
+// origin gets offsets in [0, P) just as one at the origin does.
 #pragma once
 
 #include <array>

@@ -17,8 +17,8 @@ using Vec2d = std::array<double, 2>;
 using Vec3d = std::array<double, 3>;
 
 struct CameraSettings {
-  // World: right-handed, y up. Position in double (design.md): only camera-relative offsets
-  // are ever stored in float.
+  // World: right-handed, y up. Position in double (docs/architecture.md): only camera-relative
+  // offsets are ever stored in float.
   Vec3d position = {0.0, 700.0, 0.0};
   // Yaw about +y in degrees: 0 looks along -z, 90 along +x. Pitch: positive looks up.
   double yaw_deg = 30.0;

@@ -1,5 +1,5 @@
-// Stage 8: proto-texture shading (design.md; §4.2, §4.3 and the other seeds' additions), per
-// pixel over rows of the image, from the resolved attributes of stage 7.
+// Stage 8: proto-texture shading (docs/architecture.md; §4.2, §4.3 and the other seeds' additions),
+// per pixel over rows of the image, from the resolved attributes of stage 7.
 //
 // Covered pixel: layer weights (layer_weights.h) from the height, the slope |grad h| and the
 // dithering noise; each layer's proto-texture sampled trilinearly at the LOD of GL's formula

@@ -1,4 +1,4 @@
-// Stage 5: vertex transform (design.md). Displaced grid vertices to clip space.
+// Stage 5: vertex transform (docs/architecture.md). Displaced grid vertices to clip space.
 //
 // Camera-relative position p = (dx, h, dz), h the camera-relative height of stage 3 (float: the
 // camera's absolute position never meets a per-vertex value), then one 4x3 matrix: view rotation

@@ -1,5 +1,5 @@
-// Types and fixed formats of the software rasteriser (stages 6-7 of design.md), which follows
-// OpenGL's rules so that a GPU's output can be compared with it pixel by pixel.
+// Types and fixed formats of the software rasteriser (stages 6-7 of docs/architecture.md), which
+// follows OpenGL's rules so that a GPU's output can be compared with it pixel by pixel.
 //
 // Conventions: glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE), window origin bottom-left, y up,
 // pixel (px, py) has its centre at (px + 0.5, py + 0.5). Window coordinates are snapped to
@@ -56,7 +56,7 @@ struct RasterState {
   float depth_clear = 0.0f;                    // reverse-Z: infinitely far
 };
 
-// Stage 6's output: which primitive covers each pixel, and its depth (design.md).
+// Stage 6's output: which primitive covers each pixel, and its depth (docs/architecture.md).
 struct VisibilityBuffer {
   int width = 0;
   int height = 0;

@@ -1,4 +1,5 @@
-// Stage 6: rasterisation into the visibility buffer (design.md), the way GL hardware does it.
+// Stage 6: rasterisation into the visibility buffer (docs/architecture.md), the way GL hardware
+// does it.
 //
 // 1. Setup, in parallel over fixed chunks of kSetupChunk triangles (triangle_setup.h), and
 //    binning of each chunk's triangles into 64 x 64 screen tiles, in submission order.

@@ -1,7 +1,7 @@
-// Stage 7: attribute resolve (design.md). For every covered pixel: the perspective-correct
-// barycentrics of the triangle that won it, the interpolated vertex attributes, and their
-// screen-space derivatives, computed the way a GPU runs fragment shaders: in 2 x 2 quads, the
-// winning triangle's attribute plane evaluated at the quad partners too ("helper pixels"),
+// Stage 7: attribute resolve (docs/architecture.md). For every covered pixel: the
+// perspective-correct barycentrics of the triangle that won it, the interpolated vertex attributes,
+// and their screen-space derivatives, computed the way a GPU runs fragment shaders: in 2 x 2 quads,
+// the winning triangle's attribute plane evaluated at the quad partners too ("helper pixels"),
 // whether or not that triangle covers them.
 //
 // Barycentrics come straight from the original (unclipped) triangle in homogeneous window

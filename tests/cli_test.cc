@@ -238,6 +238,20 @@ TEST_CASE("rasterCommandWritesTheDocumentedBuffers", "[cli]") {
   CHECK(std::filesystem::exists(prefix + ".json"));
 }
 
+TEST_CASE("sampleSoupsOfTheDocsRasterise", "[cli]") {
+  test::TempDir dir("sample-soups");
+  for (const char* name : {"window", "clip"}) {
+    const std::string soup = std::string(RELIEF_SOURCE_DIR) + "/docs/soups/" + name + ".txt";
+    const std::string prefix = (dir.path() / name).string();
+    const CliResult r = run({"raster", soup, "--out", prefix});
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    const nlohmann::json manifest = nlohmann::json::parse(std::ifstream(prefix + ".json"));
+    CHECK(manifest["triangles"].get<int>() >= 3);
+    CHECK(manifest["covered_pixels"].get<int>() > 1000);
+  }
+}
+
 TEST_CASE("rasterRejectsMalformedSoupsNamingTheLine", "[cli]") {
   test::TempDir dir("raster-bad");
   const std::string prefix = (dir.path() / "out").string();

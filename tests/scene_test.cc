@@ -1,4 +1,5 @@
 #include <string>
+#include <vector>
 
 #include <catch2/catch.hpp>
 
@@ -110,6 +111,25 @@ TEST_CASE("sceneAcceptsEveryPresetAndRoundTripsThroughJson", "[scene]") {
   }
   CHECK(resolve_scene("lava", {}).terrain.warp.enabled);
   CHECK_FALSE(resolve_scene("plain", {}).terrain.warp.enabled);
+}
+
+TEST_CASE("everyPresetIsADistinctScene", "[scene]") {
+  // alpine is the default spelled out; every other preset must differ from it and from each
+  // other (plain once equalled the default exactly).
+  const std::vector<std::string> names = preset_names();
+  for (std::size_t a = 0; a < names.size(); ++a) {
+    for (std::size_t b = a + 1; b < names.size(); ++b) {
+      const bool defaults = (names[a] == "alpine" || names[a] == "default") &&
+                            (names[b] == "alpine" || names[b] == "default");
+      INFO(names[a] << " and " << names[b]);
+      CHECK((scene_to_json(resolve_scene(names[a], {})) ==
+             scene_to_json(resolve_scene(names[b], {}))) == defaults);
+    }
+  }
+  const Scene plain = resolve_scene("plain", {});
+  CHECK_FALSE(plain.terrain.warp.enabled);
+  CHECK_FALSE(plain.terrain.water_level.has_value());
+  CHECK(plain.shading.layers.size() == 1);
 }
 
 TEST_CASE("overridesApplyInOrderAndParseJsonValues", "[scene]") {
