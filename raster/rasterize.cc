@@ -26,6 +26,12 @@ struct TileGrid {
   int count() const { return columns * rows; }
 };
 
+// Tiles a triangle's bounding box touches: its bin entries.
+std::uint64_t tiles_touched(const RasterTriangle& t) {
+  return std::uint64_t(t.x1 / kTileSize - t.x0 / kTileSize + 1) *
+         std::uint64_t(t.y1 / kTileSize - t.y0 / kTileSize + 1);
+}
+
 void bin_chunk(SetupChunk& chunk, const TileGrid& tiles) {
   chunk.tile_start.assign(static_cast<std::size_t>(tiles.count()) + 1, 0);
   for (const RasterTriangle& t : chunk.triangles) {
@@ -105,7 +111,7 @@ void rasterize_in_tile(const RasterTriangle& t, int tx, int ty, DepthTest test,
 
 template <class SetupOne>
 RasterStats rasterize_with(const RasterState& state, std::uint32_t triangle_count,
-                           SetupOne setup_one, VisibilityBuffer& out) {
+                           SetupOne setup_one, const RasterLimits& limits, VisibilityBuffer& out) {
   out = make_visibility_buffer(state);
   const TriangleSetup setup(state);
   const TileGrid tiles{(state.width + kTileSize - 1) / kTileSize,
@@ -121,6 +127,28 @@ RasterStats rasterize_with(const RasterState& state, std::uint32_t triangle_coun
           for (std::uint32_t t = begin; t < end; ++t) {
             setup_one(setup, t, chunks[c].triangles);
           }
+        }
+      },
+      tbb::simple_partitioner());
+  RasterStats stats;
+  stats.triangles = triangle_count;
+  // Per chunk: the tile offsets and the fill cursors, (tiles + 1) + tiles entries.
+  stats.bin_bytes = chunk_count * (2 * std::uint64_t(tiles.count()) + 1) * sizeof(std::uint32_t);
+  for (const SetupChunk& chunk : chunks) {
+    stats.setup += chunk.triangles.size();
+    for (const RasterTriangle& t : chunk.triangles) {
+      stats.bin_entries += tiles_touched(t);
+    }
+  }
+  stats.bin_bytes += stats.bin_entries * sizeof(std::uint32_t);
+  if (stats.bin_bytes > limits.max_bin_bytes) {
+    stats.bins_refused = true;
+    return stats;
+  }
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, chunk_count, 1),
+      [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t c = r.begin(); c != r.end(); ++c) {
           bin_chunk(chunks[c], tiles);
         }
       },
@@ -139,12 +167,6 @@ RasterStats rasterize_with(const RasterState& state, std::uint32_t triangle_coun
         }
       },
       tbb::simple_partitioner());
-  RasterStats stats;
-  stats.triangles = triangle_count;
-  for (const SetupChunk& chunk : chunks) {
-    stats.setup += chunk.triangles.size();
-    stats.bin_entries += chunk.entries.size();
-  }
   return stats;
 }
 
@@ -162,7 +184,7 @@ VisibilityBuffer make_visibility_buffer(const RasterState& state) {
 
 template <class Source>
 RasterStats rasterize(const RasterState& state, ClipVertices vertices, const Source& source,
-                      VisibilityBuffer& out) {
+                      VisibilityBuffer& out, const RasterLimits& limits) {
   return rasterize_with(
       state, source.count(),
       [&](const TriangleSetup& setup, std::uint32_t t, std::vector<RasterTriangle>& triangles) {
@@ -176,12 +198,12 @@ RasterStats rasterize(const RasterState& state, ClipVertices vertices, const Sou
             {vertices.x[v[2]], vertices.y[v[2]], vertices.z[v[2]], vertices.w[v[2]]}};
         setup.setup_clip(t, clip, triangles);
       },
-      out);
+      limits, out);
 }
 
 template <class Source>
 RasterStats rasterize(const RasterState& state, WindowVertices vertices, const Source& source,
-                      VisibilityBuffer& out) {
+                      VisibilityBuffer& out, const RasterLimits& limits) {
   return rasterize_with(
       state, source.count(),
       [&](const TriangleSetup& setup, std::uint32_t t, std::vector<RasterTriangle>& triangles) {
@@ -194,14 +216,17 @@ RasterStats rasterize(const RasterState& state, WindowVertices vertices, const S
         const float z[3] = {vertices.z[v[0]], vertices.z[v[1]], vertices.z[v[2]]};
         setup.setup_window(t, x, y, z, triangles);
       },
-      out);
+      limits, out);
 }
 
 template RasterStats rasterize<IndexedTriangles>(const RasterState&, ClipVertices,
-                                                 const IndexedTriangles&, VisibilityBuffer&);
+                                                 const IndexedTriangles&, VisibilityBuffer&,
+                                                 const RasterLimits&);
 template RasterStats rasterize<GridTriangles>(const RasterState&, ClipVertices,
-                                              const GridTriangles&, VisibilityBuffer&);
+                                              const GridTriangles&, VisibilityBuffer&,
+                                              const RasterLimits&);
 template RasterStats rasterize<IndexedTriangles>(const RasterState&, WindowVertices,
-                                                 const IndexedTriangles&, VisibilityBuffer&);
+                                                 const IndexedTriangles&, VisibilityBuffer&,
+                                                 const RasterLimits&);
 
 }  // namespace relief::raster

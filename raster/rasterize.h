@@ -17,20 +17,30 @@
 
 namespace relief::raster {
 
+// The bins are the one allocation whose size the caller cannot know in advance: a triangle
+// enters every tile its bounding box touches, so 100,000 full-screen triangles at 16384^2 need
+// 26 GB of bin entries. They are counted (from the bounding boxes, in O(triangles)) before
+// they are allocated, and a frame whose bins exceed the limit is not drawn.
+struct RasterLimits {
+  std::uint64_t max_bin_bytes = UINT64_MAX;
+};
+
 struct RasterStats {
   std::uint64_t triangles = 0;    // triangles submitted
   std::uint64_t setup = 0;        // rasterisable pieces after culling and clipping
   std::uint64_t bin_entries = 0;  // (triangle, tile) pairs
+  std::uint64_t bin_bytes = 0;    // memory of the bins (entries and per-chunk tile offsets)
+  bool bins_refused = false;      // bin_bytes > max_bin_bytes: nothing was drawn
 };
 
 // Clears `out` to (kNoPrimitive, depth_clear) at the state's size and draws every triangle of
 // `source`. Vertex positions are indexed by the source's vertex indices.
 template <class Source>
 RasterStats rasterize(const RasterState& state, ClipVertices vertices, const Source& source,
-                      VisibilityBuffer& out);
+                      VisibilityBuffer& out, const RasterLimits& limits = {});
 template <class Source>
 RasterStats rasterize(const RasterState& state, WindowVertices vertices, const Source& source,
-                      VisibilityBuffer& out);
+                      VisibilityBuffer& out, const RasterLimits& limits = {});
 
 // Calls f(px, py) for every pixel the triangle covers, row by row from the bottom.
 template <class F>

@@ -276,12 +276,21 @@ TEST_CASE("jobsThatCannotFitTheirMemoryAreRefusedWithTheEstimate", "[hostile]") 
   CHECK(parse_memory_size("1.5G") == std::uintmax_t{3} << 29);
   CHECK(parse_memory_size("512MiB") == std::uintmax_t{512} << 20);
   CHECK(parse_memory_size("2097152") == std::uintmax_t{2} << 20);
-  // A soup whose framebuffer cannot fit, and one whose bins cannot: the triangles cover every
-  // tile of a 4096 x 4096 framebuffer, 4096 bin entries each.
-  std::string soup = "16384 16384\n0 0 0.5 16384 0 0.5 0 16384 0.5\n";
-  require_refused(run({"raster", write_file(dir.path() / "big.txt", soup), "--out",
+  // A soup whose framebuffer cannot fit, and one whose bins cannot: 20,000 triangles covering
+  // every tile of a 4096 x 4096 framebuffer, 4096 bin entries each (320 MiB of bins), which
+  // are counted before they are allocated.
+  const std::string small = "16384 16384\n0 0 0.5 16384 0 0.5 0 16384 0.5\n";
+  require_refused(run({"raster", write_file(dir.path() / "big.txt", small), "--out",
                        (dir.path() / "big").string(), "--max-memory", "1G"}),
                   "rasterising this soup needs about", dir.path() / "big.json");
+  std::string many = "4096 4096\n";
+  for (int k = 0; k < 20000; ++k) {
+    many += "-10 -10 0.5 9000 -10 0.5 -10 9000 0.5\n";
+  }
+  const std::string soup = write_file(dir.path() / "many.txt", many);
+  const CliResult bins =
+      run({"raster", soup, "--out", (dir.path() / "many").string(), "--max-memory", "1G"});
+  require_refused(bins, "rasteriser bins: 31", dir.path() / "many.json");
 }
 
 }  // namespace

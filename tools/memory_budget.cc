@@ -111,6 +111,10 @@ std::string MemoryEstimate::describe() const {
   return text + ")";
 }
 
+std::uintmax_t memory_left(const MemoryEstimate& estimate, const MemoryBudget& budget) {
+  return budget.bytes > estimate.total() ? budget.bytes - estimate.total() : 0;
+}
+
 void check_memory(const MemoryEstimate& estimate, const MemoryBudget& budget, std::string_view job,
                   std::string_view advice) {
   if (estimate.total() <= budget.bytes) {

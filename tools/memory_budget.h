@@ -44,6 +44,9 @@ class MemoryLimitError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// What the budget leaves once the estimate is taken (0 when it does not fit).
+std::uintmax_t memory_left(const MemoryEstimate& estimate, const MemoryBudget& budget);
+
 // Throws MemoryLimitError naming the job, its estimate and the budget when it does not fit.
 void check_memory(const MemoryEstimate& estimate, const MemoryBudget& budget, std::string_view job,
                   std::string_view advice);

@@ -51,9 +51,10 @@ int run_raster_command(const RasterOptions& options, std::ostream& out) {
     check_memory(estimate_soup_memory(file_bytes), options.budget, "reading this soup",
                  "Split the soup");
   });
-  check_memory(estimate_raster_memory(soup.triangle_count(), soup.width, soup.height),
-               options.budget, "rasterising this soup",
-               "Lower the framebuffer size or the number of triangles");
+  MemoryEstimate estimate = estimate_raster_memory(soup.triangle_count(), soup.width, soup.height);
+  const char* advice = "Lower the framebuffer size or the number of triangles";
+  check_memory(estimate, options.budget, "rasterising this soup", advice);
+  const raster::RasterLimits limits{memory_left(estimate, options.budget)};
   raster::RasterState state;
   state.width = soup.width;
   state.height = soup.height;
@@ -77,12 +78,16 @@ int run_raster_command(const RasterOptions& options, std::ostream& out) {
   raster::VertexPositions positions;
   if (soup.clip_coordinates) {
     const raster::ClipVertices clip{soup.x, soup.y, soup.z, soup.w};
-    stats = raster::rasterize(state, clip, triangles, visibility);
+    stats = raster::rasterize(state, clip, triangles, visibility, limits);
     positions = raster::VertexPositions::from_clip(clip, state.viewport);
   } else {
     const raster::WindowVertices window{soup.x, soup.y, soup.z};
-    stats = raster::rasterize(state, window, triangles, visibility);
+    stats = raster::rasterize(state, window, triangles, visibility, limits);
     positions = raster::VertexPositions::from_window(window);
+  }
+  if (stats.bins_refused) {
+    estimate.add("rasteriser bins", stats.bin_bytes);
+    check_memory(estimate, options.budget, "rasterising this soup", advice);
   }
   raster::ResolvedFrame resolved;
   raster::resolve(visibility, positions, triangles, {}, 0, resolved);

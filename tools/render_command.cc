@@ -18,8 +18,10 @@ int run_render_command(const Scene& scene, const RenderOptions& options, std::os
   const std::string path = options.output.empty() ? scene.output.image : options.output;
   const std::string float_path =
       options.float_output.empty() ? scene.output.float_image.value_or("") : options.float_output;
-  check_memory(estimate_render_memory(scene, !float_path.empty()), options.budget, "this render",
+  const MemoryEstimate estimate = estimate_render_memory(scene, !float_path.empty());
+  check_memory(estimate, options.budget, "this render",
                "Lower viewport.width/height or grid.width/height");
+  const raster::RasterLimits limits{memory_left(estimate, options.budget)};
   const auto setup_start = std::chrono::steady_clock::now();
   const SceneResources resources = load_scene_resources(scene);  // validates texture files
   const double setup_ms =
@@ -29,7 +31,7 @@ int run_render_command(const Scene& scene, const RenderOptions& options, std::os
   std::vector<FrameTimings> runs;
   for (int run = 0; run < options.repeat; ++run) {
     FrameTimings timings;
-    image = render_frame(scene, resources, timings);
+    image = render_frame(scene, resources, timings, limits);
     runs.push_back(timings);
   }
   write_file_atomically(path, encode_png_rgb(image.width, image.height, image.rgb));

@@ -6,11 +6,13 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "core/input_file.h"
 #include "core/shade.h"
 #include "core/shading_plan.h"
 #include "core/srgb.h"
 #include "core/vertex_transform.h"
 #include "raster/resolve.h"
+#include "tools/memory_budget.h"
 
 namespace relief {
 
@@ -39,7 +41,7 @@ raster::RasterState frame_raster_state(const Scene& scene) {
 }
 
 TerrainFrame rasterize_terrain(const Scene& scene, const NoiseLattice& lattice,
-                               FrameTimings& timings) {
+                               FrameTimings& timings, const raster::RasterLimits& limits) {
   FramePlan frame_plan = make_frame_plan(scene, lattice);
   const GridLayout layout = frame_plan.layout;
   TerrainFrame frame{std::move(frame_plan),
@@ -74,7 +76,13 @@ TerrainFrame rasterize_terrain(const Scene& scene, const NoiseLattice& lattice,
   // Stage 6.
   start = Clock::now();
   timings.raster =
-      raster::rasterize(frame.state, frame.clip(), frame.triangles(), frame.visibility);
+      raster::rasterize(frame.state, frame.clip(), frame.triangles(), frame.visibility, limits);
+  if (timings.raster.bins_refused) {
+    throw MemoryLimitError("the rasteriser's bins for this frame need " +
+                           format_bytes(timings.raster.bin_bytes) + ", more than the " +
+                           format_bytes(limits.max_bin_bytes) +
+                           " left of the memory budget; lower viewport.width/height");
+  }
   timings.raster_ms = milliseconds_since(start);
   return frame;
 }
@@ -109,8 +117,8 @@ ShadingInputs shading_inputs(const TerrainFrame& frame, const raster::ResolvedFr
 }
 
 RenderedImage render_frame(const Scene& scene, const SceneResources& resources,
-                           FrameTimings& timings) {
-  const TerrainFrame frame = rasterize_terrain(scene, resources.lattice, timings);
+                           FrameTimings& timings, const raster::RasterLimits& limits) {
+  const TerrainFrame frame = rasterize_terrain(scene, resources.lattice, timings, limits);
 
   // Stage 7.
   auto start = Clock::now();

@@ -40,8 +40,9 @@ struct TerrainFrame {
   raster::GridTriangles triangles() const { return {plan.layout, grid.valid}; }
 };
 
+// Throws MemoryLimitError (memory_budget.h) when the rasteriser's bins exceed `limits`.
 TerrainFrame rasterize_terrain(const Scene& scene, const NoiseLattice& lattice,
-                               FrameTimings& timings);
+                               FrameTimings& timings, const raster::RasterLimits& limits = {});
 
 // Stage 7 as stage 8 reads it: eight streams (dx, dz, height, nx, ny, nz, slope, water
 // depth), with the derivatives of the first three (the texture LOD); and the view of the
@@ -57,7 +58,7 @@ struct RenderedImage {
 };
 
 RenderedImage render_frame(const Scene& scene, const SceneResources& resources,
-                           FrameTimings& timings);
+                           FrameTimings& timings, const raster::RasterLimits& limits = {});
 
 // The raster state of a scene's frame: its viewport, back faces culled (the terrain's
 // underside is never seen from above), GREATER depth test with depth cleared to 0.
