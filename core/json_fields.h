@@ -2,6 +2,8 @@
 // message names where the input came from, the JSON path, the value and the allowed range.
 #pragma once
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <functional>
@@ -172,6 +174,22 @@ class LayerReader {
       fail(path, path + " = " + brief(value) + " contains a NUL character");
     }
     return s;
+  }
+
+  // An output file name that must end in `extension` (any letter case): the format it is
+  // written in.
+  std::string file_name(const json& value, const std::string& path, std::string_view extension,
+                        std::string_view why) const {
+    std::string name = string(value, path);
+    std::string tail = name.size() >= extension.size() ? name.substr(name.size() - extension.size())
+                                                       : std::string();
+    std::transform(tail.begin(), tail.end(), tail.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (tail != extension) {
+      fail(path, path + " = " + brief(value) + ": " + std::string(why) +
+                     "; give a name ending in " + std::string(extension));
+    }
+    return name;
   }
 
   template <class Enum>

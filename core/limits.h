@@ -89,6 +89,130 @@ inline constexpr std::size_t kMaxMaterialLayers = 8;
 inline constexpr int kMinTextureSize = 4;
 inline constexpr int kMaxTextureSize = 4096;
 
+// --- Scene fields: ranges that keep the float pipeline meaningful --------------------------
+//
+// Every numeric scene field has a range; docs/scene-limits.md derives each bound from the
+// stage and formula that breaks outside it, and README.md's scene reference quotes them.
+// Derived values are rounded to the safe side (to a power of ten unless said otherwise).
+
+// The float that every per-vertex and per-pixel quantity is stored in.
+inline constexpr double kFloatMax = 3.4028234663852886e38;         // FLT_MAX
+inline constexpr double kFloatMinNormal = 1.1754943508222875e-38;  // FLT_MIN = 2^-126
+
+// The largest camera-relative distance of a vertex or a covered pixel, the yardstick of the
+// bounds below. Footprints end at kMaxFootprintFactor x far x sqrt(1 + tan^2(87.5 deg) +
+// tan^2(85 deg)) = 2 x 25.6 x 1e9 = 5.1e10 (the frustum's far corners, projector.cc); heights
+// lie at most 25.6 x far beyond the near side of the height slab, which lies within
+// +-(kMaxBaseHeight + kMaxAmplitude x 24 octaves x 12, the largest lattice value the polar
+// method can draw) = +-2.9e9. So |p| <= 6e10 < 1e11.
+inline constexpr double kMaxCameraRelativeDistance = 1e11;
+
+// Angles: a full turn either way (sin and cos are taken in double: any value works).
+inline constexpr double kMaxTurnDeg = 360.0;
+// Pitch and sun elevation: beyond +-90 degrees the view would be upside down, which a camera
+// without roll cannot express.
+inline constexpr double kMaxElevationDeg = 90.0;
+
+// camera.near: the projected grid's footprints are camera-relative floats, compared by their
+// squares with the squared footprint radius max_distance_sq (projector.cc). That radius is
+// twice the farthest corner of the frustum-slab polytope, at least the near-plane corner of the
+// narrowest frustum (1 degree) seen straight down: tan(0.5 deg) near = 0.0087 near to the side.
+// (2 x 0.0087 near)^2 stays a normal float for near >= 6.2e-18, rounded up to 1e-17; below it
+// the radius underflows and every vertex is dropped (an empty image). Depth near / w (reverse
+// Z) then stays a normal float, with its full 24 bits, for every w up to
+// kMaxCameraRelativeDistance (near / w >= 1e-28 > FLT_MIN), so no ratio rule between near and
+// far is needed. camera.far must exceed near, so it has the same lower bound.
+inline constexpr double kMinNearDistance = 1e-17;
+
+// terrain.r and terrain.H: stage 2's octave count nu = c0 - c1 log2(sigma^2) (frame_plan.cc)
+// is evaluated in float, with |log2 sigma^2| < 100 (sigma^2 between kMinSpacingSq and
+// kMaxCameraRelativeDistance^2). Where nu is in range the two terms nearly cancel, so its
+// error is about c1 x 100 x 2^-24. Its fraction is the geomorphing weight of the last octave
+// (§4.1); to keep that exact to one 8-bit step, 1/256, c1 <= 2^16 / 100 = 655. kMaxLodGain is the
+// power of two below (measured: nu within 1/512 of exact at c1 = 512, 1/128 at 2048). The
+// Nyquist rule has c1 = 0.5 / log2 r: r >= 2^(1/1024) = 1.00068, rounded up to 1.001. The
+// amplitude rule has c1 = 0.5 / (H log2 r): H log2 r >= 2^-10 (validate_scene), which at the
+// largest lacunarity (log2 16 = 4) allows H >= 2^-12 = 2.44e-4 per field, rounded up to 2.5e-4;
+// at r = 2 the rule asks for H >= 2^-10. Below these, c1 grows without bound: at H = 1e-300 it
+// overflows float and nu becomes NaN.
+inline constexpr double kMaxLodGain = 512.0;
+inline constexpr double kMinLacunarity = 1.001;
+inline constexpr double kMinHurst = 0.00025;
+
+// Lattice coordinates (terrain octaves, the dithering noise) are formed in float as
+// offset (< P) + frequency x d / scale. Their rounding error is ulp(d) world units whatever
+// their magnitude (they are scaled camera-relative distances), so size alone costs no accuracy;
+// what breaks is integer resolution. Below 2^24 float still holds every integer, so the
+// periodic wrap (interpolant.h) visits every cell; beyond it only every 2nd, 4th, ... cell, and
+// from 2^24 P on a single one: the noise turns into a constant (a flat terrain, a fixed shift of
+// the layer transitions). validate_scene keeps the coordinate of the farthest footprint below
+// this for the coarsest terrain octave and for the dithering noise.
+inline constexpr double kMaxLatticeCoordinate = 16777216.0;  // 2^24
+// terrain.horizontal_scale, per field: the finest frequency (r^k <= 2^40, validate_scene) times
+// kMaxCameraRelativeDistance over the scale must stay finite: 2^40 x 1e11 / FLT_MAX = 3.2e-16,
+// rounded up to 1e-15. The bound that matters is the one across fields above.
+inline constexpr double kMinHorizontalScale = 1e-15;
+// terrain.amplitude: heights are amplitude x h in float, h the dimensionless sum of Eq. 1 whose
+// smallest octave weight is r^(-kH) >= 2^-40; amplitude x 2^-40 stays a normal float for
+// amplitude >= 2^-86 = 1.3e-26, rounded up to 1e-25.
+inline constexpr double kMinAmplitude = 1e-25;
+
+// shading.layers[k].tile_size: GL's LOD squares the texture-coordinate derivative in texels,
+// (du/dx n)^2 with du/dx = d(world)/dx / tile_size and n <= kMaxTextureSize (proto_texture.cc).
+// For footprint derivatives up to kMaxCameraRelativeDistance each square must stay below
+// FLT_MAX / 2: tile_size >= 4096 x 1e11 / 1.3e19 = 3.1e-5, rounded up to 1e-4. (Finer tiles
+// are minified to the texture's mean anyway: a texel of 2.4e-8 units.)
+inline constexpr double kMinTileSize = 1e-4;
+inline constexpr double kMaxTileSize = 1e6;
+// World lengths whose inverse scales camera-relative positions in stage 8: shading.dither_scale
+// (dithering noise coordinate), water.wave_length (the wave fade 2 footprint x 5.1 /
+// wave_length for the shortest of the three octaves) and water.full_depth (depth / full_depth).
+// The products must stay finite for lengths up to kMaxCameraRelativeDistance: 2 x 5.1 x 1e11 /
+// FLT_MAX = 3e-27, rounded up to 1e-26.
+inline constexpr double kMinInverseScaleLength = 1e-26;
+inline constexpr double kMaxShadingLength = 1e6;
+inline constexpr double kMaxDither = 4.0;  // spreads: 0.5 x 4 x 12 = 24 spreads at most
+
+// Layer ranges: heights within the base-height range; spreads up to kMaxShadingLength world
+// units (or 45 degrees: a ramp from the flat to the vertical); angles in [0, 90] degrees.
+inline constexpr double kMaxSlopeDeg = 90.0;
+inline constexpr double kMaxSlopeSpreadDeg = 45.0;
+// Built-in textures: a power of two from 16 (four mip levels at least) to 2048 texels a side.
+inline constexpr int kMinBuiltinTextureSize = 16;
+inline constexpr int kMaxBuiltinTextureSize = 2048;
+
+// Colours and intensities: linear radiance stays below 2.1e7 (the sun disc, 20 x sun colour x
+// sun intensity, plus the sky) and below 2.1e10 after the exposure: far inside float.
+inline constexpr double kMaxRadiance = 1000.0;
+inline constexpr double kMaxExposure = 1000.0;
+// lighting.exposure: the largest radiance any scene can produce is 2.1e7; a byte of the sRGB PNG
+// is non-zero from linear 0.5 / (255 x 12.92) = 1.5e-4. Below 1.5e-4 / 2.1e7 = 7.2e-12 every
+// PNG is black: the bound is 1e-11.
+inline constexpr double kMinExposure = 1e-11;
+// Phong exponent: exp2(shininess log2 r.v) is clamped by exp2_det's domain, never 0 or inf.
+inline constexpr double kMinShininess = 1.0;
+inline constexpr double kMaxShininess = 10000.0;
+
+// Water: extinction up to 100 per unit (exp2 clamps to 2^-125, never 0); wave slope up to 10
+// (normals stay finite: the lattice gradient is at most 1.875 x 24 per octave); wave speed in
+// double.
+inline constexpr double kMaxExtinction = 100.0;
+inline constexpr double kMaxWaveStrength = 10.0;
+inline constexpr double kMaxWaveSpeed = 1e6;
+
+// sky.sun_disc_deg: the disc's edge is a smooth step between cos(theta) and cos(1.25 theta),
+// evaluated in float next to 1, where float's spacing is 2^-24. The step needs at least 16 of
+// those spacings (4 bits): 0.28 theta^2 >= 2^-20 gives theta >= 1.84e-3 rad = 0.1055 degrees,
+// rounded up to 0.11. A smaller disc would be a step (or no disc at all) from rounding alone.
+inline constexpr double kMinSunDiscDeg = 0.11;
+inline constexpr double kMaxSunDiscDeg = 10.0;
+// Fog per world unit: exp2_det clamps its argument, so any density is total; 1 per unit is
+// already opaque fog one unit from the camera.
+inline constexpr double kMaxFogDensity = 1.0;
+
+// time, seconds: the wave offsets (camera + speed x time) / wave_length are reduced in double.
+inline constexpr double kMaxTime = 1e9;
+
 // --- Numeric guards (each division or log in a stage names the guard it uses) -------------
 
 // §2.2 divides by the roughness R_i, which crosses zero wherever the partial height reaches

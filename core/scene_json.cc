@@ -87,7 +87,7 @@ void apply_scene_layer(Scene& scene, const json& layer, std::string_view source,
           {"sky", [&](const json& v, const std::string& p) { apply_sky(in, v, p, scene.sky); }},
           {"time",
            [&](const json& v, const std::string& p) {
-             scene.time = in.number(v, p, Range{-1e9, 1e9});
+             scene.time = in.number(v, p, Range{-limits::kMaxTime, limits::kMaxTime});
            }},
           {"output",
            [&](const json& v, const std::string& p) { apply_output(in, v, p, scene.output); }},
@@ -143,6 +143,59 @@ void validate_scene(const Scene& scene) {
              std::to_string(scene.viewport.width) + "x" + std::to_string(scene.viewport.height) +
              " gives a horizontal field of view of " + format_number(horizontal_fov_deg) +
              " degrees; allowed at most " + format_number(limits::kMaxHorizontalFovDeg));
+  }
+  // Float bounds across fields (core/limits.h, docs/scene-limits.md).
+  const double log2_r = std::log2(t.r);
+  if (t.lod.criterion == LodCriterion::kAmplitude && t.H * log2_r < 0.5 / limits::kMaxLodGain) {
+    std::string message = "terrain.H = ";
+    message.append(format_number(t.H))
+        .append(" with terrain.r = ")
+        .append(format_number(t.r))
+        .append(
+            " makes the amplitude LOD rule change the octave count by 0.5 / (terrain.H * "
+            "log2(terrain.r)) = ")
+        .append(format_number(0.5 / (t.H * log2_r)))
+        .append(" per doubling of sigma^2, more than ")
+        .append(format_number(limits::kMaxLodGain))
+        .append(
+            " (float then no longer keeps nu within 1/256 octave); allowed terrain.H * "
+            "log2(terrain.r) >= ")
+        .append(format_number(0.5 / limits::kMaxLodGain))
+        .append(", here terrain.H >= ")
+        .append(format_number(0.5 / limits::kMaxLodGain / log2_r))
+        .append(" (or a larger terrain.r, or terrain.lod.criterion = nyquist)");
+    fail("terrain.H", message);
+  }
+  // The farthest footprint stage 2 keeps: kMaxFootprintFactor times the farthest frustum corner
+  // at the far plane (projector.cc), for any view direction.
+  const double tan_y = std::tan(c.fov_y_deg * M_PI / 360.0);
+  const double tan_x = tan_y * aspect;
+  const double farthest_footprint =
+      limits::kMaxFootprintFactor * c.far * std::sqrt(1.0 + tan_x * tan_x + tan_y * tan_y);
+  const double period = t.lattice_size;
+  const double coarsest_frequency = std::pow(t.r, t.first_octave);  // <= 2^40 (checked above)
+  const double min_horizontal_scale =
+      coarsest_frequency * farthest_footprint / (limits::kMaxLatticeCoordinate - period);
+  if (t.horizontal_scale < min_horizontal_scale) {
+    std::string message = "terrain.horizontal_scale = ";
+    message.append(format_number(t.horizontal_scale))
+        .append(" with camera.far = ")
+        .append(format_number(c.far))
+        .append(" puts the farthest footprint (")
+        .append(format_number(std::round(farthest_footprint)))
+        .append(" units away) at lattice coordinate ")
+        .append(format_number(
+            std::round(period + coarsest_frequency * farthest_footprint / t.horizontal_scale)))
+        .append(" of the coarsest octave, beyond ")
+        .append(format_number(limits::kMaxLatticeCoordinate))
+        .append(
+            " (2^24), where float no longer holds every cell and the terrain turns into a "
+            "constant; allowed terrain.horizontal_scale >= ")
+        .append(format_number(min_horizontal_scale))
+        .append(
+            " for this camera.far, camera.fov_y_deg, viewport aspect, terrain.lattice_size, "
+            "terrain.first_octave and terrain.r (or a smaller camera.far)");
+    fail("terrain.horizontal_scale", message);
   }
   const std::vector<MaterialLayer>& layers = scene.shading.layers;
   for (std::size_t a = 0; a < layers.size(); ++a) {

@@ -82,7 +82,7 @@ void apply_material_layer(const LayerReader& in, const json& value, const std::s
            }},
           {"tile_size",
            [&](const json& v, const std::string& p) {
-             layer.tile_size = in.number(v, p, Range{0.0, 1e6, true});
+             layer.tile_size = in.number(v, p, Range{limits::kMinTileSize, limits::kMaxTileSize});
            }},
           {"height",
            [&](const json& v, const std::string& p) {
@@ -98,18 +98,18 @@ void apply_material_layer(const LayerReader& in, const json& value, const std::s
            }},
           {"slope_deg",
            [&](const json& v, const std::string& p) {
-             layer.slope_deg = in.vector<2>(v, p, Range{0.0, 90.0});
+             layer.slope_deg = in.vector<2>(v, p, Range{0.0, limits::kMaxSlopeDeg});
              if (!(layer.slope_deg[0] < layer.slope_deg[1])) {
                in.fail(p, p + " = " + brief(v) + " is empty; allowed [low, high] with low < high");
              }
            }},
           {"height_spread",
            [&](const json& v, const std::string& p) {
-             layer.height_spread = in.number(v, p, Range{0.0, 1e6});
+             layer.height_spread = in.number(v, p, Range{0.0, limits::kMaxShadingLength});
            }},
           {"slope_spread_deg",
            [&](const json& v, const std::string& p) {
-             layer.slope_spread_deg = in.number(v, p, Range{0.0, 45.0});
+             layer.slope_spread_deg = in.number(v, p, Range{0.0, limits::kMaxSlopeSpreadDeg});
            }},
           {"specular",
            [&](const json& v, const std::string& p) {
@@ -172,12 +172,13 @@ void apply_camera(const LayerReader& in, const json& value, const std::string& p
            }},
           {"yaw_deg",
            [&](const json& v, const std::string& p) {
-             camera.yaw_deg = in.number(v, p, Range{-360.0, 360.0});
+             camera.yaw_deg = in.number(v, p, Range{-limits::kMaxTurnDeg, limits::kMaxTurnDeg});
              angles_given = true;
            }},
           {"pitch_deg",
            [&](const json& v, const std::string& p) {
-             camera.pitch_deg = in.number(v, p, Range{-90.0, 90.0});
+             camera.pitch_deg =
+                 in.number(v, p, Range{-limits::kMaxElevationDeg, limits::kMaxElevationDeg});
              angles_given = true;
            }},
           {"look_at",
@@ -188,11 +189,13 @@ void apply_camera(const LayerReader& in, const json& value, const std::string& p
            }},
           {"near",
            [&](const json& v, const std::string& p) {
-             camera.near = in.number(v, p, Range{0.0, limits::kMaxViewDistance, true});
+             camera.near =
+                 in.number(v, p, Range{limits::kMinNearDistance, limits::kMaxViewDistance});
            }},
           {"far",
            [&](const json& v, const std::string& p) {
-             camera.far = in.number(v, p, Range{0.0, limits::kMaxViewDistance, true});
+             camera.far =
+                 in.number(v, p, Range{limits::kMinNearDistance, limits::kMaxViewDistance, true});
            }},
       });
   if (look_at) {
@@ -278,11 +281,11 @@ void apply_terrain(const LayerReader& in, const json& value, const std::string& 
            }},
           {"r",
            [&](const json& v, const std::string& p) {
-             terrain.r = in.number(v, p, Range{1.0, limits::kMaxLacunarity, true});
+             terrain.r = in.number(v, p, Range{limits::kMinLacunarity, limits::kMaxLacunarity});
            }},
           {"H",
            [&](const json& v, const std::string& p) {
-             terrain.H = in.number(v, p, Range{0.0, limits::kMaxHurst, true});
+             terrain.H = in.number(v, p, Range{limits::kMinHurst, limits::kMaxHurst});
            }},
           {"first_octave",
            [&](const json& v, const std::string& p) {
@@ -299,7 +302,7 @@ void apply_terrain(const LayerReader& in, const json& value, const std::string& 
           {"horizontal_scale",
            [&](const json& v, const std::string& p) {
              terrain.horizontal_scale =
-                 in.number(v, p, Range{0.0, limits::kMaxHorizontalScale, true});
+                 in.number(v, p, Range{limits::kMinHorizontalScale, limits::kMaxHorizontalScale});
            }},
           {"base_height",
            [&](const json& v, const std::string& p) {
@@ -308,7 +311,8 @@ void apply_terrain(const LayerReader& in, const json& value, const std::string& 
            }},
           {"amplitude",
            [&](const json& v, const std::string& p) {
-             terrain.amplitude = in.number(v, p, Range{0.0, limits::kMaxAmplitude, true});
+             terrain.amplitude =
+                 in.number(v, p, Range{limits::kMinAmplitude, limits::kMaxAmplitude});
            }},
           {"water_level",
            [&](const json& v, const std::string& p) {
@@ -324,51 +328,57 @@ void apply_terrain(const LayerReader& in, const json& value, const std::string& 
 
 void apply_shading(const LayerReader& in, const json& value, const std::string& path,
                    ShadingSettings& shading, const std::filesystem::path& base_dir) {
-  in.object(value, path,
-            Handlers{
-                {"layers",
-                 [&](const json& v, const std::string& p) {
-                   apply_material_layers(in, v, p, shading.layers, base_dir);
-                 }},
-                {"texture_size",
-                 [&](const json& v, const std::string& p) {
-                   const long long size = in.integer(v, p, 16, 2048);
-                   if (!std::has_single_bit(static_cast<unsigned long long>(size))) {
-                     in.fail(p, p + " = " + brief(v) +
-                                    " is not a power of two; allowed 16, 32, ..., 2048");
-                   }
-                   shading.texture_size = static_cast<int>(size);
-                 }},
-                {"mip_blend",
-                 [&](const json& v, const std::string& p) {
-                   shading.mip_blend = in.number(v, p, Range{0.0, 1.0});
-                 }},
-                {"triplanar", [&](const json& v,
-                                  const std::string& p) { shading.triplanar = in.boolean(v, p); }},
-                {"dither",
-                 [&](const json& v, const std::string& p) {
-                   shading.dither = in.number(v, p, Range{0.0, 4.0});
-                 }},
-                {"dither_scale",
-                 [&](const json& v, const std::string& p) {
-                   shading.dither_scale = in.number(v, p, Range{0.0, 1e6, true});
-                 }},
-            });
+  in.object(
+      value, path,
+      Handlers{
+          {"layers",
+           [&](const json& v, const std::string& p) {
+             apply_material_layers(in, v, p, shading.layers, base_dir);
+           }},
+          {"texture_size",
+           [&](const json& v, const std::string& p) {
+             const long long size =
+                 in.integer(v, p, limits::kMinBuiltinTextureSize, limits::kMaxBuiltinTextureSize);
+             if (!std::has_single_bit(static_cast<unsigned long long>(size))) {
+               in.fail(p, p + " = " + brief(v) + " is not a power of two; allowed " +
+                              std::to_string(limits::kMinBuiltinTextureSize) + ", " +
+                              std::to_string(2 * limits::kMinBuiltinTextureSize) + ", ..., " +
+                              std::to_string(limits::kMaxBuiltinTextureSize));
+             }
+             shading.texture_size = static_cast<int>(size);
+           }},
+          {"mip_blend",
+           [&](const json& v, const std::string& p) {
+             shading.mip_blend = in.number(v, p, Range{0.0, 1.0});
+           }},
+          {"triplanar",
+           [&](const json& v, const std::string& p) { shading.triplanar = in.boolean(v, p); }},
+          {"dither",
+           [&](const json& v, const std::string& p) {
+             shading.dither = in.number(v, p, Range{0.0, limits::kMaxDither});
+           }},
+          {"dither_scale",
+           [&](const json& v, const std::string& p) {
+             shading.dither_scale =
+                 in.number(v, p, Range{limits::kMinInverseScaleLength, limits::kMaxShadingLength});
+           }},
+      });
 }
 
 void apply_lighting(const LayerReader& in, const json& value, const std::string& path,
                     LightingSettings& l) {
-  const Range color{0.0, 1000.0};
+  const Range color{0.0, limits::kMaxRadiance};
   in.object(
       value, path,
       Handlers{
           {"sun_azimuth_deg",
            [&](const json& v, const std::string& p) {
-             l.sun_azimuth_deg = in.number(v, p, Range{-360.0, 360.0});
+             l.sun_azimuth_deg = in.number(v, p, Range{-limits::kMaxTurnDeg, limits::kMaxTurnDeg});
            }},
           {"sun_elevation_deg",
            [&](const json& v, const std::string& p) {
-             l.sun_elevation_deg = in.number(v, p, Range{-90.0, 90.0});
+             l.sun_elevation_deg =
+                 in.number(v, p, Range{-limits::kMaxElevationDeg, limits::kMaxElevationDeg});
            }},
           {"sun_color",
            [&](const json& v, const std::string& p) { l.sun_color = in.vector<3>(v, p, color); }},
@@ -386,11 +396,11 @@ void apply_lighting(const LayerReader& in, const json& value, const std::string&
            [&](const json& v, const std::string& p) { l.ambient = in.number(v, p, color); }},
           {"shininess",
            [&](const json& v, const std::string& p) {
-             l.shininess = in.number(v, p, Range{1.0, 10000.0});
+             l.shininess = in.number(v, p, Range{limits::kMinShininess, limits::kMaxShininess});
            }},
           {"exposure",
            [&](const json& v, const std::string& p) {
-             l.exposure = in.number(v, p, Range{0.0, 1000.0, true});
+             l.exposure = in.number(v, p, Range{limits::kMinExposure, limits::kMaxExposure});
            }},
       });
 }
@@ -409,29 +419,31 @@ void apply_water(const LayerReader& in, const json& value, const std::string& pa
            [&](const json& v, const std::string& p) { w.deep_color = in.vector<3>(v, p, unit); }},
           {"extinction",
            [&](const json& v, const std::string& p) {
-             w.extinction = in.vector<3>(v, p, Range{0.0, 100.0});
+             w.extinction = in.vector<3>(v, p, Range{0.0, limits::kMaxExtinction});
            }},
           {"full_depth",
            [&](const json& v, const std::string& p) {
-             w.full_depth = in.number(v, p, Range{0.0, 1e6, true});
+             w.full_depth =
+                 in.number(v, p, Range{limits::kMinInverseScaleLength, limits::kMaxShadingLength});
            }},
           {"wave_length",
            [&](const json& v, const std::string& p) {
-             w.wave_length = in.number(v, p, Range{0.0, 1e6, true});
+             w.wave_length =
+                 in.number(v, p, Range{limits::kMinInverseScaleLength, limits::kMaxShadingLength});
            }},
           {"wave_strength",
            [&](const json& v, const std::string& p) {
-             w.wave_strength = in.number(v, p, Range{0.0, 10.0});
+             w.wave_strength = in.number(v, p, Range{0.0, limits::kMaxWaveStrength});
            }},
           {"wave_speed",
            [&](const json& v, const std::string& p) {
-             w.wave_speed = in.number(v, p, Range{0.0, 1e6});
+             w.wave_speed = in.number(v, p, Range{0.0, limits::kMaxWaveSpeed});
            }},
       });
 }
 
 void apply_sky(const LayerReader& in, const json& value, const std::string& path, SkySettings& s) {
-  const Range color{0.0, 1000.0};
+  const Range color{0.0, limits::kMaxRadiance};
   in.object(value, path,
             Handlers{
                 {"zenith_color",
@@ -444,32 +456,36 @@ void apply_sky(const LayerReader& in, const json& value, const std::string& path
                  }},
                 {"sun_disc_deg",
                  [&](const json& v, const std::string& p) {
-                   s.sun_disc_deg = in.number(v, p, Range{0.0, 10.0});
+                   s.sun_disc_deg =
+                       in.number(v, p, Range{limits::kMinSunDiscDeg, limits::kMaxSunDiscDeg});
                  }},
                 {"fog_density",
                  [&](const json& v, const std::string& p) {
-                   s.fog_density = in.number(v, p, Range{0.0, 1.0});
+                   s.fog_density = in.number(v, p, Range{0.0, limits::kMaxFogDensity});
                  }},
             });
 }
 
 void apply_output(const LayerReader& in, const json& value, const std::string& path,
                   OutputSettings& output) {
-  in.object(
-      value, path,
-      Handlers{
-          {"image", [&](const json& v, const std::string& p) { output.image = in.string(v, p); }},
-          {"stages_dir",
-           [&](const json& v, const std::string& p) { output.stages_dir = in.string(v, p); }},
-          {"float_image",
-           [&](const json& v, const std::string& p) {
-             if (v.is_null()) {
-               output.float_image.reset();
-             } else {
-               output.float_image = in.string(v, p);
-             }
-           }},
-      });
+  in.object(value, path,
+            Handlers{
+                {"image",
+                 [&](const json& v, const std::string& p) {
+                   output.image = in.file_name(v, p, ".png", "the image is written as PNG");
+                 }},
+                {"stages_dir",
+                 [&](const json& v, const std::string& p) { output.stages_dir = in.string(v, p); }},
+                {"float_image",
+                 [&](const json& v, const std::string& p) {
+                   if (v.is_null()) {
+                     output.float_image.reset();
+                   } else {
+                     output.float_image =
+                         in.file_name(v, p, ".pfm", "linear radiance is written as PFM");
+                   }
+                 }},
+            });
 }
 
 }  // namespace relief

@@ -108,14 +108,20 @@ Vec3<Real> terrain_radiance(const ShadingPlan& plan, const ShadingInputs& in, st
   const Vec3<Real> n = normalize_or(Vec3<Real>{Real(in.nx[k]), Real(in.ny[k]), Real(in.nz[k])},
                                     Vec3<Real>{Real(0), Real(1), Real(0)});
 
-  // Scape's dithered transitions: the terrain's own noise lattice, its own scale.
+  // Scape's dithered transitions: the terrain's own noise lattice, its own scale. The noise
+  // has no level of detail: where the pixel's footprint (distance x pixel angle) exceeds half a
+  // noise cell it only aliases, so it fades out linearly until the footprint is a whole cell.
+  // Sampled only nearer than that, its coordinates stay below 1 / pixel_angle < 2^20 cells,
+  // exact in float for any dither_scale.
   Real dither_offset = Real(0);
-  if (plan.dither.amount > 0.0) {
-    const Real inv = Real(plan.dither.inv_scale);
+  const Real inv = Real(plan.dither.inv_scale);
+  const Real dither_fade =
+      std::min(Real(1), Real(2) - Real(2) * distance * Real(plan.pixel_angle) * inv);
+  if (plan.dither.amount > 0.0 && dither_fade > Real(0)) {
     const Real noise = sample_lattice<Interpolant::kCubic>(
         *plan.dither.lattice, Real(plan.dither.offset_x) + in.dx[k] * inv,
         Real(plan.dither.offset_z) + in.dz[k] * inv);
-    dither_offset = Real(0.5 * plan.dither.amount) * noise;
+    dither_offset = Real(0.5 * plan.dither.amount) * noise * dither_fade;
   }
   Real weights[limits::kMaxMaterialLayers];
   layer_weights(plan, relative_y, Real(in.slope[k]), dither_offset, weights);

@@ -30,6 +30,16 @@ Tangent<Real> axis_tangent(const SurfaceInputs<Real>& in, std::ptrdiff_t minus, 
     t.x = in.dx[to] - in.dx[from];
     t.h = in.height[to] - in.height[from];
     t.z = in.dz[to] - in.dz[from];
+    // Scaled by the positive 1 / max(|x|, |h|, |z|): the normal's direction and the slope do
+    // not change, but the products of four tangent components below stay near 1 whatever the
+    // grid spacing (a scene scaled down to spacings of 1e-11 would underflow them to zero),
+    // and no component exceeds 1. Division domain: largest > 0; a zero tangent stays zero.
+    const Real largest = std::max({std::abs(t.x), std::abs(t.h), std::abs(t.z)});
+    if (largest > Real(0)) {
+      t.x = t.x / largest;
+      t.h = t.h / largest;
+      t.z = t.z / largest;
+    }
   }
   return t;
 }

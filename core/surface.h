@@ -32,7 +32,9 @@ struct SurfaceInputs {
 
 // Writes rows [rows.begin, rows.end) of `out`; reads rows begin - 1 .. end of `in`.
 // Invalid and padding vertices get normal (0, 1, 0), slope 0, water depth 0.
-// Division domains: the 2x2 system is solved only when its determinant exceeds kMinTangentSine
+// Division domains: each tangent is first divided by its largest component (when non-zero), a
+// positive factor that keeps the products below near 1 at any scale; the 2x2 system is solved
+// only when its determinant exceeds kMinTangentSine
 // times the product of the tangents' base-plane lengths (else the one-axis least-norm
 // gradient, or zero); the normal is formed without dividing by the determinant and scaled by
 // its largest component before normalising, so no square overflows; slope = |g| is capped at

@@ -222,6 +222,19 @@ TEST_CASE("emptyNamesAreErrorsNotDefaults", "[hostile]") {
                       std::filesystem::directory_iterator()) == 1);
 }
 
+TEST_CASE("outputNamesFromTheSceneMustNameTheFormatTheyAreWrittenIn", "[hostile]") {
+  test::TempDir dir("output-names");
+  const std::filesystem::path jpg = dir.path() / "x.jpg";
+  require_refused(run({"render", "--set", concat({"output.image=", jpg.string()})}),
+                  "output.image = \"" + jpg.string() + "\": the image is written as PNG", jpg);
+  require_refused(run({"render", "--set", "output.float_image=x.exr", "-o",
+                       (dir.path() / "x.png").string()}),
+                  "give a name ending in .pfm", dir.path() / "x.png");
+  require_refused(run({"render", "-o", (dir.path() / "x.PnG.jpg").string()}),
+                  "give a file name ending in .png", dir.path() / "x.PnG.jpg");
+  CHECK(resolve_scene("default", {"output.image=A.PNG"}).output.image == "A.PNG");
+}
+
 TEST_CASE("viewportOfTheRasterCommandMustBeFinite", "[hostile]") {
   test::TempDir dir("viewport");
   const std::string soup = write_file(dir.path() / "soup.txt", "4 4\n0 0 0.5 4 0 0.5 0 4 0.5\n");

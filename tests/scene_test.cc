@@ -59,18 +59,18 @@ TEST_CASE("sceneRejectsWrongTypes", "[scene]") {
 
 TEST_CASE("sceneRejectsValuesOutOfRangeQuotingTheRange", "[scene]") {
   CHECK_THAT(error_of(R"({"terrain": {"r": 1}})"),
-             Contains("terrain.r = 1 is out of range; allowed 1 < terrain.r <= 16"));
-  CHECK_THAT(error_of(R"({"terrain": {"r": 0.5}})"), Contains("1 < terrain.r"));
+             Contains("terrain.r = 1 is out of range; allowed 1.001 <= terrain.r <= 16"));
+  CHECK_THAT(error_of(R"({"terrain": {"r": 0.5}})"), Contains("1.001 <= terrain.r"));
   CHECK_THAT(error_of(R"({"grid": {"width": 1}})"),
              Contains("grid.width = 1 is out of range; allowed 2 <= grid.width <= 8192"));
   CHECK_THAT(error_of(R"({"viewport": {"height": 16385}})"),
              Contains("allowed 1 <= viewport.height <= 16384"));
-  CHECK_THAT(error_of(R"({"terrain": {"H": 0}})"), Contains("allowed 0 < terrain.H <= 1"));
+  CHECK_THAT(error_of(R"({"terrain": {"H": 0}})"), Contains("allowed 0.00025 <= terrain.H <= 1"));
   CHECK_THAT(error_of(R"({"camera": {"pitch_deg": 91}})"),
              Contains("-90 <= camera.pitch_deg <= 90"));
   CHECK_THAT(error_of(R"({"terrain": {"lattice_size": 300}})"),
              Contains("terrain.lattice_size = 300 is not a power of two"));
-  CHECK_THAT(error_of(R"({"camera": {"near": 0}})"), Contains("0 < camera.near"));
+  CHECK_THAT(error_of(R"({"camera": {"near": 0}})"), Contains("1e-17 <= camera.near"));
 }
 
 TEST_CASE("sceneRejectsNonFiniteNumbers", "[scene]") {
@@ -183,13 +183,13 @@ TEST_CASE("sceneValidatesMaterialLayers", "[scene]") {
   CHECK_THAT(error_of(R"({"shading": {"layers": {"1": {"slope_deg": [40, 20]}}}})"),
              Contains("is empty; allowed [low, high] with low < high"));
   CHECK_THAT(error_of(R"({"shading": {"layers": {"1": {"tile_size": 0}}}})"),
-             Contains("0 < shading.layers[1].tile_size"));
+             Contains("1e-04 <= shading.layers[1].tile_size"));
   CHECK_THAT(error_of(R"({"shading": {"layers": [{"name": "x", "texture": "builtin:sand"},
                                                  {"name": "x", "texture": "builtin:rock"}]}})"),
              Contains("are both named 'x'"));
   CHECK_THAT(error_of(R"({"water": {"deep_color": [0, 2, 0]}})"),
              Contains("allowed 0 <= water.deep_color[1] <= 1"));
-  CHECK_THAT(error_of(R"({"lighting": {"exposure": 0}})"), Contains("0 < lighting.exposure"));
+  CHECK_THAT(error_of(R"({"lighting": {"exposure": 0}})"), Contains("1e-11 <= lighting.exposure"));
   // A patch by index, as --set shading.layers.2.slope_deg=[0,20] writes it.
   const Scene patched = resolve_scene("alpine", {"shading.layers.2.slope_deg=[0,20]"});
   CHECK(patched.shading.layers[2].slope_deg == Vec2d{0, 20});

@@ -1,12 +1,14 @@
 #include "tools/cli.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <memory>
 #include <new>
 #include <ostream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <tbb/global_control.h>
@@ -79,6 +81,20 @@ const CLI::Validator kFiniteViewportValue(
       return "";
     },
     "NUMBER in [-1e6, 1e6]");
+
+// `name` ends in `extension` (lower case), in any letter case.
+bool has_extension(const std::string& name, std::string_view extension) {
+  if (name.size() < extension.size()) {
+    return false;
+  }
+  for (std::size_t k = 0; k < extension.size(); ++k) {
+    const char c = name[name.size() - extension.size() + k];
+    if (std::tolower(static_cast<unsigned char>(c)) != extension[k]) {
+      return false;
+    }
+  }
+  return true;
+}
 
 // An option given with an empty value (-o ""): never silently the default.
 bool given_empty(const CLI::Option* option, const std::string& value) {
@@ -252,15 +268,14 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     }
     if (render_cmd->parsed()) {
       const std::string& o = render.output;
-      if (!o.empty() && (o.size() < 4 || (o.compare(o.size() - 4, 4, ".png") != 0 &&
-                                          o.compare(o.size() - 4, 4, ".PNG") != 0))) {
-        err << "relief: error: -o " << o
+      if (!o.empty() && !has_extension(o, ".png")) {
+        err << "relief: error: -o " << brief_text(o)
             << ": the image is written as PNG; give a file name ending in .png\n";
         return kExitBadInput;
       }
       const std::string& f = render.float_output;
-      if (!f.empty() && (f.size() < 4 || f.compare(f.size() - 4, 4, ".pfm") != 0)) {
-        err << "relief: error: --float " << f
+      if (!f.empty() && !has_extension(f, ".pfm")) {
+        err << "relief: error: --float " << brief_text(f)
             << ": linear radiance is written as PFM; give a file name ending in .pfm\n";
         return kExitBadInput;
       }

@@ -1,0 +1,656 @@
+// The float-meaningful range of every numeric scene field (core/limits.h, derived in
+// docs/scene-limits.md): the value just outside each bound is refused with a message that names
+// the field, the value and the range; a small frame rendered with a field at each of its bounds
+// has finite, non-negative radiance, finite stage buffers and, where the view allows it,
+// terrain on a fair share of the pixels. The cases of the issue that asked for these bounds
+// (tile_size = 1e-36, tiny camera.near, horizontal_scale, H and dither_scale) have their own
+// tests, which also show what breaks without the bound.
+#include <algorithm>
+#include <cmath>
+#include <initializer_list>
+#include <limits>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "core/det_math.h"
+#include "core/frame_plan.h"
+#include "core/json_fields.h"
+#include "core/limits.h"
+#include "core/scene_json.h"
+#include "raster/resolve.h"
+#include "tools/render_frame.h"
+
+namespace relief {
+namespace {
+
+using Catch::Matchers::Contains;
+
+// A small frame: whole-frame checks for a hundred scenes stay fast under sanitizers.
+const std::vector<std::string> kSmallFrame = {"viewport.width=64", "viewport.height=48",
+                                              "grid.width=32", "grid.height=32"};
+
+double below(double x) {
+  return std::nextafter(x, -std::numeric_limits<double>::infinity());
+}
+
+double above(double x) {
+  return std::nextafter(x, std::numeric_limits<double>::infinity());
+}
+
+// The message of the SceneError that resolving the default scene with `overrides` throws, or
+// "" when the scene is accepted.
+std::string error_of(const std::vector<std::string>& overrides) {
+  try {
+    resolve_scene("default", overrides);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// "a + b + ..." without operator+ on literals (GCC 12 warns falsely about it, bug 105651).
+std::string cat(std::initializer_list<std::string> parts) {
+  std::string out;
+  for (const std::string& part : parts) {
+    out.append(part);
+  }
+  return out;
+}
+
+// A field read by LayerReader::number (one entry in `value`) or LayerReader::vector (several).
+struct RealField {
+  std::string key;            // as --set writes it
+  std::string path;           // as messages name it (shading.layers[3].tile_size)
+  std::vector<double> value;  // an accepted value; one entry for a scalar
+  double lo, hi;
+  bool lo_open = false;
+  bool hi_open = false;
+};
+
+// Every field read as a real number, with the range docs/scene-limits.md gives it.
+std::vector<RealField> real_fields() {
+  const double kColor = 1000;
+  return {
+      {"camera.position", "camera.position", {0, 700, 0}, -1e12, 1e12},
+      {"camera.yaw_deg", "camera.yaw_deg", {30}, -360, 360},
+      {"camera.pitch_deg", "camera.pitch_deg", {-8}, -90, 90},
+      {"camera.look_at", "camera.look_at", {100, 0, -100}, -1e12, 1e12},
+      {"camera.fov_y_deg", "camera.fov_y_deg", {60}, 1, 170},
+      {"camera.near", "camera.near", {0.5}, 1e-17, 1e9},
+      {"camera.far", "camera.far", {60000}, 1e-17, 1e9, true},
+      {"terrain.r", "terrain.r", {2}, 1.001, 16},
+      {"terrain.H", "terrain.H", {0.85}, 0.00025, 1},
+      {"terrain.lod.bias", "terrain.lod.bias", {0}, -8, 8},
+      {"terrain.warp.c1", "terrain.warp.c1", {0.35, 0.16}, -100, 100},
+      {"terrain.warp.c2", "terrain.warp.c2", {-0.07, 0.13}, -100, 100},
+      {"terrain.warp.c3", "terrain.warp.c3", {0.11, 0.17}, -100, 100},
+      {"terrain.warp.r0", "terrain.warp.r0", {1, 0}, -100, 100},
+      {"terrain.warp.t0", "terrain.warp.t0", {0, 0}, -100, 100},
+      {"terrain.horizontal_scale", "terrain.horizontal_scale", {3000}, 1e-15, 1e9},
+      {"terrain.base_height", "terrain.base_height", {100}, -1e7, 1e7},
+      {"terrain.amplitude", "terrain.amplitude", {360}, 1e-25, 1e7},
+      {"terrain.water_level", "terrain.water_level", {0}, -1e7, 1e7},
+      {"shading.layers.3.tile_size", "shading.layers[3].tile_size", {60}, 1e-4, 1e6},
+      {"shading.layers.2.height", "shading.layers[2].height", {30, 560}, -1e7, 1e7},
+      {"shading.layers.2.slope_deg", "shading.layers[2].slope_deg", {0, 38}, 0, 90},
+      {"shading.layers.2.height_spread", "shading.layers[2].height_spread", {25}, 0, 1e6},
+      {"shading.layers.2.slope_spread_deg", "shading.layers[2].slope_spread_deg", {5}, 0, 45},
+      {"shading.layers.4.specular", "shading.layers[4].specular", {0.35}, 0, 1},
+      {"shading.mip_blend", "shading.mip_blend", {0.3}, 0, 1},
+      {"shading.dither", "shading.dither", {0.6}, 0, 4},
+      {"shading.dither_scale", "shading.dither_scale", {9}, 1e-26, 1e6},
+      {"lighting.sun_azimuth_deg", "lighting.sun_azimuth_deg", {230}, -360, 360},
+      {"lighting.sun_elevation_deg", "lighting.sun_elevation_deg", {24}, -90, 90},
+      {"lighting.sun_color", "lighting.sun_color", {1, 0.93, 0.82}, 0, kColor},
+      {"lighting.sun_intensity", "lighting.sun_intensity", {1.8}, 0, kColor},
+      {"lighting.sky_color", "lighting.sky_color", {0.42, 0.58, 0.85}, 0, kColor},
+      {"lighting.ground_color", "lighting.ground_color", {0.22, 0.2, 0.16}, 0, kColor},
+      {"lighting.sky_intensity", "lighting.sky_intensity", {0.25}, 0, kColor},
+      {"lighting.ambient", "lighting.ambient", {0.03}, 0, kColor},
+      {"lighting.shininess", "lighting.shininess", {48}, 1, 10000},
+      {"lighting.exposure", "lighting.exposure", {0.75}, 1e-11, 1000},
+      {"water.shallow_color", "water.shallow_color", {0.08, 0.3, 0.28}, 0, 1},
+      {"water.deep_color", "water.deep_color", {0.015, 0.09, 0.085}, 0, 1},
+      {"water.extinction", "water.extinction", {0.42, 0.11, 0.075}, 0, 100},
+      {"water.full_depth", "water.full_depth", {14}, 1e-26, 1e6},
+      {"water.wave_length", "water.wave_length", {7}, 1e-26, 1e6},
+      {"water.wave_strength", "water.wave_strength", {0.2}, 0, 10},
+      {"water.wave_speed", "water.wave_speed", {1.2}, 0, 1e6},
+      {"sky.zenith_color", "sky.zenith_color", {0.17, 0.33, 0.7}, 0, kColor},
+      {"sky.horizon_color", "sky.horizon_color", {0.66, 0.75, 0.86}, 0, kColor},
+      {"sky.sun_disc_deg", "sky.sun_disc_deg", {0.6}, 0.11, 10},
+      {"sky.fog_density", "sky.fog_density", {2.2e-5}, 0, 1},
+      {"time", "time", {0}, -1e9, 1e9},
+  };
+}
+
+// The --set text of `field` with component `k` replaced by `v`.
+std::string assignment(const RealField& field, std::size_t k, double v) {
+  std::vector<double> value = field.value;
+  value[k] = v;
+  std::string text = field.key + "=";
+  if (value.size() == 1) {
+    return text.append(format_number(v));
+  }
+  text.append("[");
+  for (std::size_t c = 0; c < value.size(); ++c) {
+    text.append(c ? ", " : "").append(format_number(value[c]));
+  }
+  return text.append("]");
+}
+
+TEST_CASE("everyRealFieldRefusesTheValueJustOutsideEachBoundNamingFieldValueAndRange", "[limits]") {
+  for (const RealField& field : real_fields()) {
+    for (std::size_t k = 0; k < field.value.size(); ++k) {
+      const std::string path =
+          field.value.size() == 1 ? field.path : cat({field.path, "[", std::to_string(k), "]"});
+      const std::string range = cat({format_number(field.lo), field.lo_open ? " < " : " <= ", path,
+                                     field.hi_open ? " < " : " <= ", format_number(field.hi)});
+      for (const double outside : {field.lo_open ? field.lo : below(field.lo),
+                                   field.hi_open ? field.hi : above(field.hi)}) {
+        const std::string set = assignment(field, k, outside);
+        INFO("--set " << set);
+        const std::string message = error_of({set});
+        CHECK_THAT(message, Contains(cat({path, " = ", format_number(outside),
+                                          " is out of range; allowed ", range})));
+      }
+      // The bounds themselves are accepted (or refused only by a rule across fields).
+      for (const double inside : {field.lo, field.hi}) {
+        if ((inside == field.lo && field.lo_open) || (inside == field.hi && field.hi_open)) {
+          continue;
+        }
+        const std::string set = assignment(field, k, inside);
+        INFO("--set " << set);
+        CHECK_THAT(error_of({set}), !Contains("is out of range"));
+      }
+    }
+  }
+}
+
+// Fields read as integers: the value just outside each bound, and the message.
+struct IntegerCase {
+  std::string set;
+  std::string message;
+};
+
+TEST_CASE("everyIntegerFieldRefusesTheValueJustOutsideEachBoundNamingFieldValueAndRange",
+          "[limits]") {
+  const std::vector<IntegerCase> cases = {
+      {"viewport.width=0",
+       "viewport.width = 0 is out of range; allowed 1 <= viewport.width <= 16384"},
+      {"viewport.width=16385",
+       "viewport.width = 16385 is out of range; allowed 1 <= viewport.width <= 16384"},
+      {"viewport.height=0",
+       "viewport.height = 0 is out of range; allowed 1 <= viewport.height <= 16384"},
+      {"viewport.height=16385",
+       "viewport.height = 16385 is out of range; allowed 1 <= viewport.height <= 16384"},
+      {"grid.width=1", "grid.width = 1 is out of range; allowed 2 <= grid.width <= 8192"},
+      {"grid.width=8193", "grid.width = 8193 is out of range; allowed 2 <= grid.width <= 8192"},
+      {"grid.height=1", "grid.height = 1 is out of range; allowed 2 <= grid.height <= 8192"},
+      {"grid.height=8193", "grid.height = 8193 is out of range; allowed 2 <= grid.height <= 8192"},
+      {"grid.margin=-1", "grid.margin = -1 is out of range; allowed 0 <= grid.margin <= 64"},
+      {"grid.margin=65", "grid.margin = 65 is out of range; allowed 0 <= grid.margin <= 64"},
+      {"terrain.seed=-1", "terrain.seed = -1 is not an unsigned integer"},
+      {"terrain.seed=18446744073709551616", "allowed 0 <= terrain.seed <= 18446744073709551615"},
+      {"terrain.lattice_size=2",
+       "terrain.lattice_size = 2 is out of range; allowed 4 <= terrain.lattice_size <= 4096"},
+      {"terrain.lattice_size=8192",
+       "terrain.lattice_size = 8192 is out of range; allowed 4 <= terrain.lattice_size <= 4096"},
+      {"terrain.first_octave=-1",
+       "terrain.first_octave = -1 is out of range; allowed 0 <= terrain.first_octave <= 32"},
+      {"terrain.first_octave=33",
+       "terrain.first_octave = 33 is out of range; allowed 0 <= terrain.first_octave <= 32"},
+      {"terrain.last_octave=-1",
+       "terrain.last_octave = -1 is out of range; allowed 0 <= terrain.last_octave <= 55"},
+      {"terrain.last_octave=56",
+       "terrain.last_octave = 56 is out of range; allowed 0 <= terrain.last_octave <= 55"},
+      {"shading.texture_size=8",
+       "shading.texture_size = 8 is out of range; allowed 16 <= shading.texture_size <= 2048"},
+      {"shading.texture_size=4096",
+       "shading.texture_size = 4096 is out of range; allowed 16 <= shading.texture_size <= 2048"},
+  };
+  for (const IntegerCase& c : cases) {
+    INFO("--set " << c.set);
+    CHECK_THAT(error_of({c.set}), Contains(c.message));
+  }
+}
+
+TEST_CASE("rulesAcrossFieldsRefuseTheValueJustBeyondThemNamingTheFieldsAndTheRange", "[limits]") {
+  // camera.near below camera.far.
+  CHECK_THAT(error_of({"camera.near=60000"}),
+             Contains("camera.far = 60000 is not beyond camera.near = 60000; allowed camera.near "
+                      "< camera.far"));
+  CHECK(error_of({cat({"camera.near=", format_number(below(60000))})}).empty());
+  // The amplitude LOD rule: H log2 r >= 2^-10 (here r = 2: H >= 2^-10).
+  CHECK_THAT(error_of({cat({"terrain.H=", format_number(below(0x1p-10))})}),
+             Contains("allowed terrain.H * log2(terrain.r) >= 0.0009765625, here terrain.H >= "
+                      "0.0009765625"));
+  CHECK(error_of({"terrain.H=0.0009765625"}).empty());
+  CHECK(error_of({"terrain.H=0.00025", "terrain.lod.criterion=nyquist"}).empty());
+  // The coarsest octave's lattice coordinate at the farthest footprint stays below 2^24: the
+  // default view of the small frame (aspect 4:3) allows horizontal_scale >= F / (2^24 - P),
+  // F = 2 far sqrt(1 + tan^2 x + tan^2 y) the farthest footprint, P = 256.
+  const double tan_y = std::tan(60.0 * M_PI / 360.0), tan_x = tan_y * (64.0 / 48.0);
+  const double farthest = 2 * 60000 * std::sqrt(1 + tan_x * tan_x + tan_y * tan_y);
+  const double min_scale = farthest / (16777216.0 - 256.0);
+  std::vector<std::string> set = kSmallFrame;
+  set.push_back(cat({"terrain.horizontal_scale=", format_number(below(min_scale))}));
+  CHECK_THAT(error_of(set),
+             Contains(cat({"allowed terrain.horizontal_scale >= ", format_number(min_scale)})));
+  set.back() = cat({"terrain.horizontal_scale=", format_number(min_scale)});
+  CHECK(error_of(set).empty());
+  // The dithering noise needs no such rule: stage 8 samples it only where its cells are larger
+  // than the pixel's footprint (shade.cc), so the tiniest scale at the farthest view is fine.
+  set.back() = "shading.dither_scale=1e-26";
+  CHECK(error_of(set).empty());
+  CHECK(error_of({"camera.far=1e9"}).empty());
+  // Octave counts, grid versus margin and the horizontal field of view.
+  CHECK_THAT(error_of({"terrain.last_octave=24"}), Contains("allowed at most 24"));
+  CHECK_THAT(error_of({"terrain.r=16", "terrain.last_octave=11"}),
+             Contains("allowed terrain.last_octave * log2(terrain.r) <= 40"));
+  CHECK_THAT(error_of({"grid.width=5"}), Contains("allowed grid.width and grid.height >= 2 * "
+                                                  "grid.margin + 2 = 6"));
+  CHECK_THAT(error_of({"viewport.height=1"}), Contains("allowed at most 175"));
+}
+
+// What a frame at a bound must show.
+struct Frame {
+  std::size_t pixels = 0;
+  std::size_t covered = 0;
+  std::size_t bad_radiance = 0;  // NaN, infinite or negative
+  std::size_t bad_buffers = 0;   // NaN or infinite entries of any stage buffer
+  std::vector<float> heights;    // of the valid vertices
+  std::vector<float> nu;         // of the valid vertices
+};
+
+template <class Values>
+std::size_t non_finite(const Values& values) {
+  return static_cast<std::size_t>(
+      std::count_if(values.begin(), values.end(), [](float v) { return !std::isfinite(v); }));
+}
+
+// Resources (lattice, synthesised textures) are the expensive part of a small frame: built
+// once per distinct set of the fields they depend on.
+const SceneResources& resources_for(const Scene& scene) {
+  static std::map<std::string, SceneResources> cache;
+  std::string key = cat(
+      {std::to_string(scene.terrain.seed), "/", std::to_string(scene.terrain.lattice_size), "/",
+       std::to_string(scene.shading.texture_size), "/", format_number(scene.shading.mip_blend)});
+  for (const MaterialLayer& layer : scene.shading.layers) {
+    key.append("/").append(layer.texture);
+  }
+  auto it = cache.find(key);
+  if (it == cache.end()) {
+    it = cache.emplace(key, load_scene_resources(scene)).first;
+  }
+  return it->second;
+}
+
+Frame render_scene(const Scene& scene) {
+  const SceneResources& resources = resources_for(scene);
+  FrameTimings timings;
+  const RenderedImage image = render_frame(scene, resources, timings);
+  const TerrainFrame terrain = rasterize_terrain(scene, resources.lattice, timings);
+  const raster::ResolvedFrame resolved = resolve_for_shading(terrain);
+  Frame f;
+  f.pixels = terrain.visibility.primitive.size();
+  for (std::uint32_t p : terrain.visibility.primitive) {
+    f.covered += p != raster::kNoPrimitive;
+  }
+  f.bad_radiance =
+      static_cast<std::size_t>(std::count_if(image.linear.begin(), image.linear.end(),
+                                             [](float v) { return !(v >= 0.0f && v <= 3e38f); }));
+  const GridBuffers<float>& g = terrain.grid;
+  for (const auto* buffer :
+       {&g.dx, &g.dz, &g.sigma, &g.nu, &g.height, &g.nx, &g.ny, &g.nz, &g.slope, &g.water_depth,
+        &terrain.clip_x, &terrain.clip_y, &terrain.clip_z, &terrain.clip_w}) {
+    f.bad_buffers += non_finite(*buffer);
+  }
+  for (const auto* streams : {&resolved.value, &resolved.ddx, &resolved.ddy}) {
+    for (const auto& stream : *streams) {
+      f.bad_buffers += non_finite(stream);
+    }
+  }
+  for (std::size_t k = 0; k < g.valid.size(); ++k) {
+    if (g.valid[k]) {
+      f.heights.push_back(g.height[k]);
+      f.nu.push_back(g.nu[k]);
+    }
+  }
+  return f;
+}
+
+Frame render_small(const std::vector<std::string>& overrides) {
+  std::vector<std::string> set = kSmallFrame;
+  set.insert(set.end(), overrides.begin(), overrides.end());
+  return render_scene(resolve_scene("default", set));
+}
+
+// A field at one of its bounds, with the few other fields a rule across fields needs.
+struct BoundCase {
+  std::vector<std::string> set;
+  bool shows_terrain;  // the view of the default camera still meets the terrain
+};
+
+// Each field at its lower and at its upper bound.
+std::vector<BoundCase> bound_cases() {
+  const std::string wide = "viewport.width=16384";
+  return {
+      {{"camera.position=[-1e12, 700, -1e12]"}, true},
+      {{"camera.position=[1e12, 700, 1e12]"}, true},
+      {{"camera.position=[0, -1e12, 0]"}, false},  // the terrain is beyond camera.far
+      {{"camera.position=[0, 1e12, 0]"}, false},
+      {{"camera.yaw_deg=-360"}, true},
+      {{"camera.yaw_deg=360"}, true},
+      {{"camera.pitch_deg=-90"}, true},
+      {{"camera.pitch_deg=90"}, false},  // straight up
+      {{"camera.look_at=[-1e12, -1e12, -1e12]"}, true},
+      {{"camera.look_at=[1e12, 1e12, 1e12]"}, false},
+      {{"camera.fov_y_deg=1"}, true},
+      {{"camera.fov_y_deg=170"}, true},
+      {{"camera.near=1e-17"}, true},
+      {{cat({"camera.near=", format_number(below(60000))})}, false},  // clips all but the far
+      {{cat({"camera.far=", format_number(above(0.5))})}, false},     // just beyond near
+      {{"camera.far=1e9"}, true},
+      {{"viewport.width=1"}, true},
+      {{wide, "viewport.height=8", "camera.fov_y_deg=1"}, true},  // horizontal fov <= 175
+      {{"viewport.height=1", "viewport.width=8"}, true},
+      {{"viewport.height=16384", "viewport.width=8"}, true},
+      {{"grid.width=2", "grid.margin=0"}, true},
+      {{"grid.width=8192"}, true},
+      {{"grid.height=2", "grid.margin=0"}, true},
+      {{"grid.height=8192"}, true},
+      {{"grid.margin=0"}, true},
+      {{"grid.margin=64", "grid.width=130", "grid.height=130"}, true},
+      {{"terrain.seed=0"}, true},
+      {{"terrain.seed=18446744073709551615"}, true},
+      {{"terrain.lattice_size=4"}, true},
+      {{"terrain.lattice_size=4096"}, true},
+      {{"terrain.r=1.001"}, true},
+      {{"terrain.r=16", "terrain.last_octave=10"}, true},
+      {{"terrain.H=0.00025", "terrain.r=16", "terrain.last_octave=10"}, true},
+      {{"terrain.H=0.0009765625"}, true},  // the amplitude rule's bound at r = 2
+      {{"terrain.H=1"}, true},
+      {{"terrain.first_octave=0"}, true},
+      {{"terrain.first_octave=32", "terrain.last_octave=32", "terrain.horizontal_scale=1e8"}, true},
+      {{"terrain.last_octave=0"}, true},
+      {{"terrain.first_octave=32", "terrain.last_octave=55", "terrain.r=1.6",
+        "terrain.horizontal_scale=1e6"},
+       true},
+      {{"terrain.lod.bias=-8"}, true},
+      {{"terrain.lod.bias=8"}, true},
+      {{"terrain.warp.enabled=true", "terrain.warp.c1=[-100, -100]"}, true},
+      {{"terrain.warp.enabled=true", "terrain.warp.c1=[100, 100]"}, true},
+      {{"terrain.warp.enabled=true", "terrain.warp.c2=[-100, -100]"}, true},
+      {{"terrain.warp.enabled=true", "terrain.warp.c2=[100, 100]"}, true},
+      {{"terrain.warp.enabled=true", "terrain.warp.c3=[-100, -100]"}, true},
+      {{"terrain.warp.enabled=true", "terrain.warp.c3=[100, 100]"}, true},
+      {{"terrain.warp.enabled=true", "terrain.warp.r0=[-100, -100]"}, true},
+      {{"terrain.warp.enabled=true", "terrain.warp.r0=[100, 100]"}, true},
+      {{"terrain.warp.enabled=true", "terrain.warp.t0=[-100, -100]"}, true},
+      {{"terrain.warp.enabled=true", "terrain.warp.t0=[100, 100]"}, true},
+      {{"terrain.horizontal_scale=0.01"}, true},  // the bound across fields for this view
+      {{"terrain.horizontal_scale=1e9"}, true},
+      {{"terrain.base_height=-1e7"}, false},  // 1e7 below the camera: beyond camera.far
+      {{"terrain.base_height=1e7"}, false},   // the camera deep inside the terrain
+      {{"terrain.amplitude=1e-25"}, true},
+      {{"terrain.amplitude=1e7"}, false},  // the camera inside the mountains
+      {{"terrain.water_level=-1e7"}, true},
+      {{"terrain.water_level=1e7"}, true},
+      {{"shading.layers.3.tile_size=1e-4"}, true},
+      {{"shading.layers.3.tile_size=1e6"}, true},
+      {{"shading.layers.2.height=[-1e7, -9999999]"}, true},
+      {{"shading.layers.2.height=[9999999, 1e7]"}, true},
+      {{"shading.layers.2.height_spread=0"}, true},
+      {{"shading.layers.2.height_spread=1e6"}, true},
+      {{"shading.layers.2.slope_deg=[0, 0.001]"}, true},
+      {{"shading.layers.2.slope_deg=[89.999, 90]"}, true},
+      {{"shading.layers.2.slope_spread_deg=0"}, true},
+      {{"shading.layers.2.slope_spread_deg=45"}, true},
+      {{"shading.layers.4.specular=0"}, true},
+      {{"shading.layers.4.specular=1"}, true},
+      {{"shading.texture_size=16"}, true},
+      {{"shading.texture_size=2048", R"(shading.layers=[{"texture": "builtin:snow"}])"}, true},
+      {{"shading.mip_blend=0"}, true},
+      {{"shading.mip_blend=1"}, true},
+      {{"shading.dither=0"}, true},
+      {{"shading.dither=4"}, true},
+      {{"shading.dither_scale=0.01"}, true},
+      {{"shading.dither_scale=1e-26"}, true},
+      {{"shading.dither_scale=1e6"}, true},
+      {{"lighting.sun_azimuth_deg=-360"}, true},
+      {{"lighting.sun_azimuth_deg=360"}, true},
+      {{"lighting.sun_elevation_deg=-90"}, true},
+      {{"lighting.sun_elevation_deg=90"}, true},
+      {{"lighting.sun_color=[0, 0, 0]"}, true},
+      {{"lighting.sun_color=[1000, 1000, 1000]"}, true},
+      {{"lighting.sun_intensity=0"}, true},
+      {{"lighting.sun_intensity=1000"}, true},
+      {{"lighting.sky_color=[0, 0, 0]"}, true},
+      {{"lighting.sky_color=[1000, 1000, 1000]"}, true},
+      {{"lighting.ground_color=[0, 0, 0]"}, true},
+      {{"lighting.ground_color=[1000, 1000, 1000]"}, true},
+      {{"lighting.sky_intensity=0"}, true},
+      {{"lighting.sky_intensity=1000"}, true},
+      {{"lighting.ambient=0"}, true},
+      {{"lighting.ambient=1000"}, true},
+      {{"lighting.shininess=1"}, true},
+      {{"lighting.shininess=10000"}, true},
+      {{"lighting.exposure=1e-11"}, true},
+      {{"lighting.exposure=1000"}, true},
+      {{"water.shallow_color=[0, 0, 0]"}, true},
+      {{"water.shallow_color=[1, 1, 1]"}, true},
+      {{"water.deep_color=[0, 0, 0]"}, true},
+      {{"water.deep_color=[1, 1, 1]"}, true},
+      {{"water.extinction=[0, 0, 0]"}, true},
+      {{"water.extinction=[100, 100, 100]"}, true},
+      {{"water.full_depth=1e-26"}, true},
+      {{"water.full_depth=1e6"}, true},
+      {{"water.wave_length=1e-26"}, true},
+      {{"water.wave_length=1e6"}, true},
+      {{"water.wave_strength=0"}, true},
+      {{"water.wave_strength=10"}, true},
+      {{"water.wave_speed=0"}, true},
+      {{"water.wave_speed=1e6"}, true},
+      {{"sky.zenith_color=[0, 0, 0]"}, true},
+      {{"sky.zenith_color=[1000, 1000, 1000]"}, true},
+      {{"sky.horizon_color=[0, 0, 0]"}, true},
+      {{"sky.horizon_color=[1000, 1000, 1000]"}, true},
+      {{"sky.sun_disc_deg=0.11"}, true},
+      {{"sky.sun_disc_deg=10"}, true},
+      {{"sky.fog_density=0"}, true},
+      {{"sky.fog_density=1"}, true},
+      {{"time=-1e9"}, true},
+      {{"time=1e9"}, true},
+  };
+}
+
+TEST_CASE("everyNumericFieldRendersFiniteNonNegativeFramesAtBothOfItsBounds", "[limits]") {
+  for (const BoundCase& c : bound_cases()) {
+    std::string label;
+    for (const std::string& s : c.set) {
+      label.append(" --set ").append(s);
+    }
+    INFO(label);
+    const Frame f = render_small(c.set);
+    CHECK(f.bad_radiance == 0);
+    CHECK(f.bad_buffers == 0);
+    if (c.shows_terrain) {
+      CHECK(f.covered >= f.pixels / 10);
+    }
+  }
+}
+
+// --- The issue's cases ---------------------------------------------------------------------
+
+TEST_CASE("issueCaseTileSize1e-36IsRefusedAndTheSmallestAllowedTileRendersFinite", "[limits]") {
+  CHECK_THAT(error_of({"shading.layers.3.tile_size=1e-36"}),
+             Contains("shading.layers[3].tile_size = 1e-36 is out of range; allowed 1e-04 <= "
+                      "shading.layers[3].tile_size <= 1e+06"));
+  // Every layer at the smallest tile: GL's LOD stays within its log's domain everywhere.
+  std::vector<std::string> set;
+  for (int k = 0; k < 5; ++k) {
+    set.push_back(cat({"shading.layers.", std::to_string(k), ".tile_size=1e-4"}));
+  }
+  const Frame f = render_small(set);
+  CHECK(f.bad_radiance == 0);
+  CHECK(f.bad_buffers == 0);
+  CHECK(f.covered >= f.pixels / 10);
+}
+
+TEST_CASE("issueCaseTinyCameraNearIsRefusedAndTheSmallestAllowedNearStillShowsTheTerrain",
+          "[limits]") {
+  for (const char* tiny : {"camera.near=1e-30", "camera.near=1e-40", "camera.near=5e-324"}) {
+    INFO(tiny);
+    CHECK_THAT(error_of({tiny}),
+               Contains("is out of range; allowed 1e-17 <= camera.near <= 1e+09"));
+  }
+  const Frame reference = render_small(std::vector<std::string>{});
+  const Frame f = render_small({"camera.near=1e-17"});
+  CHECK(f.bad_radiance == 0);
+  CHECK(f.bad_buffers == 0);
+  CHECK(f.covered == reference.covered);
+  // Without the bound: at 1e-39 (a subnormal float) the clip-space z = near and the depth
+  // near / w are no longer normal floats, and the depth test drops every triangle.
+  Scene scene = resolve_scene("default", kSmallFrame);
+  scene.camera.near = 1e-39;
+  CHECK(render_scene(scene).covered == 0);
+}
+
+TEST_CASE("issueCaseTinyHorizontalScaleIsRefusedAndTheSmallestAllowedScaleStillVaries",
+          "[limits]") {
+  CHECK_THAT(error_of({"terrain.horizontal_scale=1e-30"}),
+             Contains("terrain.horizontal_scale = 1e-30 is out of range; allowed 1e-15 <= "
+                      "terrain.horizontal_scale <= 1e+09"));
+  CHECK_THAT(error_of({"terrain.horizontal_scale=1e-6"}),
+             Contains("allowed terrain.horizontal_scale >= "));
+  const auto distinct = [](const std::vector<float>& v) {
+    return std::set<float>(v.begin(), v.end()).size();
+  };
+  // One octave, so that a height depends on the lattice alone (not on the LOD weights).
+  const Frame f = render_small({"terrain.horizontal_scale=0.01", "terrain.last_octave=0"});
+  CHECK(f.bad_radiance == 0);
+  CHECK(f.bad_buffers == 0);
+  CHECK(distinct(f.heights) > f.heights.size() / 2);  // noise, not a constant
+  // Without the bound the lattice coordinates pass 2^24 P: the wrap returns cell 0 for every
+  // vertex, and the terrain is one flat plane.
+  std::vector<std::string> set = kSmallFrame;
+  set.push_back("terrain.last_octave=0");
+  Scene scene = resolve_scene("default", set);
+  scene.terrain.horizontal_scale = 1e-30;
+  CHECK(distinct(render_scene(scene).heights) == 1);
+}
+
+// nu = clamp(c0 - c1 log2_det(sigma^2), 1, N) as stage 2 evaluates it in float, against the
+// same formula in double on the same sigma^2: the largest difference over the spacings where
+// nu is in range (and above kMinSpacingSq, below which stage 2 takes no log).
+double worst_float_nu_error(const TerrainSettings& terrain) {
+  const LodPlan lod = make_lod_plan(terrain);
+  const float c0 = float(lod.c0), c1 = float(lod.c1), nu_max = float(lod.nu_max);
+  const double from = std::max(std::log2(limits::kMinSpacingSq), (lod.c0 - lod.nu_max) / lod.c1);
+  const double to = (lod.c0 - 1) / lod.c1;
+  double worst = 0;
+  int in_range = 0;
+  for (int k = 0; k <= 20000; ++k) {
+    const float spacing_sq = float(std::exp2(from + (to - from) * k / 20000));
+    const double exact = lod.c0 - lod.c1 * std::log2(double(spacing_sq));
+    if (exact < 1 || exact > lod.nu_max) {
+      continue;
+    }
+    const float nu = std::clamp(c0 - c1 * log2_det(spacing_sq), 1.0f, nu_max);
+    worst = std::max(worst, std::abs(double(nu) - exact));
+    ++in_range;
+  }
+  CHECK(in_range > 10000);
+  return worst;
+}
+
+TEST_CASE("issueCaseTinyHurstExponentIsRefusedAndTheSmallestAllowedKeepsFloatNuAccurate",
+          "[limits]") {
+  CHECK_THAT(error_of({"terrain.H=1e-30"}),
+             Contains("terrain.H = 1e-30 is out of range; allowed 0.00025 <= terrain.H <= 1"));
+  CHECK_THAT(error_of({"terrain.H=0.0005"}),
+             Contains("allowed terrain.H * log2(terrain.r) >= 0.0009765625"));
+  // At the bound (c1 = 512) float keeps nu within 1/256 octave of the exact formula, for
+  // amplitudes that put the in-range part anywhere in the spacings a frame can have.
+  TerrainSettings t;
+  t.H = 0x1p-10;
+  for (const double amplitude : {360.0, 0x1p-49, 1e7}) {
+    t.amplitude = amplitude;
+    INFO("amplitude " << amplitude);
+    CHECK(worst_float_nu_error(t) <= 1.0 / 256);
+  }
+  const Frame f = render_small({"terrain.H=0.0009765625"});
+  CHECK(f.bad_radiance == 0);
+  CHECK(f.bad_buffers == 0);
+  for (float nu : f.nu) {
+    REQUIRE(nu >= 1.0f);
+    REQUIRE(nu <= 15.0f);
+  }
+  // Beyond it the error grows with c1: at four times the gain it is twice the step.
+  t.H = 0x1p-12;
+  t.amplitude = 0x1p-49;
+  CHECK(worst_float_nu_error(t) > 1.0 / 256);
+  // And without any bound c1 overflows float: nu becomes NaN in stage 2's buffer.
+  Scene scene = resolve_scene("default", kSmallFrame);
+  scene.terrain.H = 1e-300;
+  CHECK(render_scene(scene).bad_buffers > 0);
+}
+
+TEST_CASE("issueCaseTinyDitherScaleIsRefusedAndTheSmallestAllowedRendersFinite", "[limits]") {
+  CHECK_THAT(error_of({"shading.dither_scale=1e-30"}),
+             Contains("shading.dither_scale = 1e-30 is out of range; allowed 1e-26 <= "
+                      "shading.dither_scale <= 1e+06"));
+  // The smallest allowed scale, and one whose noise cells the near pixels still resolve: the
+  // noise is sampled only where it is coarser than the pixels, so both render finite.
+  for (const char* scale : {"shading.dither_scale=1e-26", "shading.dither_scale=0.01"}) {
+    const Frame f = render_small({scale, "shading.dither=4"});
+    CHECK(f.bad_radiance == 0);
+    CHECK(f.bad_buffers == 0);
+    CHECK(f.covered >= f.pixels / 10);
+  }
+}
+
+// --- The derivations -----------------------------------------------------------------------
+
+TEST_CASE("everyDerivedBoundSatisfiesTheInequalityItIsDerivedFrom", "[limits]") {
+  namespace L = limits;
+  const double flt_max = std::numeric_limits<float>::max();
+  const double flt_min = std::numeric_limits<float>::min();
+  CHECK(L::kFloatMax == flt_max);
+  CHECK(L::kFloatMinNormal == flt_min);
+  // The largest camera-relative distance: footprints and heights (limits.h).
+  const double tan_x = std::tan(L::kMaxHorizontalFovDeg * M_PI / 360.0);
+  const double tan_y = std::tan(L::kMaxFovDeg * M_PI / 360.0);
+  const double corner = L::kMaxViewDistance * std::sqrt(1 + tan_x * tan_x + tan_y * tan_y);
+  const double slab = 2 * (L::kMaxBaseHeight + L::kMaxAmplitude * L::kMaxOctaves * 12.0);
+  CHECK(std::hypot(L::kMaxFootprintFactor * corner, corner + slab) <=
+        L::kMaxCameraRelativeDistance);
+  // camera.near: the squared footprint radius of the narrowest frustum, and reverse-Z depth.
+  const double radius = 2 * std::tan(L::kMinFovDeg * M_PI / 360.0) * L::kMinNearDistance;
+  CHECK(radius * radius >= flt_min);
+  CHECK(L::kMinNearDistance / L::kMaxCameraRelativeDistance >= flt_min);
+  CHECK(0.1 * radius * 0.1 * radius < flt_min);  // a decade lower would not do
+  // The LOD gain: Nyquist at the smallest r, amplitude at the smallest H with the largest r.
+  CHECK(0.5 / std::log2(L::kMinLacunarity) <= L::kMaxLodGain);
+  CHECK(0.5 / (L::kMinHurst * std::log2(L::kMaxLacunarity)) <= L::kMaxLodGain);
+  // Lattice and texture coordinates and their products stay finite.
+  CHECK(std::exp2(40) * L::kMaxCameraRelativeDistance / L::kMinHorizontalScale <= flt_max);
+  CHECK(L::kMinAmplitude * std::exp2(-40) >= flt_min);
+  const double texels = L::kMaxTextureSize * L::kMaxCameraRelativeDistance / L::kMinTileSize;
+  CHECK(texels * texels <= flt_max / 2);
+  CHECK(2 * 5.1 * L::kMaxCameraRelativeDistance / L::kMinInverseScaleLength <= flt_max);
+  // lighting.exposure: the brightest radiance still reaches the first sRGB code.
+  const double brightest = L::kMaxRadiance + 20.06 * L::kMaxRadiance * L::kMaxRadiance;
+  CHECK(L::kMinExposure * brightest >= 0.5 / 255 / 12.92);
+  // sky.sun_disc_deg: the disc's edge spans 16 float spacings below 1.
+  const double theta = L::kMinSunDiscDeg * M_PI / 180;
+  CHECK(float(std::cos(theta)) - float(std::cos(1.25 * theta)) >= 16 * 0x1p-24);
+}
+
+}  // namespace
+}  // namespace relief
