@@ -8,8 +8,27 @@
 //                        kGuardBandPixels; raster_types.h)
 // Triangles inside every plane are not clipped (the guard band makes that the rule: only
 // those crossing the near or far plane, or reaching millions of pixels off screen, are).
-// Triangles entirely outside one plane are rejected. New vertices are in + t (out - in),
-// t = d_in / (d_in - d_out), in float as GL implementations compute them.
+// Triangles entirely outside one plane are rejected.
+//
+// The clipper works in double: finite float coordinates (denormals flushed: 1e-38 to 3.4e38)
+// and the guard factors (below 2^22) neither overflow nor underflow there, and every rounding
+// is relative, so one triangle may mix any magnitudes. Classification is exact: each distance
+// of an input vertex is one rounding of the exact value, which keeps its sign.
+//
+// A new vertex is interpolated from the end nearer to the plane, P = S + t (E - S) with
+// t = d_S / (d_S - d_E) in [0, 1/2], as Mesa's draw module does (draw_pipe_clip.c; llvmpipe
+// 22.3 draws such triangles as exact arithmetic does): interpolating from a fixed end makes t
+// round to 1 and P collapse onto the other end, w = 0 included, when the distances differ by
+// orders of magnitude. The choice depends only on the edge's two vertices, never on the
+// direction it is walked in, so triangles sharing an edge get bit-identical new vertices (no
+// cracks). P is then put exactly on the plane (near: z = w; far: z = 0, w >= 0; guard:
+// x = +-g_x w, y = +-g_y w). A clipped triangle meets every plane, in the order near, far,
+// guards: after the far plane every vertex has 0 <= z <= w exactly, and the guard planes keep
+// w >= 0 (rounding is monotonic; t <= 1/2). w = 0 is then left only for a vertex at the
+// origin, which has no window position: in exact arithmetic that happens only when the
+// triangle is seen edge-on (its image is a line), so the vertex is dropped and the polygon is
+// the convex hull of the others. Every remaining vertex has w > 0, |x| <= g_x w and
+// |y| <= g_y w up to a few ulps: finite window coordinates inside the guard band.
 #pragma once
 
 namespace relief::raster {
@@ -18,7 +37,20 @@ struct ClipVertex {
   float x, y, z, w;
 };
 
-// 3 input vertices plus one per plane at most.
+// GL's rules for what reaches the clipper, applied to `in` (written to `out`); false when the
+// triangle draws nothing whatever its position:
+// - denormal coordinates are flushed to zero (sign kept): GLSL 4.50 section 4.7.1 allows it,
+//   Mesa's draw module runs with denormals-are-zero, and GPUs flush fp32 denormals in vertex
+//   shaders; so a vertex of denormals is the origin, as on the GPU;
+// - a non-finite coordinate rejects the triangle (Mesa's clipper discards NaN and infinite
+//   plane distances; Relief rejects them before any plane is evaluated);
+// - a vertex at the origin (0, 0, 0, 0), signs ignored, rejects the triangle: every point
+//   of the triangle is then a positive multiple of a point on the opposite edge, so its image
+//   is that edge's, a line of no area (llvmpipe draws nothing either).
+bool prepare_clip_input(const ClipVertex in[3], ClipVertex out[3]);
+
+// 3 input vertices plus one per plane at most (clipping a convex polygon against one plane
+// adds at most one vertex).
 inline constexpr int kMaxClippedVertices = 9;
 
 struct ClipPlanes {
@@ -26,11 +58,20 @@ struct ClipPlanes {
   float guard_y;
 };
 
+// A vertex of a clipped polygon: homogeneous clip coordinates in double, and which input
+// vertex it is.
+struct PolygonVertex {
+  double x, y, z, w;
+  int source;  // 0..2: input vertex `source`, unchanged; -1: a vertex made by clipping
+};
+
 enum class ClipOutcome { kInside, kOutside, kClipped };
 
-// Classifies the triangle; when it must be clipped, writes the convex polygon (in the input's
-// winding) to `out` and its vertex count (0 when nothing is left) to `count`.
+// Classifies the triangle (precondition: prepared by prepare_clip_input; other input is safe
+// but NaN coordinates count as outside). kInside: count = 3, `out` unused. kOutside: count = 0.
+// kClipped: `out` holds the convex polygon in the input's winding, count vertices (0 when
+// nothing is left), each with w > 0.
 ClipOutcome clip_triangle(const ClipVertex in[3], const ClipPlanes& planes,
-                          ClipVertex out[kMaxClippedVertices], int& count);
+                          PolygonVertex out[kMaxClippedVertices], int& count);
 
 }  // namespace relief::raster

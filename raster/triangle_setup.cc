@@ -16,16 +16,35 @@ std::int64_t ceil_div(std::int64_t a) {
   return -floor_div(-a);
 }
 
+// Round half to even, exactly, without a libm call: adding and removing 1.5 * 2^52 in double
+// leaves the nearest integer (ties to even) for |scaled| < 2^51; the guard band keeps |scaled|
+// below 2^30.
+std::int32_t round_half_even(double scaled) {
+  constexpr double kRoundingMagic = 6755399441055744.0;  // 1.5 * 2^52
+  return static_cast<std::int32_t>((scaled + kRoundingMagic) - kRoundingMagic);
+}
+
+// 3 x 3 determinant of the columns p, q, r (rows: the triangle's vertices).
+double det3(const double p[3], const double q[3], const double r[3]) {
+  return p[0] * (q[1] * r[2] - q[2] * r[1]) - p[1] * (q[0] * r[2] - q[2] * r[0]) +
+         p[2] * (q[0] * r[1] - q[1] * r[0]);
+}
+
+// Window coordinates of polygon vertices are checked against this before snapping: the
+// clipper keeps them within the guard band (2^21 px) up to a few ulps (float ones up to half
+// an ulp of 2^21 more), and the edge set-up needs snapped differences below 2^31. A vertex
+// beyond it would mean a broken invariant: the triangle is dropped rather than snapped.
+constexpr double kSnapLimitPixels = kGuardBandPixels + 1.0;
+
 }  // namespace
 
 std::int32_t snap_to_fixed(float window_coordinate) {
   const float scaled = (window_coordinate - 0.5f) * static_cast<float>(kSubpixelScale);
-  // Round half to even, exactly, without a libm call: adding and removing 1.5 * 2^52 in
-  // double leaves the nearest integer (ties to even) for |scaled| < 2^51; the guard band keeps
-  // |scaled| below 2^30.
-  constexpr double kRoundingMagic = 6755399441055744.0;  // 1.5 * 2^52
-  const double rounded = (static_cast<double>(scaled) + kRoundingMagic) - kRoundingMagic;
-  return static_cast<std::int32_t>(rounded);
+  return round_half_even(static_cast<double>(scaled));
+}
+
+std::int32_t snap_double_to_fixed(double window_coordinate) {
+  return round_half_even((window_coordinate - 0.5) * kSubpixelScale);
 }
 
 TriangleSetup::TriangleSetup(const RasterState& state) : state_(state) {
@@ -44,32 +63,133 @@ TriangleSetup::TriangleSetup(const RasterState& state) : state_(state) {
 }
 
 void TriangleSetup::to_window(const ClipVertex& v, float& x, float& y, float& z) const {
-  const float inv_w = 1.0f / v.w;  // w > 0 after clipping against the near plane
+  const float inv_w = 1.0f / v.w;  // w > 0 and normal (denormals flushed): 1/w is finite
   x = v.x * inv_w * scale_x_ + translate_x_;
   y = v.y * inv_w * scale_y_ + translate_y_;
   z = v.z * inv_w;  // glDepthRange(0, 1), GL_ZERO_TO_ONE
 }
 
-void TriangleSetup::setup_clip(std::uint32_t primitive, const ClipVertex v[3],
+void TriangleSetup::to_window(const PolygonVertex& v, double& x, double& y) const {
+  // Division domain: w > 0, and |x|, |y| <= g w up to a few ulps, so the quotients are finite
+  // and bounded by the guard band.
+  x = v.x / v.w * double(scale_x_) + double(translate_x_);
+  y = v.y / v.w * double(scale_y_) + double(translate_y_);
+}
+
+void TriangleSetup::setup_clip(std::uint32_t primitive, const ClipVertex v_in[3],
                                std::vector<RasterTriangle>& out) const {
-  ClipVertex polygon[kMaxClippedVertices];
+  ClipVertex v[3];
+  if (!prepare_clip_input(v_in, v)) {
+    return;
+  }
+  PolygonVertex polygon[kMaxClippedVertices];
   int count = 0;
   const ClipOutcome outcome = clip_triangle(v, planes_, polygon, count);
   if (outcome == ClipOutcome::kOutside) {
     return;
   }
-  const ClipVertex* vertices = outcome == ClipOutcome::kInside ? v : polygon;
-  float wx[kMaxClippedVertices], wy[kMaxClippedVertices], wz[kMaxClippedVertices];
+  if (outcome == ClipOutcome::kInside) {
+    for (int k = 0; k < 3; ++k) {
+      polygon[k].source = k;  // input vertices: only `source` is read
+    }
+  }
+  setup_polygon(primitive, v, polygon, count, out);
+}
+
+void TriangleSetup::setup_polygon(std::uint32_t primitive, const ClipVertex v[3],
+                                  const PolygonVertex polygon[kMaxClippedVertices], int count,
+                                  std::vector<RasterTriangle>& out) const {
+  if (count < 3) {
+    return;
+  }
+  // Input vertices get their float window coordinates, as GL computes them: bit for bit the
+  // same in every triangle sharing them, clipped or not, so a mesh stays watertight. New
+  // vertices are snapped from double.
+  std::int32_t fx[kMaxClippedVertices], fy[kMaxClippedVertices];
+  double first_x = 0, first_y = 0, first_z = 0;
   for (int k = 0; k < count; ++k) {
-    to_window(vertices[k], wx[k], wy[k], wz[k]);
+    double x, y, z;
+    if (polygon[k].source >= 0) {
+      float xf, yf, zf;
+      to_window(v[polygon[k].source], xf, yf, zf);
+      x = xf, y = yf, z = zf;
+    } else {
+      to_window(polygon[k], x, y);
+      z = polygon[k].z / polygon[k].w;  // domain: w > 0 (clip_triangle)
+    }
+    if (!(std::abs(x) < kSnapLimitPixels && std::abs(y) < kSnapLimitPixels)) {
+      return;  // unreachable while clip_triangle's invariants hold (clip.h)
+    }
+    fx[k] = polygon[k].source >= 0 ? snap_to_fixed(float(x)) : snap_double_to_fixed(x);
+    fy[k] = polygon[k].source >= 0 ? snap_to_fixed(float(y)) : snap_double_to_fixed(y);
+    if (k == 0) {
+      first_x = x, first_y = y, first_z = z;
+    }
   }
   // A clipped polygon is convex: a fan from its first vertex covers it exactly once.
+  bool have_plane = false;
+  double z0 = 0.0, dzdx = 0.0, dzdy = 0.0;
   for (int k = 1; k + 1 < count; ++k) {
-    const float x[3] = {wx[0], wx[k], wx[k + 1]};
-    const float y[3] = {wy[0], wy[k], wy[k + 1]};
-    const float z[3] = {wz[0], wz[k], wz[k + 1]};
-    setup_window(primitive, x, y, z, out);
+    std::int32_t px[3] = {fx[0], fx[k], fx[k + 1]};
+    std::int32_t py[3] = {fy[0], fy[k], fy[k + 1]};
+    RasterTriangle t;
+    bool swapped = false;
+    if (!set_up_edges(px, py, t, swapped)) {
+      continue;
+    }
+    if (!have_plane) {
+      // The depth plane of the whole triangle (once, for the first piece that covers a pixel),
+      // referred to a whole pixel at its first vertex so that its coefficients suffer no
+      // cancellation against a distant window origin.
+      have_plane = true;
+      const double u0 = std::floor(first_x), v0 = std::floor(first_y);
+      double z_ref = first_z;
+      if (!depth_plane(v, u0, v0, z_ref, dzdx, dzdy)) {
+        z_ref = first_z;  // seen edge-on: any piece left by rounding gets a constant depth
+        dzdx = dzdy = 0.0;
+      }
+      z0 = z_ref + dzdx * (0.5 - u0) + dzdy * (0.5 - v0);
+    }
+    t.z0 = z0;
+    t.dzdx = dzdx;
+    t.dzdy = dzdy;
+    t.primitive = primitive;
+    out.push_back(t);
   }
+}
+
+bool TriangleSetup::depth_plane(const ClipVertex v[3], double u0, double v0, double& z_ref,
+                                double& dzdx, double& dzdy) const {
+  // Homogeneous window coordinates relative to (u0, v0): X = x s_x + w (t_x - u0), Y likewise,
+  // Z = z, W = w. The triangle spans a 3D subspace of (X, Y, Z, W) space whose normal n is the
+  // generalised cross product of the three rows (its 3 x 3 minors); on the ray of window point
+  // (u0 + a, v0 + b), X = a W and Y = b W, so n_X a + n_Y b + n_Z z + n_W = 0 with z = Z/W.
+  // Range: |X|, |Y| < 2^25 * 3.4e38 for viewports below 2^24 px (the guard band keeps
+  // |t_x - u0| below 2^22), so products of three stay below 1e140; nonzero float inputs
+  // (denormals flushed) are above 1e-38, products above 1e-114: double neither overflows nor
+  // underflows, and its rounding is relative.
+  const double cx = double(translate_x_) - u0;  // exact: integers and floats below 2^24
+  const double cy = double(translate_y_) - v0;
+  double X[3], Y[3], Z[3], W[3];
+  for (int k = 0; k < 3; ++k) {
+    X[k] = double(v[k].x) * double(scale_x_) + double(v[k].w) * cx;
+    Y[k] = double(v[k].y) * double(scale_y_) + double(v[k].w) * cy;
+    Z[k] = v[k].z;
+    W[k] = v[k].w;
+  }
+  const double n_x = det3(Y, Z, W);
+  const double n_y = -det3(X, Z, W);
+  const double n_z = det3(X, Y, W);
+  const double n_w = -det3(X, Y, Z);
+  // Division domain: n_z != 0, i.e. the triangle's image has area (n_z is proportional to its
+  // signed area in homogeneous window coordinates); else no plane z(x, y) exists.
+  if (!(std::abs(n_z) > 0.0)) {
+    return false;
+  }
+  dzdx = -n_x / n_z;
+  dzdy = -n_y / n_z;
+  z_ref = -n_w / n_z;
+  return std::isfinite(dzdx) && std::isfinite(dzdy) && std::isfinite(z_ref);
 }
 
 void TriangleSetup::setup_window(std::uint32_t primitive, const float x_in[3], const float y_in[3],
@@ -79,27 +199,51 @@ void TriangleSetup::setup_window(std::uint32_t primitive, const float x_in[3], c
   float z[3] = {z_in[0], z_in[1], z_in[2]};
   std::int32_t fx[3], fy[3];
   for (int k = 0; k < 3; ++k) {
+    if (!(std::abs(x[k]) < kSnapLimitPixels && std::abs(y[k]) < kSnapLimitPixels)) {
+      return;  // outside the precondition: dropped rather than snapped out of range
+    }
     fx[k] = snap_to_fixed(x[k]);
     fy[k] = snap_to_fixed(y[k]);
   }
-  const std::int64_t area = static_cast<std::int64_t>(fx[1] - fx[0]) * (fy[2] - fy[0]) -
-                            static_cast<std::int64_t>(fx[2] - fx[0]) * (fy[1] - fy[0]);
-  if (area == 0) {
-    return;  // zero-area triangles produce nothing
-  }
-  const bool counter_clockwise = area > 0;
-  const bool front = counter_clockwise == (state_.front_face == FrontFace::kCounterClockwise);
-  if ((state_.cull == CullMode::kBack && !front) || (state_.cull == CullMode::kFront && front)) {
+  RasterTriangle t;
+  bool swapped = false;
+  if (!set_up_edges(fx, fy, t, swapped)) {
     return;
   }
-  if (!counter_clockwise) {
-    std::swap(fx[1], fx[2]);
-    std::swap(fy[1], fy[2]);
+  if (swapped) {
     std::swap(x[1], x[2]);
     std::swap(y[1], y[2]);
     std::swap(z[1], z[2]);
   }
-  RasterTriangle t;
+  // Depth plane through the window-space vertices. Division domain: det != 0, else a
+  // constant plane (the snapped triangle has area, but its float vertices are collinear).
+  const double ex = double(x[1]) - x[0], ey = double(y[1]) - y[0], ez = double(z[1]) - z[0];
+  const double gx = double(x[2]) - x[0], gy = double(y[2]) - y[0], gz = double(z[2]) - z[0];
+  const double det = ex * gy - gx * ey;
+  t.dzdx = det != 0.0 ? (ez * gy - gz * ey) / det : 0.0;
+  t.dzdy = det != 0.0 ? (ex * gz - gx * ez) / det : 0.0;
+  t.z0 = double(z[0]) + t.dzdx * (0.5 - double(x[0])) + t.dzdy * (0.5 - double(y[0]));
+  t.primitive = primitive;
+  out.push_back(t);
+}
+
+bool TriangleSetup::set_up_edges(std::int32_t fx[3], std::int32_t fy[3], RasterTriangle& t,
+                                 bool& swapped) const {
+  const std::int64_t area = static_cast<std::int64_t>(fx[1] - fx[0]) * (fy[2] - fy[0]) -
+                            static_cast<std::int64_t>(fx[2] - fx[0]) * (fy[1] - fy[0]);
+  if (area == 0) {
+    return false;  // zero-area triangles produce nothing
+  }
+  const bool counter_clockwise = area > 0;
+  const bool front = counter_clockwise == (state_.front_face == FrontFace::kCounterClockwise);
+  if ((state_.cull == CullMode::kBack && !front) || (state_.cull == CullMode::kFront && front)) {
+    return false;
+  }
+  swapped = !counter_clockwise;
+  if (swapped) {
+    std::swap(fx[1], fx[2]);
+    std::swap(fy[1], fy[2]);
+  }
   const std::int64_t min_x = std::min({fx[0], fx[1], fx[2]});
   const std::int64_t max_x = std::max({fx[0], fx[1], fx[2]});
   const std::int64_t min_y = std::min({fy[0], fy[1], fy[2]});
@@ -109,7 +253,7 @@ void TriangleSetup::setup_window(std::uint32_t primitive, const float x_in[3], c
   t.y0 = static_cast<std::int32_t>(std::max<std::int64_t>(ceil_div(min_y), region_y0_));
   t.y1 = static_cast<std::int32_t>(std::min<std::int64_t>(floor_div(max_y), region_y1_));
   if (t.x0 > t.x1 || t.y0 > t.y1) {
-    return;
+    return false;
   }
   for (int i = 0; i < 3; ++i) {
     const int n = (i + 1) % 3;
@@ -122,16 +266,7 @@ void TriangleSetup::setup_window(std::uint32_t primitive, const float x_in[3], c
         -(static_cast<std::int64_t>(t.a[i]) * fx[i] + static_cast<std::int64_t>(t.b[i]) * fy[i]) +
         (left_or_bottom ? 1 : 0);
   }
-  // Depth plane through the window-space vertices. Division domain: det != 0, else a
-  // constant plane (the snapped triangle has area, but its float vertices are collinear).
-  const double ex = double(x[1]) - x[0], ey = double(y[1]) - y[0], ez = double(z[1]) - z[0];
-  const double gx = double(x[2]) - x[0], gy = double(y[2]) - y[0], gz = double(z[2]) - z[0];
-  const double det = ex * gy - gx * ey;
-  t.dzdx = det != 0.0 ? (ez * gy - gz * ey) / det : 0.0;
-  t.dzdy = det != 0.0 ? (ex * gz - gx * ez) / det : 0.0;
-  t.z0 = double(z[0]) + t.dzdx * (0.5 - double(x[0])) + t.dzdy * (0.5 - double(y[0]));
-  t.primitive = primitive;
-  out.push_back(t);
+  return true;
 }
 
 }  // namespace relief::raster

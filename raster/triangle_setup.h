@@ -24,9 +24,13 @@ struct RasterTriangle {
   std::int32_t a[3];  // edge coefficients per fixed-point unit
   std::int32_t b[3];
   std::int32_t x0, y0, x1, y1;  // inclusive pixel bounds, inside viewport and framebuffer
-  // Depth at pixel (px, py): z0 + dzdx px + dzdy py, from the plane through the (unsnapped)
-  // window coordinates, in double, then clamped to [0, 1] (GL's depth range) and rounded to
-  // float.
+  // Depth at pixel (px, py): z0 + dzdx px + dzdy py, in double, then clamped to [0, 1] (GL's
+  // depth range) and rounded to float. The plane: for a clip-space triangle, clipped or not,
+  // the plane of the whole triangle from its clip coordinates in double (z/w is affine in
+  // window x, y over it), so that neither a rounded window coordinate nor a rounded clipped
+  // vertex enters it: within one float ulp of 1 of exact arithmetic (measured: half an ulp,
+  // docs/rasteriser-accuracy.md). For a window-coordinate triangle, the plane through its
+  // (unsnapped) vertices.
   double z0, dzdx, dzdy;
   std::uint32_t primitive;
 
@@ -52,15 +56,36 @@ class TriangleSetup {
   void setup_clip(std::uint32_t primitive, const ClipVertex v[3],
                   std::vector<RasterTriangle>& out) const;
 
-  // Appends one triangle given in window coordinates (precondition: within the guard band).
+  // Appends one triangle given in window coordinates (precondition: within the guard band; a
+  // triangle with a coordinate beyond it or NaN is dropped, never snapped).
   void setup_window(std::uint32_t primitive, const float x[3], const float y[3], const float z[3],
                     std::vector<RasterTriangle>& out) const;
 
   // Window x, y, z of a clip-space vertex: x/w * scale + translate, in float, in the order GL
-  // implementations evaluate it.
+  // implementations evaluate it. Precondition: w > 0 and |x|, |y| within the guard band times
+  // w (an input vertex inside every clip plane, after prepare_clip_input).
   void to_window(const ClipVertex& v, float& x, float& y, float& z) const;
 
+  // Window x, y of a vertex made by clipping, in double (precondition: w > 0, as clip_triangle
+  // guarantees).
+  void to_window(const PolygonVertex& v, double& x, double& y) const;
+
  private:
+  // Edge functions and pixel bounds of a snapped triangle (made counter-clockwise: `swapped`
+  // tells whether vertices 1 and 2 were exchanged); false when it is culled, has zero area or
+  // covers no pixel centre of the region.
+  bool set_up_edges(std::int32_t fx[3], std::int32_t fy[3], RasterTriangle& t, bool& swapped) const;
+  // The pieces of a triangle that is not rejected: `polygon` and `count` from clip_triangle
+  // (for a triangle inside every plane, the three input vertices, of which only `source` is
+  // set), `v` the prepared input.
+  void setup_polygon(std::uint32_t primitive, const ClipVertex v[3],
+                     const PolygonVertex polygon[kMaxClippedVertices], int count,
+                     std::vector<RasterTriangle>& out) const;
+  // Depth plane of the original triangle: z = z_ref + dzdx (x - u0) + dzdy (y - v0) in window
+  // coordinates; false where it is undefined (the triangle is seen edge-on).
+  bool depth_plane(const ClipVertex v[3], double u0, double v0, double& z_ref, double& dzdx,
+                   double& dzdy) const;
+
   const RasterState& state_;
   ClipPlanes planes_;
   float scale_x_, scale_y_, translate_x_, translate_y_;
@@ -69,5 +94,8 @@ class TriangleSetup {
 
 // Round-half-to-even of (coordinate - 0.5) * 256 in float: llvmpipe's snapping, exactly.
 std::int32_t snap_to_fixed(float window_coordinate);
+
+// The same in double, for vertices made by clipping (precondition: |coordinate| < 2^22).
+std::int32_t snap_double_to_fixed(double window_coordinate);
 
 }  // namespace relief::raster

@@ -10,13 +10,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <memory>
 #include <string>
 #include <vector>
 
 #include <catch2/catch.hpp>
 
 #include "core/counter_hash.h"
+#include "gl_test_context.h"
 #include "gpu/gl_rasterizer.h"
 #include "gpu/headless_gl.h"
 #include "raster/rasterize.h"
@@ -34,15 +34,7 @@ constexpr double kHalfViewport = kViewportSide / 2.0;
 constexpr double kDepthBound = 4.0 * 0x1.0p-24;
 
 gpu::HeadlessGl& gl() {
-  static std::unique_ptr<gpu::HeadlessGl> context = [] {
-    std::string error;
-    auto opened = gpu::HeadlessGl::open(error);
-    if (!opened) {
-      FAIL("OpenGL through EGL is required for this test (make test installs Mesa): " << error);
-    }
-    return opened;
-  }();
-  return *context;
+  return test::gl_context();
 }
 
 // A triangle soup in clip coordinates, built from window or clip coordinates.

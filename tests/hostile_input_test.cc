@@ -227,9 +227,10 @@ TEST_CASE("outputNamesFromTheSceneMustNameTheFormatTheyAreWrittenIn", "[hostile]
   const std::filesystem::path jpg = dir.path() / "x.jpg";
   require_refused(run({"render", "--set", concat({"output.image=", jpg.string()})}),
                   "output.image = \"" + jpg.string() + "\": the image is written as PNG", jpg);
-  require_refused(run({"render", "--set", "output.float_image=x.exr", "-o",
-                       (dir.path() / "x.png").string()}),
-                  "give a name ending in .pfm", dir.path() / "x.png");
+  require_refused(
+      run({"render", "--set", concat({"output.float_image=", (dir.path() / "x.exr").string()}),
+           "-o", (dir.path() / "x.png").string()}),
+      "give a name ending in .pfm", dir.path() / "x.png");
   require_refused(run({"render", "-o", (dir.path() / "x.PnG.jpg").string()}),
                   "give a file name ending in .png", dir.path() / "x.PnG.jpg");
   CHECK(resolve_scene("default", {"output.image=A.PNG"}).output.image == "A.PNG");
