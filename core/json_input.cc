@@ -1,6 +1,7 @@
 #include "core/json_input.h"
 
 #include <charconv>
+#include <cstdint>
 #include <set>
 #include <vector>
 
@@ -76,14 +77,67 @@ void append_brief(const json& value, std::string& out) {
 }  // namespace
 
 std::string brief_text(std::string_view text, std::size_t limit) {
-  if (text.size() <= limit) {
-    return std::string(text);
+  std::size_t cut = text.size();
+  if (text.size() > limit) {
+    cut = limit;
+    while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xc0) == 0x80) {
+      --cut;  // do not split a UTF-8 sequence
+    }
   }
-  std::size_t cut = limit;
-  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xc0) == 0x80) {
-    --cut;  // do not split a UTF-8 sequence
+  // Control characters (a NUL would end the message on a terminal, an ESC would command it)
+  // are written as \xNN.
+  std::string out;
+  for (const char c : text.substr(0, cut)) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f) {
+      static constexpr char kHex[] = "0123456789abcdef";
+      out += "\\x";
+      out += kHex[byte >> 4];
+      out += kHex[byte & 15];
+    } else {
+      out += c;
+    }
   }
-  return std::string(text.substr(0, cut)) + "... (" + std::to_string(text.size()) + " characters)";
+  if (cut < text.size()) {
+    out += "... (" + std::to_string(text.size()) + " bytes)";
+  }
+  return out;
+}
+
+bool is_valid_utf8(std::string_view text) {
+  std::size_t k = 0;
+  while (k < text.size()) {
+    const auto lead = static_cast<unsigned char>(text[k]);
+    // Length and smallest code point of the sequence; continuation bytes are 10xxxxxx.
+    int length = 0;
+    std::uint32_t code = 0, smallest = 0;
+    if (lead < 0x80) {
+      length = 1, code = lead;
+    } else if ((lead & 0xe0) == 0xc0) {
+      length = 2, code = lead & 0x1f, smallest = 0x80;
+    } else if ((lead & 0xf0) == 0xe0) {
+      length = 3, code = lead & 0x0f, smallest = 0x800;
+    } else if ((lead & 0xf8) == 0xf0) {
+      length = 4, code = lead & 0x07, smallest = 0x10000;
+    } else {
+      return false;
+    }
+    if (k + length > text.size()) {
+      return false;
+    }
+    for (int c = 1; c < length; ++c) {
+      const auto next = static_cast<unsigned char>(text[k + c]);
+      if ((next & 0xc0) != 0x80) {
+        return false;
+      }
+      code = code << 6 | (next & 0x3f);
+    }
+    if (code < smallest || code > 0x10ffff || (code >= 0xd800 && code <= 0xdfff)) {
+      return false;
+    }
+    k += length;
+  }
+  return true;
 }
 
 std::string brief(const json& value) {

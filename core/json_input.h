@@ -25,6 +25,10 @@ std::string brief(const nlohmann::json& value);
 
 inline constexpr std::size_t kBriefChars = 80;
 
+// Whether `text` is well-formed UTF-8 (RFC 3629: no overlong forms, no surrogates, at most
+// U+10FFFF). JSON text must be; the parser checks files, this checks --set's bare words.
+bool is_valid_utf8(std::string_view text);
+
 // `text` cut to about `limit` characters for a message, with its length when cut.
 std::string brief_text(std::string_view text, std::size_t limit = kBriefChars);
 

@@ -137,12 +137,16 @@ void validate_scene(const Scene& scene) {
   const double aspect = static_cast<double>(scene.viewport.width) / scene.viewport.height;
   const double horizontal_fov_deg =
       2.0 * std::atan(std::tan(c.fov_y_deg * M_PI / 360.0) * aspect) * 180.0 / M_PI;
-  if (horizontal_fov_deg > limits::kMaxHorizontalFovDeg) {
+  // The horizontal field has the vertical one's limits: narrower than a degree, neighbouring
+  // grid rays round to the same float footprint (docs/scene-limits.md, "Field of view").
+  if (horizontal_fov_deg > limits::kMaxHorizontalFovDeg ||
+      horizontal_fov_deg < limits::kMinFovDeg) {
     fail("camera.fov_y_deg",
          "camera.fov_y_deg = " + format_number(c.fov_y_deg) + " with viewport " +
              std::to_string(scene.viewport.width) + "x" + std::to_string(scene.viewport.height) +
              " gives a horizontal field of view of " + format_number(horizontal_fov_deg) +
-             " degrees; allowed at most " + format_number(limits::kMaxHorizontalFovDeg));
+             " degrees; allowed " + format_number(limits::kMinFovDeg) + " to " +
+             format_number(limits::kMaxHorizontalFovDeg));
   }
   // Float bounds across fields (core/limits.h, docs/scene-limits.md).
   const double log2_r = std::log2(t.r);
@@ -182,7 +186,7 @@ void validate_scene(const Scene& scene) {
         .append(" with camera.far = ")
         .append(format_number(c.far))
         .append(" puts the farthest footprint (")
-        .append(format_number(std::round(farthest_footprint)))
+        .append(format_number(farthest_footprint))
         .append(" units away) at lattice coordinate ")
         .append(format_number(
             std::round(period + coarsest_frequency * farthest_footprint / t.horizontal_scale)))
@@ -314,27 +318,32 @@ json parse_override(std::string_view assignment) {
       throw SceneError(key, source + ": " + brief_text(key) + " = " + brief_text(text) +
                                 " is not a finite number");
     }
+    if (!is_valid_utf8(text)) {
+      throw SceneError(key, source + ": " + brief_text(key) + " = " + brief_text(text) +
+                                " is not valid UTF-8; scene values are text");
+    }
     value = text;
   }
   // Build {"a": {"b": value}} from "a.b"; each segment is checked by apply_scene_layer.
-  json layer = value;
-  std::size_t end = key.size();
-  for (int segments = 1;; ++segments) {
-    const std::size_t dot = key.rfind('.', end - 1);
-    const std::size_t begin = dot == std::string::npos ? 0 : dot + 1;
-    const std::string segment = key.substr(begin, end - begin);
-    if (segment.empty()) {
+  std::vector<std::string> segments;
+  for (std::size_t begin = 0;;) {
+    const std::size_t dot = std::min(key.find('.', begin), key.size());
+    segments.push_back(key.substr(begin, dot - begin));
+    if (segments.back().empty()) {
       throw SceneError(key, source + ": key '" + brief_text(key) + "' has an empty segment");
     }
-    if (segments > limits::kMaxJsonDepth) {
+    if (segments.size() > std::size_t(limits::kMaxJsonDepth)) {
       throw SceneError(key, source + ": key '" + brief_text(key) + "' has more than " +
                                 std::to_string(limits::kMaxJsonDepth) + " segments");
     }
-    layer = json{{segment, layer}};
-    if (dot == std::string::npos) {
+    if (dot == key.size()) {
       break;
     }
-    end = dot;
+    begin = dot + 1;
+  }
+  json layer = value;
+  for (auto segment = segments.rbegin(); segment != segments.rend(); ++segment) {
+    layer = json{{*segment, layer}};
   }
   return layer;
 }
@@ -385,11 +394,12 @@ Scene resolve_scene(std::string_view scene_arg, const std::vector<std::string>& 
   const std::string* angles_override = nullptr;
   json look_at_layer;
   for (const std::string& assignment : overrides) {
-    const json layer = parse_override(assignment);
+    json layer = parse_override(assignment);
     const DirectionForms forms = direction_forms(layer);
-    if (forms.look_at) {
+    if (forms.look_at) {  // applied once the position is final, below
       look_at_override = &assignment;
       look_at_layer = json{{"camera", {{"look_at", layer["camera"]["look_at"]}}}};
+      layer["camera"].erase("look_at");
     }
     angles_override = forms.angles ? &assignment : angles_override;
     if (look_at_override && angles_override) {

@@ -75,8 +75,14 @@ void apply_material_layer(const LayerReader& in, const json& value, const std::s
                  in.fail(p, p + " = " + brief(v) + " names no built-in texture; allowed: builtin:" +
                                 join(names, ", builtin:") + ", or a PNG file");
                }
-             } else if (!base_dir.empty() && std::filesystem::path(texture).is_relative()) {
-               texture = (base_dir / texture).lexically_normal().string();
+             } else if (std::filesystem::path(texture).is_relative()) {
+               // Relative to the scene file's directory (the current one for --set), made
+               // absolute so that the printed scene loads back from anywhere.
+               std::error_code ec;
+               const std::filesystem::path absolute =
+                   std::filesystem::absolute(base_dir / texture, ec);
+               texture = ec ? (base_dir / texture).lexically_normal().string()
+                            : absolute.lexically_normal().string();
              }
              layer.texture = texture;
            }},
@@ -148,7 +154,11 @@ void apply_material_layers(const LayerReader& in, const json& value, const std::
   for (const auto& [key, item] : value.items()) {
     std::size_t index = 0;
     const auto [end, ec] = std::from_chars(key.data(), key.data() + key.size(), index);
-    if (ec != std::errc() || end != key.data() + key.size() || index >= layers.size()) {
+    // Indices are written as decimals without leading zeros, so that "1" and "01" cannot both
+    // patch layer 1 in one object (one of them would be dropped).
+    const bool canonical = key.size() == 1 || key[0] != '0';
+    if (ec != std::errc() || end != key.data() + key.size() || index >= layers.size() ||
+        !canonical) {
       in.fail(path, "no layer '" + brief_text(key) + "' in " + path + "; allowed indices 0 to " +
                         std::to_string(layers.size() - 1));
     }

@@ -35,6 +35,13 @@ mkfifo "$work/fifo.json"
 expect_bad_input render "$work/fifo.json" -o "$work/out.png"
 expect_bad_input raster /dev/zero --out "$work/out"
 
+# The scene printed to a full disk was not printed: exit 1.
+if [ -w /dev/full ]; then
+  "$relief" scene >/dev/full 2>"$work/stderr"
+  code=$?
+  [ "$code" -eq 1 ] || fail "'relief scene >/dev/full' exited $code, expected 1"
+fi
+
 # An allocation that fails although the estimate fitted (here: an address-space limit the
 # estimate does not read) ends with exit 1 and a message. AddressSanitizer reserves terabytes of
 # address space for its shadow memory, so the sanitizer build cannot run under such a limit.

@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include "cli_support.h"
 #include "core/frame_plan.h"
 #include "core/lattice.h"
 #include "core/scene_json.h"
@@ -21,28 +22,10 @@ namespace {
 
 using Catch::Matchers::Contains;
 
-struct CliResult {
-  int code;
-  std::string out;
-  std::string err;
-};
-
-CliResult run(std::vector<std::string> args) {
-  args.insert(args.begin(), "relief");
-  std::ostringstream out, err;
-  const int code = run_cli(args, out, err);
-  return {code, out.str(), err.str()};
-}
-
-std::string write_text(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream(path) << text;
-  return path.string();
-}
-
-std::vector<unsigned char> read_bytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using test::CliResult;
+using test::read_bytes;
+using test::run;
+using test::write_file;
 
 TEST_CASE("helpExplainsTheCommandsAndOptions", "[cli]") {
   const CliResult top = run({"--help"});
@@ -68,15 +51,15 @@ TEST_CASE("badInputExitsWithCodeTwoAndWritesNoFile", "[cli]") {
   test::TempDir dir("bad-input");
   const std::filesystem::path out = dir.path() / "out";
   const std::vector<std::vector<std::string>> cases = {
-      {"stages", write_text(dir.path() / "a.json", R"({"terrain": {"r": 1}})"), "--out",
+      {"stages", write_file(dir.path() / "a.json", R"({"terrain": {"r": 1}})"), "--out",
        out.string()},
-      {"stages", write_text(dir.path() / "b.json", R"({"terrain": {"q": 1}})"), "--out",
+      {"stages", write_file(dir.path() / "b.json", R"({"terrain": {"q": 1}})"), "--out",
        out.string()},
-      {"stages", write_text(dir.path() / "c.json", R"({"grid": {"width": 1}})"), "--out",
+      {"stages", write_file(dir.path() / "c.json", R"({"grid": {"width": 1}})"), "--out",
        out.string()},
-      {"stages", write_text(dir.path() / "d.json", R"({"terrain": {"r": 1e400}})"), "--out",
+      {"stages", write_file(dir.path() / "d.json", R"({"terrain": {"r": 1e400}})"), "--out",
        out.string()},
-      {"stages", write_text(dir.path() / "e.json", R"({"terrain": )"), "--out", out.string()},
+      {"stages", write_file(dir.path() / "e.json", R"({"terrain": )"), "--out", out.string()},
       {"stages", "--set", "terrain.H=nan", "--out", out.string()},
       {"stages", "--set", "viewport.width=16385", "--out", out.string()},
       {"stages", "no-such-preset", "--out", out.string()},
@@ -184,7 +167,7 @@ TEST_CASE("renderRejectsUnusableTextureFilesNamingTheLayer", "[cli]") {
   const std::vector<unsigned char> png = encode_png_rgb(6, 4, pixels);
   std::ofstream(dir.path() / "wide.png", std::ios::binary)
       .write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
-  write_text(dir.path() / "text.png", "not an image");
+  write_file(dir.path() / "text.png", "not an image");
   const std::string out = (dir.path() / "x.png").string();
   for (const auto& [file, message] : std::vector<std::pair<std::string, std::string>>{
            {"wide.png", "is 6x4 pixels; allowed: square"},
@@ -204,7 +187,7 @@ TEST_CASE("renderRejectsUnusableTextureFilesNamingTheLayer", "[cli]") {
   const std::vector<unsigned char> good = encode_png_rgb(8, 8, square);
   std::ofstream(dir.path() / "good.png", std::ios::binary)
       .write(reinterpret_cast<const char*>(good.data()), std::streamsize(good.size()));
-  const std::string scene = write_text(
+  const std::string scene = write_file(
       dir.path() / "scene.json",
       R"({"shading": {"layers": {"3": {"texture": "good.png"}}}, "viewport": {"width": 32, "height": 32}, "grid": {"width": 24, "height": 24}})");
   const CliResult ok = run({"render", scene, "-o", out});
@@ -215,7 +198,7 @@ TEST_CASE("renderRejectsUnusableTextureFilesNamingTheLayer", "[cli]") {
 
 TEST_CASE("rasterCommandWritesTheDocumentedBuffers", "[cli]") {
   test::TempDir dir("raster");
-  const std::string soup = write_text(dir.path() / "soup.txt",
+  const std::string soup = write_file(dir.path() / "soup.txt",
                                       "# two triangles\n"
                                       "8 6\n"
                                       "0 0 0.5   8 0 0.5   0 6 0.5\n"
@@ -268,7 +251,7 @@ TEST_CASE("rasterRejectsMalformedSoupsNamingTheLine", "[cli]") {
   };
   int k = 0;
   for (const auto& [text, message] : cases) {
-    const std::string soup = write_text(dir.path() / ("soup" + std::to_string(k++)), text);
+    const std::string soup = write_file(dir.path() / ("soup" + std::to_string(k++)), text);
     const CliResult r = run({"raster", soup, "--out", prefix});
     INFO(r.err);
     CHECK(r.code == kExitBadInput);

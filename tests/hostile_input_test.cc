@@ -13,6 +13,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "cli_support.h"
 #include "core/scene_json.h"
 #include "test_support.h"
 #include "tools/cli.h"
@@ -24,42 +25,11 @@ namespace {
 
 using Catch::Matchers::Contains;
 
-struct CliResult {
-  int code;
-  std::string out;
-  std::string err;
-};
-
-CliResult run(std::vector<std::string> args) {
-  args.insert(args.begin(), "relief");
-  std::ostringstream out, err;
-  const int code = run_cli(args, out, err);
-  return {code, out.str(), err.str()};
-}
-
-std::string write_file(const std::filesystem::path& path, const std::string& bytes) {
-  std::ofstream(path, std::ios::binary) << bytes;
-  return path.string();
-}
-
-// a + b + ... (GCC 12 warns falsely about operator+ on a literal and a string: bug 105651).
-std::string concat(std::initializer_list<std::string_view> parts) {
-  std::string out;
-  for (std::string_view part : parts) {
-    out.append(part);
-  }
-  return out;
-}
-
-// The checks every refused command must pass: exit 2, an error message, nothing written.
-void require_refused(const CliResult& r, const std::string& message,
-                     const std::filesystem::path& out) {
-  INFO(r.err);
-  CHECK(r.code == kExitBadInput);
-  CHECK_THAT(r.err, Contains("relief: error:"));
-  CHECK_THAT(r.err, Contains(message));
-  CHECK_FALSE(std::filesystem::exists(out));
-}
+using test::concat;
+using test::require_refused;
+using test::run;
+using test::write_file;
+using CliResult = test::CliResult;
 
 TEST_CASE("deeplyNestedValuesAreRefusedWithoutRecursion", "[hostile]") {
   test::TempDir dir("nesting");

@@ -7,6 +7,8 @@
 #include <cerrno>
 #include <cstring>
 
+#include "core/json_input.h"
+
 namespace relief {
 
 namespace {
@@ -15,16 +17,23 @@ std::string errno_text() {
   return std::strerror(errno);
 }
 
-}  // namespace
+std::string quoted(const std::filesystem::path& path) {
+  return brief_text(path.string());
+}
 
-void write_file_atomically(const std::filesystem::path& path,
-                           std::span<const unsigned char> bytes) {
+// A temporary name in the target's directory, short whatever the target's name is (a name
+// derived from it could pass the file system's 255-byte limit).
+std::filesystem::path temporary_for(const std::filesystem::path& path) {
   static std::atomic<unsigned> counter{0};
-  std::filesystem::path temporary = path;
-  temporary += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  return path.parent_path() /
+         (".relief-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".tmp");
+}
+
+void write_temporary(const std::filesystem::path& temporary, const std::filesystem::path& path,
+                     std::span<const unsigned char> bytes) {
   const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
   if (fd < 0) {
-    throw OutputError("cannot write " + path.string() + ": " + errno_text());
+    throw OutputError("cannot write " + quoted(path) + ": " + errno_text());
   }
   std::size_t written = 0;
   while (written < bytes.size()) {
@@ -33,35 +42,104 @@ void write_file_atomically(const std::filesystem::path& path,
       continue;
     }
     if (n <= 0) {
-      const std::string reason = errno_text();
+      const std::string reason = n < 0 ? errno_text() : "no space written";
       ::close(fd);
       ::unlink(temporary.c_str());
-      throw OutputError("cannot write " + path.string() + ": " + reason);
+      throw OutputError("cannot write " + quoted(path) + ": " + reason);
     }
     written += static_cast<std::size_t>(n);
   }
-  if (::fsync(fd) != 0 || ::close(fd) != 0) {
+  if (::fsync(fd) != 0) {
     const std::string reason = errno_text();
+    ::close(fd);
     ::unlink(temporary.c_str());
-    throw OutputError("cannot write " + path.string() + ": " + reason);
+    throw OutputError("cannot write " + quoted(path) + ": " + reason);
   }
-  if (::rename(temporary.c_str(), path.c_str()) != 0) {
+  if (::close(fd) != 0) {
     const std::string reason = errno_text();
     ::unlink(temporary.c_str());
-    throw OutputError("cannot write " + path.string() + ": " + reason);
+    throw OutputError("cannot write " + quoted(path) + ": " + reason);
   }
 }
 
-void ensure_directory(const std::filesystem::path& dir) {
+}  // namespace
+
+OutputSet::~OutputSet() {
+  discard();
+}
+
+void OutputSet::discard() {
+  for (const auto& [temporary, target] : files_) {
+    ::unlink(temporary.c_str());
+  }
+  files_.clear();
+}
+
+void OutputSet::add(const std::filesystem::path& path, std::span<const unsigned char> bytes) {
   std::error_code ec;
-  if (std::filesystem::is_directory(dir, ec)) {
+  if (std::filesystem::is_directory(path, ec)) {
+    discard();
+    throw OutputError("cannot write " + quoted(path) + ": it is a directory");
+  }
+  const std::filesystem::path temporary = temporary_for(path);
+  try {
+    write_temporary(temporary, path, bytes);
+  } catch (const OutputError&) {
+    discard();
+    throw;
+  }
+  files_.emplace_back(temporary, path);
+}
+
+void OutputSet::commit() {
+  std::string renamed;
+  for (std::size_t k = 0; k < files_.size(); ++k) {
+    const auto& [temporary, target] = files_[k];
+    if (::rename(temporary.c_str(), target.c_str()) != 0) {
+      const std::string reason = errno_text();
+      files_.erase(files_.begin(), files_.begin() + static_cast<std::ptrdiff_t>(k));
+      discard();
+      throw OutputError("cannot write " + quoted(target) + ": " + reason +
+                        (renamed.empty() ? "" : " (already written: " + renamed + ")"));
+    }
+    renamed += (renamed.empty() ? "" : ", ") + quoted(target);
+  }
+  files_.clear();
+}
+
+void write_file_atomically(const std::filesystem::path& path,
+                           std::span<const unsigned char> bytes) {
+  OutputSet set;
+  set.add(path, bytes);
+  set.commit();
+}
+
+OutputDirectory::OutputDirectory(const std::filesystem::path& dir) {
+  std::error_code ec;
+  if (dir.empty() || std::filesystem::is_directory(dir, ec)) {
     return;
   }
   if (std::filesystem::exists(dir, ec)) {
-    throw OutputError("cannot write into " + dir.string() + ": it exists and is not a directory");
+    throw OutputError("cannot write into " + quoted(dir) + ": it exists and is not a directory");
+  }
+  // The directories this creates, innermost first, so that they can be removed again.
+  for (std::filesystem::path p = dir; !p.empty() && !std::filesystem::exists(p, ec);
+       p = p.parent_path()) {
+    created_.push_back(p);
+    if (p == p.parent_path()) {
+      break;
+    }
   }
   if (!std::filesystem::create_directories(dir, ec) || ec) {
-    throw OutputError("cannot create directory " + dir.string() + ": " + ec.message());
+    created_.clear();
+    throw OutputError("cannot create directory " + quoted(dir) + ": " + ec.message());
+  }
+}
+
+OutputDirectory::~OutputDirectory() {
+  std::error_code ec;
+  for (const std::filesystem::path& p : created_) {
+    std::filesystem::remove(p, ec);  // only while empty
   }
 }
 

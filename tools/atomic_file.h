@@ -1,12 +1,15 @@
-// Output files appear whole or not at all: bytes go to a temporary file in the target's
-// directory, which is renamed over the target only once everything is written and flushed.
-// A crash or an error leaves no partial output (the temporary file is removed on error).
+// Output files appear whole or not at all, and a command's files appear together or not at
+// all: bytes go to temporary files in the targets' directories, which are renamed over the
+// targets only once every file is written and flushed. An error removes the temporary files
+// and leaves no output behind.
 #pragma once
 
 #include <filesystem>
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace relief {
 
@@ -17,10 +20,47 @@ class OutputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The files of one command. add() writes each to a temporary file at once (so that no bytes
+// are held in memory); commit() renames them all into place. Destroyed without commit(), or
+// when add() or commit() throws, it removes every temporary file it made.
+class OutputSet {
+ public:
+  OutputSet() = default;
+  ~OutputSet();
+  OutputSet(const OutputSet&) = delete;
+  OutputSet& operator=(const OutputSet&) = delete;
+
+  // Throws OutputError (and removes the set's temporary files) when `path` is a directory or
+  // the bytes cannot be written.
+  void add(const std::filesystem::path& path, std::span<const unsigned char> bytes);
+  // Throws OutputError naming the files already renamed if a rename fails (rare: the
+  // temporary files sit in the targets' directories, so a rename only fails for a target that
+  // turned into a directory meanwhile).
+  void commit();
+
+ private:
+  void discard();
+
+  std::vector<std::pair<std::filesystem::path, std::filesystem::path>> files_;  // temp, target
+};
+
+// One file on its own: an OutputSet of one.
 void write_file_atomically(const std::filesystem::path& path, std::span<const unsigned char> bytes);
 
 // Creates `dir` (and parents) if needed; throws OutputError if it exists as a non-directory
-// or cannot be created.
-void ensure_directory(const std::filesystem::path& dir);
+// or cannot be created. The object removes the directory it created if it is destroyed
+// before keep() (a command that failed leaves no empty directory behind; a directory with
+// files in it is never removed).
+class OutputDirectory {
+ public:
+  explicit OutputDirectory(const std::filesystem::path& dir);
+  ~OutputDirectory();
+  OutputDirectory(const OutputDirectory&) = delete;
+  OutputDirectory& operator=(const OutputDirectory&) = delete;
+  void keep() { created_.clear(); }
+
+ private:
+  std::vector<std::filesystem::path> created_;  // innermost first
+};
 
 }  // namespace relief

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <new>
 #include <ostream>
@@ -239,6 +240,22 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     err << "relief: error: FILE is empty; give the triangle soup's file name\n";
     return kExitBadInput;
   }
+  for (CLI::App* command : {scene_cmd, stages_cmd, render_cmd}) {
+    if (command->parsed() && given_empty(command->get_option("SCENE"), scene_args.scene)) {
+      err << "relief: error: SCENE is empty; give a scene file or a preset name, or leave it "
+             "out for the default scene\n";
+      return kExitBadInput;
+    }
+  }
+  if (raster_cmd->parsed()) {
+    // PREFIX names files: "out/" or "." would write hidden files named ".json", "..json".
+    const std::string file = std::filesystem::path(raster_options.prefix).filename().string();
+    if (file.empty() || file == "." || file == "..") {
+      err << "relief: error: --out " << brief_text(raster_options.prefix)
+          << " has no file name part; give a prefix such as out/soup\n";
+      return kExitBadInput;
+    }
+  }
   const MemoryBudget budget = memory_budget(parse_memory_size(max_memory), max_memory);
   stages.budget = render.budget = raster_options.budget = budget;
 
@@ -260,7 +277,13 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     // The scene is validated completely before any work starts.
     const Scene scene = resolve_scene(scene_args.scene, scene_args.overrides);
     if (scene_cmd->parsed()) {
-      out << scene_to_json(scene).dump(2) << "\n";
+      out << scene_to_json(scene).dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
+          << "\n";
+      out.flush();
+      if (!out) {  // a full disk or a closed pipe: the scene was not printed
+        err << "relief: error: cannot write the scene to standard output\n";
+        return kExitOutputError;
+      }
       return kExitOk;
     }
     if (stages_cmd->parsed()) {

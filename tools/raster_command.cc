@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/counter_hash.h"
+#include "core/json_input.h"
 #include "raster/rasterize.h"
 #include "raster/resolve.h"
 #include "tools/atomic_file.h"
@@ -59,6 +60,10 @@ int run_raster_command(const RasterOptions& options, std::ostream& out) {
   state.width = soup.width;
   state.height = soup.height;
   state.viewport = {0.0, 0.0, double(soup.width), double(soup.height)};
+  if (!options.viewport.empty() && !soup.clip_coordinates) {
+    throw SoupError("--viewport applies to clip-coordinate soups, and " + brief_text(options.soup) +
+                    " has window coordinates (already in pixels)");
+  }
   if (!options.viewport.empty()) {
     state.viewport = {options.viewport[0], options.viewport[1], options.viewport[2],
                       options.viewport[3]};
@@ -92,10 +97,7 @@ int run_raster_command(const RasterOptions& options, std::ostream& out) {
   raster::ResolvedFrame resolved;
   raster::resolve(visibility, positions, triangles, {}, 0, resolved);
 
-  const std::filesystem::path prefix(options.prefix);
-  if (prefix.has_parent_path()) {
-    ensure_directory(prefix.parent_path());
-  }
+  OutputDirectory directory(std::filesystem::path(options.prefix).parent_path());
   const std::size_t pixels = visibility.primitive.size();
   std::vector<unsigned char> ids(pixels * 4);
   std::memcpy(ids.data(), visibility.primitive.data(), ids.size());  // little-endian host
@@ -115,13 +117,13 @@ int run_raster_command(const RasterOptions& options, std::ostream& out) {
     }
   }
   const std::string p = options.prefix;
-  write_file_atomically(p + ".primitive.bin", ids);
-  write_file_atomically(p + ".depth.pfm", encode_pfm(soup.width, soup.height, 1, visibility.depth,
-                                                     static_cast<std::size_t>(soup.width)));
-  write_file_atomically(p + ".barycentric.pfm",
-                        encode_pfm(soup.width, soup.height, 3, barycentric,
-                                   static_cast<std::size_t>(soup.width) * 3));
-  write_file_atomically(p + ".coverage.png", encode_png_rgb(soup.width, soup.height, coverage));
+  OutputSet files;  // the five files appear together or not at all
+  files.add(p + ".primitive.bin", ids);
+  files.add(p + ".depth.pfm", encode_pfm(soup.width, soup.height, 1, visibility.depth,
+                                         static_cast<std::size_t>(soup.width)));
+  files.add(p + ".barycentric.pfm", encode_pfm(soup.width, soup.height, 3, barycentric,
+                                               static_cast<std::size_t>(soup.width) * 3));
+  files.add(p + ".coverage.png", encode_png_rgb(soup.width, soup.height, coverage));
   const nlohmann::json manifest = {
       {"width", soup.width},
       {"height", soup.height},
@@ -136,7 +138,11 @@ int run_raster_command(const RasterOptions& options, std::ostream& out) {
         {"barycentric", p + ".barycentric.pfm: perspective-correct barycentrics of the winning "
                             "triangle, 0 where uncovered"},
         {"coverage", p + ".coverage.png: a colour per primitive, black where uncovered"}}}};
-  write_file_atomically(p + ".json", bytes_of(manifest.dump(2) + "\n"));
+  files.add(
+      p + ".json",
+      bytes_of(manifest.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n"));
+  files.commit();
+  directory.keep();
   out << soup.triangle_count() << " triangles (" << stats.setup << " pieces after clipping and "
       << "culling), " << covered << " of " << pixels << " pixels covered\nwrote " << p
       << ".{primitive.bin,depth.pfm,barycentric.pfm,coverage.png,json}\n";

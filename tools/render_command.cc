@@ -34,11 +34,13 @@ int run_render_command(const Scene& scene, const RenderOptions& options, std::os
     image = render_frame(scene, resources, timings, limits);
     runs.push_back(timings);
   }
-  write_file_atomically(path, encode_png_rgb(image.width, image.height, image.rgb));
+  OutputSet files;  // the image and the float image appear together or not at all
+  files.add(path, encode_png_rgb(image.width, image.height, image.rgb));
   if (!float_path.empty()) {
-    write_file_atomically(float_path, encode_pfm(image.width, image.height, 3, image.linear,
-                                                 std::size_t(image.width) * 3));
+    files.add(float_path,
+              encode_pfm(image.width, image.height, 3, image.linear, std::size_t(image.width) * 3));
   }
+  files.commit();
   auto stage = [&](const char* name, auto field) {
     std::vector<double> values;
     for (const FrameTimings& t : runs) {

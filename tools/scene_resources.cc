@@ -67,8 +67,10 @@ RgbImage load_layer_texture(const MaterialLayer& layer, int builtin_size, const 
                                                 &width, &height, &channels, 3);
   if (!pixels || width != height) {
     stbi_image_free(pixels);
+    // stb leaves no reason for some corrupt streams (an invalid deflate block): never NULL here.
+    const char* reason = pixels ? "its header and data disagree" : stbi_failure_reason();
     throw SceneError(path, "scene: " + field + " could not be decoded: " +
-                               (pixels ? "its header and data disagree" : stbi_failure_reason()));
+                               (reason && *reason ? reason : "corrupt image data"));
   }
   RgbImage image;
   image.size = width;

@@ -28,6 +28,10 @@ std::vector<double> numbers_of(const std::string& line, const std::string& where
   while (words >> word) {
     double v = 0;
     const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), v);
+    if (ec == std::errc::result_out_of_range && end == word.data() + word.size()) {
+      throw SoupError(where + ": '" + brief_text(word) +
+                      "' is out of the range of a double (it overflows or underflows)");
+    }
     if (ec != std::errc() || end != word.data() + word.size() || !std::isfinite(v)) {
       throw SoupError(where + ": '" + brief_text(word) + "' is not a finite number");
     }
@@ -157,8 +161,18 @@ TriangleSoup read_triangle_soup(const std::string& path,
     std::string line;
     char chunk[1 << 16];
     int line_number = 1;
+    bool at_start = true;
     while (const std::size_t n = file.read(chunk, sizeof chunk)) {
-      for (std::size_t k = 0; k < n; ++k) {
+      std::size_t k = 0;
+      // A UTF-8 byte order mark, as some editors write, is not part of the text.
+      if (at_start && n >= 3 && std::string_view(chunk, 3) == "\xef\xbb\xbf") {
+        k = 3;
+      }
+      at_start = false;
+      for (; k < n; ++k) {
+        if (chunk[k] == '\r') {
+          continue;  // CRLF line ends (and stray CRs) are whitespace
+        }
         if (chunk[k] == '\n') {
           parser.line(std::move(line));
           line.clear();

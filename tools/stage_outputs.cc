@@ -67,8 +67,8 @@ std::function<float(std::size_t)> channel(const AlignedVector<float>& field) {
 
 class StageWriter {
  public:
-  StageWriter(std::filesystem::path dir, const GridBuffers<float>& buffers)
-      : dir_(std::move(dir)), buffers_(buffers) {}
+  StageWriter(std::filesystem::path dir, const GridBuffers<float>& buffers, OutputSet& files)
+      : dir_(std::move(dir)), buffers_(buffers), files_out_(files) {}
 
   // Writes NAME.png and NAME.pfm and records them in the manifest.
   void field(const std::string& name, const std::string& meaning, const std::string& units,
@@ -76,7 +76,7 @@ class StageWriter {
              const std::function<Rgb8(std::size_t)>& color, const ValueRange& range) {
     const GridLayout& l = buffers_.layout;
     const std::vector<std::uint8_t> rgb = picture(buffers_, color);
-    write_file_atomically(dir_ / (name + ".png"), encode_png_rgb(l.width, l.height, rgb));
+    files_out_.add(dir_ / (name + ".png"), encode_png_rgb(l.width, l.height, rgb));
     const int count = static_cast<int>(channels.size());  // PFM: 1 or 3
     std::vector<float> raw(static_cast<std::size_t>(l.width) * l.height * count);
     for (int j = 0; j < l.height; ++j) {
@@ -86,9 +86,8 @@ class StageWriter {
         }
       }
     }
-    write_file_atomically(
-        dir_ / (name + ".pfm"),
-        encode_pfm(l.width, l.height, count, raw, static_cast<std::size_t>(l.width) * count));
+    files_out_.add(dir_ / (name + ".pfm"), encode_pfm(l.width, l.height, count, raw,
+                                                      static_cast<std::size_t>(l.width) * count));
     json entry = {{"image", name + ".png"},
                   {"raw", name + ".pfm"},
                   {"channels", count},
@@ -106,6 +105,7 @@ class StageWriter {
  private:
   std::filesystem::path dir_;
   const GridBuffers<float>& buffers_;
+  OutputSet& files_out_;
   json files_ = json::object();
 };
 
@@ -113,8 +113,9 @@ class StageWriter {
 
 void write_stage_outputs(const std::filesystem::path& dir, const Scene& scene,
                          const FramePlan& plan, const GridBuffers<float>& b) {
-  ensure_directory(dir);
-  StageWriter out(dir, b);
+  OutputDirectory directory(dir);
+  OutputSet files;  // every field and stages.json appear together or not at all
+  StageWriter out(dir, b, files);
   const double octave_cell = scene.terrain.horizontal_scale;
   const glm::dvec3 camera = plan.camera.position;
 
@@ -220,10 +221,11 @@ void write_stage_outputs(const std::filesystem::path& dir, const Scene& scene,
       {"octaves", plan.terrain.octaves.count},
       {"files", out.files()},
       {"scene", scene_to_json(scene)}};
-  const std::string text = manifest.dump(2) + "\n";
-  write_file_atomically(
-      dir / "stages.json",
-      std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()));
+  const std::string text = manifest.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
+  files.add(dir / "stages.json",
+            std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()));
+  files.commit();
+  directory.keep();
 }
 
 }  // namespace relief
