@@ -72,6 +72,32 @@ inline AccuracySet near_plane_set(int count = 400, bool viewport_is_framebuffer 
 
 // Triangles in front of the near plane and inside the guard band (never clipped), with
 // non-dyadic window coordinates and depths, and w log-uniform in [1e-3, 1e3] per vertex.
+// Hostile vertices for the degenerate-vertex tests: the origin (signed zeros and denormals
+// included: flushed, as GL does), w = 0 and w = +-denormal, the soup reader's 1e-300, the
+// soup's 1e30 limit, a vertex behind the eye, and tiny but normal coordinates.
+inline std::vector<raster::ClipVertex> hostile_vertices() {
+  const float denormal = 1e-45f;
+  const float from_soup = static_cast<float>(1e-300);  // what the soup reader makes of 1e-300
+  return {
+      {0, 0, 0, 0},
+      {-0.0f, 0, -0.0f, -0.0f},
+      {0, 2.5e-39f, 2.5e-39f, 5e-39f},  // a valid point in denormals: the origin once flushed
+      {0, 0.5f, 0.5f, 0},               // w = 0 behind the near plane: a point at infinity
+      {0, 0.5f, 0, 0},                  // w = 0 on the near and far planes
+      {0, 0.5f, 0, -0.0f},
+      {0.25f, 0.5f, 0.5f, denormal},
+      {0.25f, 0.5f, 0.5f, -denormal},
+      {0.25f, -0.5f, 0.25f, from_soup},
+      {0.25f, -0.5f, 0.25f, -from_soup},
+      {denormal, denormal, denormal, denormal},
+      {-denormal, 0, denormal, -denormal},
+      {0, 1e30f, 1e30f, 1e30f},  // on the near plane at the soup's limit
+      {1e30f, -1e30f, 0.5e30f, 1e30f},
+      {-1e30f, 0, 1e30f, -1e30f},  // behind the eye
+      {1e-30f, 0, 0.5e-30f, 1e-30f},
+  };
+}
+
 inline AccuracySet unclipped_set(int count = 300) {
   AccuracySet set{set_state(), {}, count};
   const raster::Viewport& vp = set.state.viewport;

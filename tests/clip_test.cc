@@ -225,31 +225,11 @@ TEST_CASE("meshesCutByTheNearPlaneCoverEveryPixelOnce", "[raster]") {
 
 TEST_CASE("degenerateVerticesDrawOnlyWhatTheExactTriangleCovers", "[raster]") {
   // Each case: a hostile third vertex with two ordinary ones in front of the near plane.
-  const float denormal = 1e-45f;
-  const float from_soup = static_cast<float>(1e-300);  // what the soup reader makes of 1e-300
-  REQUIRE(from_soup == 0.0f);
-  const ClipVertex cases[] = {
-      {0, 0, 0, 0},
-      {-0.0f, 0, -0.0f, -0.0f},
-      {0, 2.5e-39f, 2.5e-39f, 5e-39f},  // denormals: the origin once flushed, as in GL
-      {0, 0.5f, 0.5f, 0},               // w = 0 behind the near plane: a point at infinity
-      {0, 0.5f, 0, 0},                  // w = 0 on the near and far planes
-      {0, 0.5f, 0, -0.0f},
-      {0.25f, 0.5f, 0.5f, denormal},
-      {0.25f, 0.5f, 0.5f, -denormal},
-      {0.25f, -0.5f, 0.25f, from_soup},
-      {0.25f, -0.5f, 0.25f, -from_soup},
-      {denormal, denormal, denormal, denormal},
-      {-denormal, 0, denormal, -denormal},
-      {0, 1e30f, 1e30f, 1e30f},  // on the near plane at the soup's limit
-      {1e30f, -1e30f, 0.5e30f, 1e30f},
-      {-1e30f, 0, 1e30f, -1e30f},  // behind the eye
-      {1e-30f, 0, 0.5e-30f, 1e-30f},
-  };
+  REQUIRE(static_cast<float>(1e-300) == 0.0f);  // what the soup reader makes of 1e-300
   const Viewport viewport{0, 0, 64, 64};
   const RasterState state = state_for(64, 64, viewport);
   int drawn = 0;
-  for (const ClipVertex& hostile : cases) {
+  for (const ClipVertex& hostile : test::hostile_vertices()) {
     for (int rotation = 0; rotation < 3; ++rotation) {
       ClipVertex v[3] = {{-1, -1, 0.5f, 1}, {1, -1, 0.5f, 1}, {-0.5f, 0.75f, 0.25f, 1}};
       v[rotation] = hostile;

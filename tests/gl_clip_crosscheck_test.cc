@@ -186,25 +186,6 @@ TEST_CASE("glCrossCheckNonDyadicTrianglesInFrontOfTheNearPlane", "[gl]") {
 TEST_CASE("glCrossCheckDegenerateVerticesDrawWhatGlDraws", "[gl]") {
   // A hostile vertex with two ordinary ones, in each position, through a 64 x 64 viewport
   // equal to the framebuffer and through the 16384 px one of the random sets.
-  const float denormal = 1e-45f;
-  const float from_soup = static_cast<float>(1e-300);  // what the soup reader makes of 1e-300
-  const raster::ClipVertex cases[] = {
-      {0, 0, 0, 0},
-      {-0.0f, 0, -0.0f, -0.0f},
-      {0, 2.5e-39f, 2.5e-39f, 5e-39f},  // a valid point in denormals: flushed, as llvmpipe does
-      {0, 0.5f, 0.5f, 0},
-      {0, 0.5f, 0, 0},
-      {0, 0.5f, 0, -0.0f},
-      {0.25f, 0.5f, 0.5f, denormal},
-      {0.25f, 0.5f, 0.5f, -denormal},
-      {0.25f, -0.5f, 0.25f, from_soup},
-      {0.25f, -0.5f, 0.25f, -from_soup},
-      {denormal, denormal, denormal, denormal},
-      {0, 1e30f, 1e30f, 1e30f},
-      {1e30f, -1e30f, 0.5e30f, 1e30f},
-      {-1e30f, 0, 1e30f, -1e30f},
-      {1e-30f, 0, 0.5e-30f, 1e-30f},
-  };
   raster::RasterState small;
   small.width = small.height = 64;
   small.viewport = {0, 0, 64, 64};
@@ -214,7 +195,7 @@ TEST_CASE("glCrossCheckDegenerateVerticesDrawWhatGlDraws", "[gl]") {
   long gl_empty_relief_drawn = 0;
   for (const raster::RasterState& state : states) {
     const float scale = state.viewport.width > 64 ? 1.0f / 256 : 1.0f;  // keep them in view
-    for (const raster::ClipVertex& hostile : cases) {
+    for (const raster::ClipVertex& hostile : test::hostile_vertices()) {
       for (int rotation = 0; rotation < 3; ++rotation) {
         raster::ClipVertex v[3] = {{-scale, -scale, 0.5f, 1},
                                    {scale, -scale, 0.5f, 1},
