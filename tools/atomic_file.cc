@@ -94,9 +94,10 @@ void OutputSet::add(const std::filesystem::path& path, std::span<const unsigned 
 void OutputSet::commit() {
   std::string renamed;
   for (std::size_t k = 0; k < files_.size(); ++k) {
-    const auto& [temporary, target] = files_[k];
+    const std::filesystem::path temporary = files_[k].first, target = files_[k].second;
     if (::rename(temporary.c_str(), target.c_str()) != 0) {
       const std::string reason = errno_text();
+      // The files before k are in place; the rest are removed.
       files_.erase(files_.begin(), files_.begin() + static_cast<std::ptrdiff_t>(k));
       discard();
       throw OutputError("cannot write " + quoted(target) + ": " + reason +
