@@ -14,7 +14,7 @@
 
 #include "core/frame_plan.h"
 #include "core/lattice.h"
-#include "core/scene_json.h"
+#include "core/scene/scene_json.h"
 #include "core/terrain_stages.h"
 
 namespace relief {

@@ -11,10 +11,10 @@
 #include <tbb/global_control.h>
 
 #include "core/lattice.h"
-#include "core/scene_json.h"
+#include "core/scene/scene_json.h"
+#include "pipeline/render_frame.h"
 #include "raster/rasterize.h"
 #include "raster/resolve.h"
-#include "tools/render_frame.h"
 
 namespace relief {
 namespace {

@@ -6,9 +6,9 @@
 
 #include "core/frame_plan.h"
 #include "core/lattice.h"
-#include "core/scene_json.h"
+#include "core/scene/scene_json.h"
 #include "core/terrain_stages.h"
-#include "tools/frame_runner.h"
+#include "pipeline/frame_runner.h"
 
 namespace relief {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <glm/glm.hpp>
 
-#include "core/scene.h"
+#include "core/scene/scene.h"
 
 namespace relief {
 

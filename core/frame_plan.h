@@ -9,7 +9,7 @@
 #include "core/lattice.h"
 #include "core/octaves.h"
 #include "core/projector.h"
-#include "core/scene.h"
+#include "core/scene/scene.h"
 #include "core/screen_grid.h"
 #include "core/vertex_transform.h"
 

@@ -9,7 +9,7 @@
 #pragma once
 
 #include "core/lattice.h"
-#include "core/scene.h"
+#include "core/scene/scene.h"
 
 namespace relief {
 

@@ -14,7 +14,7 @@
 #include <array>
 
 #include "core/limits.h"
-#include "core/scene.h"
+#include "core/scene/scene.h"
 
 namespace relief {
 

@@ -11,11 +11,11 @@
 #include "cli_support.h"
 #include "core/frame_plan.h"
 #include "core/lattice.h"
-#include "core/scene_json.h"
+#include "core/scene/scene_json.h"
 #include "core/terrain_stages.h"
+#include "pipeline/image_io.h"
 #include "test_support.h"
 #include "tools/cli.h"
-#include "tools/image_io.h"
 
 namespace relief {
 namespace {

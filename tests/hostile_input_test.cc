@@ -14,11 +14,11 @@
 #include <catch2/catch.hpp>
 
 #include "cli_support.h"
-#include "core/scene_json.h"
+#include "core/scene/scene_json.h"
+#include "pipeline/image_io.h"
+#include "pipeline/memory_budget.h"
 #include "test_support.h"
 #include "tools/cli.h"
-#include "tools/image_io.h"
-#include "tools/memory_budget.h"
 
 namespace relief {
 namespace {

@@ -8,10 +8,10 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_support.h"
-#include "core/json_input.h"
-#include "core/scene_json.h"
+#include "core/scene/json_input.h"
+#include "core/scene/scene_json.h"
+#include "pipeline/image_io.h"
 #include "test_support.h"
-#include "tools/image_io.h"
 
 namespace relief {
 namespace {

@@ -9,8 +9,8 @@
 #include "core/frame_plan.h"
 #include "core/lattice.h"
 #include "core/terrain_stages.h"
+#include "pipeline/frame_runner.h"
 #include "test_support.h"
-#include "tools/frame_runner.h"
 
 namespace relief {
 namespace {

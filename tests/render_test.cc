@@ -9,11 +9,11 @@
 
 #include "core/fbm.h"
 #include "core/lattice.h"
-#include "core/scene_json.h"
+#include "core/scene/scene_json.h"
 #include "core/shade.h"
 #include "core/shading_plan.h"
+#include "pipeline/render_frame.h"
 #include "raster/resolve.h"
-#include "tools/render_frame.h"
 
 namespace relief {
 namespace {

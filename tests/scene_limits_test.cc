@@ -18,11 +18,11 @@
 
 #include "core/det_math.h"
 #include "core/frame_plan.h"
-#include "core/json_fields.h"
 #include "core/limits.h"
-#include "core/scene_json.h"
+#include "core/scene/json_fields.h"
+#include "core/scene/scene_json.h"
+#include "pipeline/render_frame.h"
 #include "raster/resolve.h"
-#include "tools/render_frame.h"
 
 namespace relief {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "core/scene_json.h"
+#include "core/scene/scene_json.h"
 
 namespace relief {
 namespace {

@@ -11,7 +11,7 @@
 #include "core/lattice.h"
 #include "core/layer_weights.h"
 #include "core/proto_texture.h"
-#include "core/scene_json.h"
+#include "core/scene/scene_json.h"
 #include "core/srgb.h"
 #include "core/texture_synthesis.h"
 #include "core/water.h"

@@ -7,7 +7,7 @@
 #include <random>
 #include <string>
 
-#include "core/scene.h"
+#include "core/scene/scene.h"
 
 namespace relief::test {
 

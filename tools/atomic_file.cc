@@ -7,7 +7,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "core/json_input.h"
+#include "core/scene/json_input.h"
 
 namespace relief {
 

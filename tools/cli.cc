@@ -15,11 +15,11 @@
 #include <tbb/global_control.h>
 #include <CLI/CLI.hpp>
 
-#include "core/json_input.h"
-#include "core/scene_json.h"
+#include "core/scene/json_input.h"
+#include "core/scene/scene_json.h"
+#include "pipeline/memory_budget.h"
 #include "tools/atomic_file.h"
 #include "tools/commands.h"
-#include "tools/memory_budget.h"
 #include "tools/soup.h"
 
 namespace relief {

@@ -5,14 +5,14 @@
 #include <nlohmann/json.hpp>
 
 #include "core/counter_hash.h"
-#include "core/json_input.h"
+#include "core/scene/json_input.h"
+#include "pipeline/image_io.h"
+#include "pipeline/job_memory.h"
 #include "raster/rasterize.h"
 #include "raster/resolve.h"
 #include "tools/atomic_file.h"
 #include "tools/cli.h"
 #include "tools/commands.h"
-#include "tools/image_io.h"
-#include "tools/job_memory.h"
 #include "tools/soup.h"
 
 namespace relief {

@@ -4,13 +4,13 @@
 #include <ostream>
 #include <vector>
 
+#include "pipeline/image_io.h"
+#include "pipeline/job_memory.h"
+#include "pipeline/render_frame.h"
+#include "pipeline/statistics.h"
 #include "tools/atomic_file.h"
 #include "tools/cli.h"
 #include "tools/commands.h"
-#include "tools/image_io.h"
-#include "tools/job_memory.h"
-#include "tools/render_frame.h"
-#include "tools/statistics.h"
 
 namespace relief {
 

@@ -6,8 +6,8 @@
 #include <utility>
 
 #include "core/input_file.h"
-#include "core/json_input.h"
 #include "core/limits.h"
+#include "core/scene/json_input.h"
 #include "raster/raster_types.h"
 
 namespace relief {

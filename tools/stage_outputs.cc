@@ -9,10 +9,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/scene_json.h"
+#include "core/scene/scene_json.h"
+#include "pipeline/image_io.h"
 #include "tools/atomic_file.h"
 #include "tools/colormap.h"
-#include "tools/image_io.h"
 
 namespace relief {
 

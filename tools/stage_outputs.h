@@ -10,7 +10,7 @@
 
 #include "core/frame_plan.h"
 #include "core/grid_buffers.h"
-#include "core/scene.h"
+#include "core/scene/scene.h"
 
 namespace relief {
 

@@ -5,12 +5,12 @@
 
 #include "core/frame_plan.h"
 #include "core/lattice.h"
+#include "pipeline/frame_runner.h"
+#include "pipeline/job_memory.h"
+#include "pipeline/statistics.h"
 #include "tools/cli.h"
 #include "tools/commands.h"
-#include "tools/frame_runner.h"
-#include "tools/job_memory.h"
 #include "tools/stage_outputs.h"
-#include "tools/statistics.h"
 
 namespace relief {
 

@@ -1,4 +1,4 @@
-#include "core/scene_json.h"
+#include "core/scene/scene_json.h"
 
 #include <algorithm>
 #include <bit>
@@ -9,11 +9,11 @@
 #include <utility>
 
 #include "core/input_file.h"
-#include "core/json_fields.h"
-#include "core/json_input.h"
 #include "core/limits.h"
-#include "core/scene_presets.h"
-#include "core/scene_sections.h"
+#include "core/scene/json_fields.h"
+#include "core/scene/json_input.h"
+#include "core/scene/scene_presets.h"
+#include "core/scene/scene_sections.h"
 
 namespace relief {
 

@@ -9,12 +9,12 @@
 
 #include "core/frame_plan.h"
 #include "core/grid_buffers.h"
-#include "core/scene.h"
+#include "core/scene/scene.h"
 #include "core/shade.h"
+#include "pipeline/frame_runner.h"
+#include "pipeline/scene_resources.h"
 #include "raster/rasterize.h"
 #include "raster/resolve.h"
-#include "tools/frame_runner.h"
-#include "tools/scene_resources.h"
 
 namespace relief {
 

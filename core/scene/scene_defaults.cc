@@ -1,7 +1,7 @@
 // The built-in material layers: the alpine look of the default scene (sand at the shore,
 // grass on gentle slopes, rock on steep ones, snow high up, the bed under water), covering
 // every (height, slope) so that the weights never all vanish.
-#include "core/scene.h"
+#include "core/scene/scene.h"
 
 namespace relief {
 

@@ -1,4 +1,4 @@
-#include "tools/image_io.h"
+#include "pipeline/image_io.h"
 
 #include <bit>
 #include <cassert>

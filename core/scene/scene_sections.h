@@ -7,8 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/json_fields.h"
-#include "core/scene.h"
+#include "core/scene/json_fields.h"
+#include "core/scene/scene.h"
 
 namespace relief {
 

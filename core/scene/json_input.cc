@@ -1,4 +1,4 @@
-#include "core/json_input.h"
+#include "core/scene/json_input.h"
 
 #include <charconv>
 #include <cstdint>
@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/limits.h"
-#include "core/scene_json.h"
+#include "core/scene/scene_json.h"
 
 namespace relief {
 

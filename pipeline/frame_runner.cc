@@ -1,4 +1,4 @@
-#include "tools/frame_runner.h"
+#include "pipeline/frame_runner.h"
 
 #include <chrono>
 

@@ -15,7 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/scene.h"
+#include "core/scene/scene.h"
 
 namespace relief {
 

@@ -1,4 +1,4 @@
-#include "tools/job_memory.h"
+#include "pipeline/job_memory.h"
 
 #include <optional>
 #include <string>
@@ -7,8 +7,8 @@
 #include "core/grid_buffers.h"
 #include "core/input_file.h"
 #include "core/limits.h"
+#include "pipeline/png_header.h"
 #include "raster/triangle_setup.h"
-#include "tools/png_header.h"
 
 namespace relief {
 

@@ -14,9 +14,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/json_input.h"
 #include "core/limits.h"
-#include "core/scene_json.h"
+#include "core/scene/json_input.h"
+#include "core/scene/scene_json.h"
 
 namespace relief {
 

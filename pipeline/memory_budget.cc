@@ -1,4 +1,4 @@
-#include "tools/memory_budget.h"
+#include "pipeline/memory_budget.h"
 
 #include <algorithm>
 #include <charconv>

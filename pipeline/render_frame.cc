@@ -1,4 +1,4 @@
-#include "tools/render_frame.h"
+#include "pipeline/render_frame.h"
 
 #include <chrono>
 #include <utility>
@@ -11,8 +11,8 @@
 #include "core/shading_plan.h"
 #include "core/srgb.h"
 #include "core/vertex_transform.h"
+#include "pipeline/memory_budget.h"
 #include "raster/resolve.h"
-#include "tools/memory_budget.h"
 
 namespace relief {
 

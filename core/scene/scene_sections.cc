@@ -1,4 +1,4 @@
-#include "core/scene_sections.h"
+#include "core/scene/scene_sections.h"
 
 #include <algorithm>
 #include <bit>

@@ -7,7 +7,7 @@
 
 #include "core/lattice.h"
 #include "core/proto_texture.h"
-#include "core/scene.h"
+#include "core/scene/scene.h"
 
 namespace relief {
 

@@ -1,4 +1,4 @@
-#include "tools/scene_resources.h"
+#include "pipeline/scene_resources.h"
 
 #include <bit>
 #include <optional>
@@ -8,12 +8,12 @@
 #include <stb_image.h>
 
 #include "core/input_file.h"
-#include "core/json_input.h"
 #include "core/limits.h"
-#include "core/scene_json.h"
+#include "core/scene/json_input.h"
+#include "core/scene/scene_json.h"
 #include "core/srgb.h"
 #include "core/texture_synthesis.h"
-#include "tools/png_header.h"
+#include "pipeline/png_header.h"
 
 namespace relief {
 

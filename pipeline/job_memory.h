@@ -5,8 +5,8 @@
 
 #include <cstdint>
 
-#include "core/scene.h"
-#include "tools/memory_budget.h"
+#include "core/scene/scene.h"
+#include "pipeline/memory_budget.h"
 
 namespace relief {
 
