@@ -1,0 +1,85 @@
+// The frame: a scene's stages run in order by a backend, with the outputs a caller asks for.
+//
+// This is the seam every backend plugs into (pipeline/stage_table.h lists the stages): the
+// reference backend in float, the same in double, and later SIMD and GL. A frame renders
+// bit-identically for every thread count; the float and double backends differ by the float
+// error that docs/architecture.md measures.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/scene/scene.h"
+#include "pipeline/scene_resources.h"
+#include "raster/rasterize.h"
+
+namespace relief {
+
+enum class Backend {
+  kReference,        // the scalar reference stages in float: the product's images
+  kReferenceDouble,  // the same stages in double, for accuracy comparisons
+};
+
+// "reference", "reference-double".
+std::string_view backend_name(Backend backend);
+std::optional<Backend> backend_from_name(std::string_view name);
+std::vector<std::string_view> backend_names();
+
+// Per-pixel outputs a caller may ask for beside the sRGB image. Rows bottom to top, like
+// every buffer of Relief. Pixels without terrain hold 0 (primitive: kNoPrimitive, depth: the
+// cleared far value 0).
+struct FrameOutputs {
+  bool linear = false;        // linear radiance after the exposure, RGB
+  bool depth = false;         // window depth of the terrain, reverse-Z (1 near, 0 at infinity)
+  bool primitive = false;     // the winning triangle of the projected grid
+  bool normal = false;        // interpolated unit normal, RGB = (nx, ny, nz)
+  bool world_height = false;  // terrain height: camera y + the camera-relative height, in float
+  bool octaves = false;       // interpolated octave count nu (stage 2)
+};
+
+struct FrameRequest {
+  Backend backend = Backend::kReference;
+  FrameOutputs outputs;
+  // Memory the rasteriser's bins may take (raster/rasterize.h); a frame whose bins need more
+  // throws MemoryLimitError.
+  std::uint64_t max_bin_bytes = UINT64_MAX;
+};
+
+struct FrameImage {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> srgb;        // 3 per pixel, always
+  std::vector<float> linear;             // 3 per pixel, when requested
+  std::vector<float> depth;              // 1 per pixel, when requested
+  std::vector<std::uint32_t> primitive;  // 1 per pixel, when requested
+  std::vector<float> normal;             // 3 per pixel, when requested
+  std::vector<float> world_height;       // 1 per pixel, when requested
+  std::vector<float> octaves;            // 1 per pixel, when requested
+};
+
+// Wall time of one stage of the table (or one group of fused stages).
+struct StageTime {
+  std::string name;
+  double ms = 0;
+};
+
+struct FrameStats {
+  std::vector<StageTime> stages;  // in the order they ran
+  double total_ms = 0;            // the frame, start to end
+  raster::RasterStats raster;
+};
+
+struct Frame {
+  FrameImage image;
+  FrameStats stats;
+};
+
+// Renders one frame of a validated scene with resources built from it (scene_resources.h).
+// Throws MemoryLimitError when the rasteriser's bins exceed request.max_bin_bytes.
+Frame render_frame(const Scene& scene, const SceneResources& resources,
+                   const FrameRequest& request);
+
+}  // namespace relief
