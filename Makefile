@@ -1,29 +1,41 @@
 # Relief: the two commands a user needs on a fresh Debian 12 machine (as root).
 #
-#   make render   install what is missing, build, render the default scene to relief.png
-#   make test     install what is missing, build, run the whole test suite (ctest),
+#   make render   install what the renderer needs, build the relief binary alone (build-render/,
+#                 no tests, benchmarks or OpenGL), render the default scene to relief.png
+#   make test     install what is missing, build everything, run the whole test suite (ctest),
 #                 then build again with ASan + UBSan and run the suite once more
 #
 # Dependencies come only from Debian's packages (see DEVELOPERS.md); apt-get is run only
 # for the packages that are not installed yet.
 
-BUILD      ?= build
-ASAN_BUILD ?= build-asan
-JOBS       ?= $(shell nproc)
-SCENE      ?= default
+BUILD        ?= build
+ASAN_BUILD   ?= build-asan
+RENDER_BUILD ?= build-render
+JOBS         ?= $(shell nproc)
+SCENE        ?= default
+PREFIX       ?= /usr/local
 
-PACKAGES := cmake make g++ pkg-config \
-            libtbb-dev libglm-dev libstb-dev catch2 libbenchmark-dev \
-            nlohmann-json3-dev libcli11-dev \
+# What the relief binary and the library need; the tests, benchmarks and the OpenGL side add
+# the rest.
+RENDER_PACKAGES := cmake make g++ pkg-config \
+                   libtbb-dev libglm-dev libstb-dev nlohmann-json3-dev libcli11-dev
+PACKAGES := $(RENDER_PACKAGES) catch2 libbenchmark-dev \
             libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri
 
-.PHONY: all deps build render test test-release test-sanitize format clean
+# Every part on (the options' defaults, spelled out so that a cache configured otherwise is
+# corrected), and every part off for make render.
+ALL_PARTS  := -DRELIEF_BUILD_TESTS=ON -DRELIEF_BUILD_BENCHMARKS=ON -DRELIEF_WITH_GL=ON
+NO_PARTS   := -DRELIEF_BUILD_TESTS=OFF -DRELIEF_BUILD_BENCHMARKS=OFF -DRELIEF_WITH_GL=OFF
+
+.PHONY: all deps deps-render build render install test test-release test-sanitize format clean
 
 all: build
 
-deps:
+deps: DEPS := $(PACKAGES)
+deps-render: DEPS := $(RENDER_PACKAGES)
+deps deps-render:
 	@missing=""; \
-	for p in $(PACKAGES); do \
+	for p in $(DEPS); do \
 	  dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q '^install ok installed' \
 	    || missing="$$missing $$p"; \
 	done; \
@@ -34,17 +46,23 @@ deps:
 	fi
 
 build: deps
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DRELIEF_WERROR=ON
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DRELIEF_WERROR=ON $(ALL_PARTS)
 	cmake --build $(BUILD) -j $(JOBS)
 
-render: build
-	./$(BUILD)/tools/relief render $(SCENE) -o relief.png
+render: deps-render
+	cmake -S . -B $(RENDER_BUILD) -DCMAKE_BUILD_TYPE=Release -DRELIEF_WERROR=ON $(NO_PARTS)
+	cmake --build $(RENDER_BUILD) -j $(JOBS) --target relief
+	./$(RENDER_BUILD)/tools/relief render $(SCENE) -o relief.png
+
+# The relief binary, the library, its header and relief-config.cmake under PREFIX.
+install: build
+	cmake --install $(BUILD) --prefix $(PREFIX)
 
 test-release: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
 test-sanitize: deps
-	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRELIEF_WERROR=ON -DRELIEF_SANITIZE=ON
+	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRELIEF_WERROR=ON -DRELIEF_SANITIZE=ON $(ALL_PARTS)
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 	ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
 
@@ -54,4 +72,4 @@ format:
 	git ls-files '*.h' '*.cc' | xargs clang-format -i
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD)
+	rm -rf $(BUILD) $(ASAN_BUILD) $(RENDER_BUILD)

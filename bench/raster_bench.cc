@@ -12,7 +12,7 @@
 
 #include "core/lattice.h"
 #include "core/scene/scene_json.h"
-#include "pipeline/render_frame.h"
+#include "pipeline/whole_frame.h"
 #include "raster/rasterize.h"
 #include "raster/resolve.h"
 
@@ -22,8 +22,7 @@ namespace {
 struct DefaultTerrain {
   Scene scene = resolve_scene("default", {});
   NoiseLattice lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
-  FrameTimings timings;
-  TerrainFrame frame = rasterize_terrain(scene, lattice, timings);
+  TerrainFrame frame = rasterize_terrain(scene, lattice);
 };
 
 DefaultTerrain& terrain() {

@@ -9,46 +9,8 @@ namespace relief {
 
 namespace {
 
-// The plan's double constants rounded once to Real.
-template <class Real>
-struct FbmConstants {
-  int count = 0;
-  Real frequency[limits::kMaxOctaves];
-  Real amplitude[limits::kMaxOctaves];
-  Real offset_x[limits::kMaxOctaves];
-  Real offset_z[limits::kMaxOctaves];
-  Real inv_scale, relative_base_height, height_scale;
-  bool warp;
-  Real c1x, c1z, c2x, c2z, c3x, c3z, r0x, r0z, t0x, t0z, roughness0, guard_sq, min_rotation_sq;
-  Real lacunarity;
-
-  explicit FbmConstants(const TerrainPlan& plan) {
-    const OctaveTable& o = plan.octaves;
-    count = o.count;
-    for (int n = 0; n < count; ++n) {
-      frequency[n] = Real(o.frequency[n]);
-      amplitude[n] = Real(o.amplitude[n]);
-      offset_x[n] = Real(o.offset_x[n]);
-      offset_z[n] = Real(o.offset_z[n]);
-    }
-    inv_scale = Real(plan.inv_horizontal_scale);
-    relative_base_height = Real(plan.relative_base_height);
-    height_scale = Real(plan.amplitude);
-    const WarpPlan& w = plan.warp;
-    warp = w.enabled;
-    c1x = Real(w.c1x), c1z = Real(w.c1z), c2x = Real(w.c2x), c2z = Real(w.c2z);
-    c3x = Real(w.c3x), c3z = Real(w.c3z), r0x = Real(w.r0x), r0z = Real(w.r0z);
-    t0x = Real(w.t0x), t0z = Real(w.t0z);
-    roughness0 = Real(w.roughness0);
-    guard_sq = Real(w.guard_sq);
-    min_rotation_sq = Real(limits::kMinRotationLengthSq);
-    lacunarity = Real(w.lacunarity);
-  }
-};
-
 template <Interpolant kKind, class Real>
-Real fbm_point(const FbmConstants<Real>& c, const NoiseLattice& lattice, Real dx, Real dz,
-               Real nu) {
+Real fbm_point(const FbmParams<Real>& c, const NoiseLattice& lattice, Real dx, Real dz, Real nu) {
   const Real ux = dx * c.inv_scale;
   const Real uz = dz * c.inv_scale;
   const Real whole = std::floor(nu);
@@ -95,7 +57,7 @@ Real fbm_point(const FbmConstants<Real>& c, const NoiseLattice& lattice, Real dx
 }
 
 template <Interpolant kKind, class Real>
-void evaluate_range(const FbmConstants<Real>& c, const NoiseLattice& lattice, IndexRange range,
+void evaluate_range(const FbmParams<Real>& c, const NoiseLattice& lattice, IndexRange range,
                     std::span<const Real> dx, std::span<const Real> dz, std::span<const Real> nu,
                     std::span<Real> height) {
   for (std::size_t k = range.begin; k < range.end; ++k) {
@@ -106,36 +68,34 @@ void evaluate_range(const FbmConstants<Real>& c, const NoiseLattice& lattice, In
 }  // namespace
 
 template <class Real>
-void evaluate_fbm(const TerrainPlan& plan, IndexRange range, std::span<const Real> dx,
-                  std::span<const Real> dz, std::span<const Real> nu, std::span<Real> height) {
-  const FbmConstants<Real> constants(plan);
-  switch (plan.interpolant) {
+void evaluate_fbm(const FbmParams<Real>& params, const NoiseLattice& lattice, IndexRange range,
+                  std::span<const Real> dx, std::span<const Real> dz, std::span<const Real> nu,
+                  std::span<Real> height) {
+  switch (static_cast<Interpolant>(params.interpolant)) {
     case Interpolant::kLinear:
-      return evaluate_range<Interpolant::kLinear>(constants, *plan.lattice, range, dx, dz, nu,
-                                                  height);
+      return evaluate_range<Interpolant::kLinear>(params, lattice, range, dx, dz, nu, height);
     case Interpolant::kCubic:
-      return evaluate_range<Interpolant::kCubic>(constants, *plan.lattice, range, dx, dz, nu,
-                                                 height);
+      return evaluate_range<Interpolant::kCubic>(params, lattice, range, dx, dz, nu, height);
     case Interpolant::kQuintic:
-      return evaluate_range<Interpolant::kQuintic>(constants, *plan.lattice, range, dx, dz, nu,
-                                                   height);
+      return evaluate_range<Interpolant::kQuintic>(params, lattice, range, dx, dz, nu, height);
   }
 }
 
 template <class Real>
 Real fbm_height(const TerrainPlan& plan, Real dx, Real dz, Real nu) {
   Real height = 0;
-  evaluate_fbm<Real>(plan, IndexRange{0, 1}, std::span<const Real>(&dx, 1),
-                     std::span<const Real>(&dz, 1), std::span<const Real>(&nu, 1),
-                     std::span<Real>(&height, 1));
+  evaluate_fbm<Real>(make_fbm_params<Real>(plan), *plan.lattice, IndexRange{0, 1},
+                     std::span<const Real>(&dx, 1), std::span<const Real>(&dz, 1),
+                     std::span<const Real>(&nu, 1), std::span<Real>(&height, 1));
   return height;
 }
 
-template void evaluate_fbm<float>(const TerrainPlan&, IndexRange, std::span<const float>,
-                                  std::span<const float>, std::span<const float>, std::span<float>);
-template void evaluate_fbm<double>(const TerrainPlan&, IndexRange, std::span<const double>,
+template void evaluate_fbm<float>(const FbmParams<float>&, const NoiseLattice&, IndexRange,
+                                  std::span<const float>, std::span<const float>,
+                                  std::span<const float>, std::span<float>);
+template void evaluate_fbm<double>(const FbmParams<double>&, const NoiseLattice&, IndexRange,
                                    std::span<const double>, std::span<const double>,
-                                   std::span<double>);
+                                   std::span<const double>, std::span<double>);
 template float fbm_height<float>(const TerrainPlan&, float, float, float);
 template double fbm_height<double>(const TerrainPlan&, double, double, double);
 

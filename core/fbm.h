@@ -27,6 +27,8 @@
 
 #include "core/frame_plan.h"
 #include "core/grid_buffers.h"
+#include "core/lattice.h"
+#include "core/stage_params.h"
 
 namespace relief {
 
@@ -35,10 +37,12 @@ namespace relief {
 // Precondition: finite inputs; nu in [0, N] is the meaningful range (nu >= N sums every
 // octave, nu <= 0 none). Output finite.
 template <class Real>
-void evaluate_fbm(const TerrainPlan& plan, IndexRange range, std::span<const Real> dx,
-                  std::span<const Real> dz, std::span<const Real> nu, std::span<Real> height);
+void evaluate_fbm(const FbmParams<Real>& params, const NoiseLattice& lattice, IndexRange range,
+                  std::span<const Real> dx, std::span<const Real> dz, std::span<const Real> nu,
+                  std::span<Real> height);
 
-// One point of evaluate_fbm, for tests and tools.
+// One point of evaluate_fbm with the parameters of `plan` (rounded for this call), for tests
+// and tools.
 template <class Real>
 Real fbm_height(const TerrainPlan& plan, Real dx, Real dz, Real nu);
 

@@ -7,8 +7,8 @@ namespace relief {
 namespace {
 
 template <class Real>
-Real ramp_weight(const Ramp& ramp, Real x, Real dither_offset) {
-  const Real start = Real(ramp.start), end = Real(ramp.end);
+Real ramp_weight(const RampParams<Real>& ramp, Real x, Real dither_offset) {
+  const Real start = ramp.start, end = ramp.end;
   if (!(end > start)) {
     return x >= start ? Real(1) : Real(0);  // no spread: a step (division domain: end > start)
   }
@@ -17,24 +17,24 @@ Real ramp_weight(const Ramp& ramp, Real x, Real dither_offset) {
 
 // An open ramp (a range reaching the end of the domain) does not limit the layer.
 template <class Real>
-Real rising(const Ramp& ramp, Real x, Real dither_offset) {
+Real rising(const RampParams<Real>& ramp, Real x, Real dither_offset) {
   return ramp.open ? Real(1) : ramp_weight(ramp, x, dither_offset);
 }
 
 template <class Real>
-Real falling(const Ramp& ramp, Real x, Real dither_offset) {
+Real falling(const RampParams<Real>& ramp, Real x, Real dither_offset) {
   return ramp.open ? Real(1) : Real(1) - ramp_weight(ramp, x, dither_offset);
 }
 
 }  // namespace
 
 template <class Real>
-void layer_weights(const ShadingPlan& plan, Real height, Real slope, Real dither_offset,
+void layer_weights(const ShadeParams<Real>& p, Real height, Real slope, Real dither_offset,
                    Real weights[limits::kMaxMaterialLayers]) {
-  const std::size_t count = plan.layers.size();
+  const std::size_t count = static_cast<std::size_t>(p.layer_count);
   Real sum = Real(0);
   for (std::size_t k = 0; k < count; ++k) {
-    const LayerPlan& l = plan.layers[k];
+    const LayerParams<Real>& l = p.layers[k];
     const Real w =
         rising(l.height_up, height, dither_offset) * falling(l.height_down, height, dither_offset) *
         rising(l.slope_up, slope, dither_offset) * falling(l.slope_down, slope, dither_offset);
@@ -54,7 +54,7 @@ void layer_weights(const ShadingPlan& plan, Real height, Real slope, Real dither
   }
 }
 
-template void layer_weights<float>(const ShadingPlan&, float, float, float, float*);
-template void layer_weights<double>(const ShadingPlan&, double, double, double, double*);
+template void layer_weights<float>(const ShadeParams<float>&, float, float, float, float*);
+template void layer_weights<double>(const ShadeParams<double>&, double, double, double, double*);
 
 }  // namespace relief

@@ -12,14 +12,14 @@
 #pragma once
 
 #include "core/limits.h"
-#include "core/shading_plan.h"
+#include "core/stage_params.h"
 
 namespace relief {
 
-// Writes plan.layers.size() weights summing to 1. `height` is camera-relative, as the plan's
+// Writes params.layer_count weights summing to 1. `height` is camera-relative, as the plan's
 // ramps are; dither_offset = dither amount * noise / 2.
 template <class Real>
-void layer_weights(const ShadingPlan& plan, Real height, Real slope, Real dither_offset,
+void layer_weights(const ShadeParams<Real>& params, Real height, Real slope, Real dither_offset,
                    Real weights[limits::kMaxMaterialLayers]);
 
 }  // namespace relief

@@ -43,32 +43,27 @@ Real axis_spacing_sq(const Footprint<Real>& minus, const Footprint<Real>& centre
 }  // namespace
 
 template <class Real>
-void project_domain(const FramePlan& plan, RowRange rows, DomainSpans<Real> out) {
-  const ProjectorRays<Real> rays(plan.projector);
-  const ScreenGrid& screen = plan.screen;
-  const GridLayout& layout = plan.layout;
-  const Real x0 = Real(screen.x0), step_x = Real(screen.step_x);
-  const Real y0 = Real(screen.y0), step_y = Real(screen.step_y);
-  const Real c0 = Real(plan.lod.c0), c1 = Real(plan.lod.c1), nu_max = Real(plan.lod.nu_max);
-  const Real min_spacing_sq = Real(limits::kMinSpacingSq);
-  // Per-row ray descents in double (projector.h explains why), for rows j - 1, j, j + 1.
-  auto descent = [&](int j) { return Real(projector_descent(plan.projector, screen.image_y(j))); };
+void project_domain(const DomainParams<Real>& p, std::span<const Real> row_descents, RowRange rows,
+                    DomainSpans<Real> out) {
+  // Per-row ray descents, formed in double (projector.h explains why), for rows j - 1, j, j + 1.
+  auto descent = [&](int j) { return row_descents[static_cast<std::size_t>(j + 1)]; };
   auto footprint = [&](int i, int j, Real row_descent) {
     Footprint<Real> f;
-    f.valid = plan.projector.terrain_visible &&
-              rays.footprint(x0 + Real(i) * step_x, y0 + Real(j) * step_y, row_descent, f.x, f.z);
+    f.valid =
+        p.terrain_visible && p.rays.footprint(p.x0 + Real(i) * p.step_x, p.y0 + Real(j) * p.step_y,
+                                              row_descent, f.x, f.z);
     return f;
   };
   for (int j = rows.begin; j < rows.end; ++j) {
     const Real below = descent(j - 1), here = descent(j), above = descent(j + 1);
-    for (int i = 0; i < layout.pitch; ++i) {
-      const std::size_t k = layout.index(i, j);
+    for (int i = 0; i < p.pitch; ++i) {
+      const std::size_t k = static_cast<std::size_t>(j) * p.pitch + i;
       out.dx[k] = Real(0);
       out.dz[k] = Real(0);
       out.sigma[k] = Real(0);
       out.nu[k] = Real(1);
       out.valid[k] = 0;
-      if (i >= layout.width) {
+      if (i >= p.width) {
         continue;
       }
       const Footprint<Real> centre = footprint(i, j, here);
@@ -78,9 +73,9 @@ void project_domain(const FramePlan& plan, RowRange rows, DomainSpans<Real> out)
       const Real spacing_sq =
           std::max(axis_spacing_sq(footprint(i - 1, j, here), centre, footprint(i + 1, j, here)),
                    axis_spacing_sq(footprint(i, j - 1, below), centre, footprint(i, j + 1, above)));
-      Real nu = nu_max;
-      if (spacing_sq > min_spacing_sq) {
-        nu = std::clamp(c0 - c1 * log2_det(spacing_sq), Real(1), nu_max);
+      Real nu = p.nu_max;
+      if (spacing_sq > p.min_spacing_sq) {
+        nu = std::clamp(p.c0 - p.c1 * log2_det(spacing_sq), Real(1), p.nu_max);
       }
       out.dx[k] = centre.x;
       out.dz[k] = centre.z;
@@ -91,7 +86,9 @@ void project_domain(const FramePlan& plan, RowRange rows, DomainSpans<Real> out)
   }
 }
 
-template void project_domain<float>(const FramePlan&, RowRange, DomainSpans<float>);
-template void project_domain<double>(const FramePlan&, RowRange, DomainSpans<double>);
+template void project_domain<float>(const DomainParams<float>&, std::span<const float>, RowRange,
+                                    DomainSpans<float>);
+template void project_domain<double>(const DomainParams<double>&, std::span<const double>, RowRange,
+                                     DomainSpans<double>);
 
 }  // namespace relief

@@ -7,8 +7,10 @@
 // no special case.
 #pragma once
 
-#include "core/frame_plan.h"
+#include <span>
+
 #include "core/grid_buffers.h"
+#include "core/stage_params.h"
 
 namespace relief {
 
@@ -20,7 +22,9 @@ namespace relief {
 //          kMinSpacingSq, the log's domain guard.
 // Invalid vertices (ray at or above the horizon, or beyond the farthest footprint) get
 // dx = dz = sigma = 0 and nu = 1: finite, and skipped by every later stage.
+// `row_descents`: make_row_descents() of the same plan.
 template <class Real>
-void project_domain(const FramePlan& plan, RowRange rows, DomainSpans<Real> out);
+void project_domain(const DomainParams<Real>& params, std::span<const Real> row_descents,
+                    RowRange rows, DomainSpans<Real> out);
 
 }  // namespace relief

@@ -22,11 +22,6 @@ constexpr double kMinProjectionWeight = 0.01;
 constexpr double kMinLayerWeight = 1e-3;
 
 template <class Real>
-Vec3<Real> vec(const glm::dvec3& v) {
-  return {Real(v.x), Real(v.y), Real(v.z)};
-}
-
-template <class Real>
 Vec3<Real> sample(const ProtoTexture& t, Real u, Real v, Real dudx, Real dvdx, Real dudy,
                   Real dvdy) {
   const int size = t.levels[0].size;
@@ -37,16 +32,17 @@ Vec3<Real> sample(const ProtoTexture& t, Real u, Real v, Real dudx, Real dvdx, R
 
 // The layer's albedo at the pixel: planar from above, or triplanar.
 template <class Real>
-Vec3<Real> layer_albedo(const ShadingPlan& plan, const LayerPlan& l, const ShadingInputs& in,
-                        std::size_t k, Real relative_y, const Vec3<Real>& n) {
-  const Real inv = Real(l.inv_tile);
-  const Real x = Real(l.offset_x) + in.dx[k] * inv, z = Real(l.offset_z) + in.dz[k] * inv;
-  const Real y = Real(l.offset_y) + relative_y * inv;
-  const Real xdx = in.dx_ddx[k] * inv, xdy = in.dx_ddy[k] * inv;
-  const Real zdx = in.dz_ddx[k] * inv, zdy = in.dz_ddy[k] * inv;
-  const Real ydx = in.height_ddx[k] * inv, ydy = in.height_ddy[k] * inv;
-  if (!plan.triplanar) {
-    return sample<Real>(*l.texture, x, z, xdx, zdx, xdy, zdy);
+Vec3<Real> layer_albedo(const ShadeParams<Real>& p, const LayerParams<Real>& l,
+                        const ProtoTexture& texture, const PixelAttributes<Real>& a,
+                        const Vec3<Real>& n) {
+  const Real inv = l.inv_tile;
+  const Real x = l.offset_x + a.dx * inv, z = l.offset_z + a.dz * inv;
+  const Real y = l.offset_y + a.height * inv;
+  const Real xdx = a.dx_ddx * inv, xdy = a.dx_ddy * inv;
+  const Real zdx = a.dz_ddx * inv, zdy = a.dz_ddy * inv;
+  const Real ydx = a.height_ddx * inv, ydy = a.height_ddy * inv;
+  if (!p.triplanar) {
+    return sample<Real>(texture, x, z, xdx, zdx, xdy, zdy);
   }
   // Squared-normal weights (Mekala; Scape): they sum to one for a unit normal.
   Real w[3] = {n.x * n.x, n.y * n.y, n.z * n.z};
@@ -57,34 +53,32 @@ Vec3<Real> layer_albedo(const ShadingPlan& plan, const LayerPlan& l, const Shadi
   }
   Vec3<Real> sum{0, 0, 0};
   if (w[0] > Real(0)) {
-    sum = sum + sample<Real>(*l.texture, z, y, zdx, ydx, zdy, ydy) * w[0];
+    sum = sum + sample<Real>(texture, z, y, zdx, ydx, zdy, ydy) * w[0];
   }
   if (w[1] > Real(0)) {
-    sum = sum + sample<Real>(*l.texture, x, z, xdx, zdx, xdy, zdy) * w[1];
+    sum = sum + sample<Real>(texture, x, z, xdx, zdx, xdy, zdy) * w[1];
   }
   if (w[2] > Real(0)) {
-    sum = sum + sample<Real>(*l.texture, x, y, xdx, ydx, xdy, ydy) * w[2];
+    sum = sum + sample<Real>(texture, x, y, xdx, ydx, xdy, ydy) * w[2];
   }
   return sum * (Real(1) / used);  // domain: used >= 1/3 - 2% for a unit normal
 }
 
 // Sun (Lambert, Phong), hemispherical sky light and ambient.
 template <class Real>
-Vec3<Real> light(const ShadingPlan& plan, const Vec3<Real>& albedo, const Vec3<Real>& n,
+Vec3<Real> light(const ShadeParams<Real>& p, const Vec3<Real>& albedo, const Vec3<Real>& n,
                  const Vec3<Real>& view, Real specular) {
-  const LightPlan& l = plan.light;
-  const Vec3<Real> to_sun = vec<Real>(l.sun_direction);
-  const Vec3<Real> sun = vec<Real>(l.sun);
+  const Vec3<Real>& to_sun = p.sun_direction;
+  const Vec3<Real>& sun = p.sun;
   const Real ndl = std::max(Real(0), dot(n, to_sun));
-  const Vec3<Real> hemisphere =
-      mix(vec<Real>(l.ground), vec<Real>(l.sky), Real(0.5) + Real(0.5) * n.y);
-  const Real ambient = Real(l.ambient);
+  const Vec3<Real> hemisphere = mix(p.ground_light, p.sky_light, Real(0.5) + Real(0.5) * n.y);
+  const Real ambient = p.ambient;
   Vec3<Real> radiance = albedo * (sun * ndl + hemisphere + Vec3<Real>{ambient, ambient, ambient});
   if (specular > Real(0) && ndl > Real(0)) {
     const Vec3<Real> reflected = n * (Real(2) * ndl) - to_sun;
     const Real rv = -dot(reflected, view);
     if (rv > Real(0)) {  // log's domain
-      radiance = radiance + sun * (specular * exp2_det(Real(l.shininess) * log2_det(rv)));
+      radiance = radiance + sun * (specular * exp2_det(p.shininess * log2_det(rv)));
     }
   }
   return radiance;
@@ -94,19 +88,21 @@ Vec3<Real> light(const ShadingPlan& plan, const Vec3<Real>& albedo, const Vec3<R
 // times the distance, stretched by the grazing incidence (|view.y| floored at 0.05 for the
 // division's domain). Smooth across pixels, unlike the ground's per-triangle derivatives.
 template <class Real>
-Real surface_footprint(const ShadingPlan& plan, Real distance, const Vec3<Real>& view) {
-  return distance * Real(plan.pixel_angle) / std::max(std::abs(view.y), Real(0.05));
+Real surface_footprint(const ShadeParams<Real>& p, Real distance, const Vec3<Real>& view) {
+  return distance * p.pixel_angle / std::max(std::abs(view.y), Real(0.05));
 }
 
+}  // namespace
+
 template <class Real>
-Vec3<Real> terrain_radiance(const ShadingPlan& plan, const ShadingInputs& in, std::size_t k) {
-  const Real relative_y = Real(in.height[k]);  // camera-relative (stage 3)
-  const Vec3<Real> p{Real(in.dx[k]), relative_y, Real(in.dz[k])};
-  const Real distance = std::sqrt(dot(p, p));
-  const Vec3<Real> forward = vec<Real>(plan.camera.forward);
-  const Vec3<Real> view = normalize_or(p, forward);
-  const Vec3<Real> n = normalize_or(Vec3<Real>{Real(in.nx[k]), Real(in.ny[k]), Real(in.nz[k])},
-                                    Vec3<Real>{Real(0), Real(1), Real(0)});
+Vec3<Real> terrain_radiance(const ShadeParams<Real>& p, const ShadeResources& r,
+                            const PixelAttributes<Real>& a) {
+  const Real relative_y = a.height;  // camera-relative (stage 3)
+  const Vec3<Real> position{a.dx, relative_y, a.dz};
+  const Real distance = std::sqrt(dot(position, position));
+  const Vec3<Real> view = normalize_or(position, p.camera_forward);
+  const Vec3<Real> n =
+      normalize_or(Vec3<Real>{a.nx, a.ny, a.nz}, Vec3<Real>{Real(0), Real(1), Real(0)});
 
   // Scape's dithered transitions: the terrain's own noise lattice, its own scale. The noise
   // has no level of detail: where the pixel's footprint (distance x pixel angle) exceeds half a
@@ -114,80 +110,79 @@ Vec3<Real> terrain_radiance(const ShadingPlan& plan, const ShadingInputs& in, st
   // Sampled only nearer than that, its coordinates stay below 1 / pixel_angle < 2^20 cells,
   // exact in float for any dither_scale.
   Real dither_offset = Real(0);
-  const Real inv = Real(plan.dither.inv_scale);
-  const Real dither_fade =
-      std::min(Real(1), Real(2) - Real(2) * distance * Real(plan.pixel_angle) * inv);
-  if (plan.dither.amount > 0.0 && dither_fade > Real(0)) {
+  const Real inv = p.dither_inv_scale;
+  const Real dither_fade = std::min(Real(1), Real(2) - Real(2) * distance * p.pixel_angle * inv);
+  if (p.dither_enabled && dither_fade > Real(0)) {
     const Real noise = sample_lattice<Interpolant::kCubic>(
-        *plan.dither.lattice, Real(plan.dither.offset_x) + in.dx[k] * inv,
-        Real(plan.dither.offset_z) + in.dz[k] * inv);
-    dither_offset = Real(0.5 * plan.dither.amount) * noise * dither_fade;
+        *r.lattice, p.dither_offset_x + a.dx * inv, p.dither_offset_z + a.dz * inv);
+    dither_offset = p.dither_half_amount * noise * dither_fade;
   }
   Real weights[limits::kMaxMaterialLayers];
-  layer_weights(plan, relative_y, Real(in.slope[k]), dither_offset, weights);
+  layer_weights(p, relative_y, a.slope, dither_offset, weights);
   Vec3<Real> albedo{0, 0, 0};
   Real specular = Real(0), used = Real(0);
-  for (std::size_t layer = 0; layer < plan.layers.size(); ++layer) {
+  for (int layer = 0; layer < p.layer_count; ++layer) {
     if (weights[layer] < Real(kMinLayerWeight)) {
       continue;
     }
-    albedo = albedo + layer_albedo(plan, plan.layers[layer], in, k, relative_y, n) * weights[layer];
-    specular = specular + Real(plan.layers[layer].specular) * weights[layer];
+    albedo = albedo + layer_albedo(p, p.layers[layer], r.textures[layer], a, n) * weights[layer];
+    specular = specular + p.layers[layer].specular * weights[layer];
     used = used + weights[layer];
   }
   // Domain: the largest weight is >= 1/8 > kMinLayerWeight, so used > 0.
   albedo = albedo * (Real(1) / used);
-  Vec3<Real> radiance = light(plan, albedo, n, view, specular / used);
+  Vec3<Real> radiance = light(p, albedo, n, view, specular / used);
 
   Real fog_distance = distance;
-  const WaterPlan& w = plan.water;
-  if (w.enabled && relative_y < Real(w.level) && view.y < Real(0)) {
+  if (p.water_enabled && relative_y < p.water_level && view.y < Real(0)) {
     // The view ray meets the surface before the ground (the camera is above the water).
-    const Real surface = Real(w.level) / view.y;  // both negative: surface > 0
-    const Real footprint = surface_footprint(plan, surface, view);
-    radiance = shade_water(plan, view, surface, std::max(Real(0), Real(in.water_depth[k])),
-                           radiance, footprint);
+    const Real surface = p.water_level / view.y;  // both negative: surface > 0
+    const Real footprint = surface_footprint(p, surface, view);
+    radiance = shade_water(p, *r.lattice, view, surface, std::max(Real(0), a.water_depth), radiance,
+                           footprint);
     fog_distance = surface;
   }
-  return apply_fog(plan, radiance, view, fog_distance);
+  return apply_fog(p, radiance, view, fog_distance);
 }
 
 // No terrain at this pixel: the sky above the horizon; below it, open water if the camera is
 // above the water, else the fog colour (terrain beyond the far distance).
 template <class Real>
-Vec3<Real> background_radiance(const ShadingPlan& plan, int px, int py) {
-  const CameraFrame& c = plan.camera;
-  const double ndc_x = 2.0 * (px + 0.5) / plan.width - 1.0;
-  const double ndc_y = 2.0 * (py + 0.5) / plan.height - 1.0;
-  const glm::dvec3 ray =
-      c.forward + ndc_x * c.tan_half_fov_x * c.right + ndc_y * c.tan_half_fov_y * c.up;
-  const Vec3<Real> d = normalize_or(vec<Real>(ray), vec<Real>(c.forward));
-  const WaterPlan& w = plan.water;
-  if (d.y < Real(0)) {
-    if (w.enabled) {
-      const Real surface = Real(w.level) / d.y;
-      const Real footprint = surface_footprint(plan, surface, d);
-      const Vec3<Real> open =
-          shade_water(plan, d, surface, Real(1e6), Vec3<Real>{0, 0, 0}, footprint);
-      return apply_fog(plan, open, d, surface);
-    }
-    return fog_color(plan, d);
+Vec3<Real> background_radiance(const ShadeParams<Real>& p, const ShadeResources& r, int px,
+                               int py) {
+  // The view ray in double (stage_params.h), rounded once.
+  const double ndc_x = 2.0 * (px + 0.5) / p.width - 1.0;
+  const double ndc_y = 2.0 * (py + 0.5) / p.height - 1.0;
+  const double sx = ndc_x * p.tan_half_fov_x, sy = ndc_y * p.tan_half_fov_y;
+  double ray[3];
+  for (int c = 0; c < 3; ++c) {
+    ray[c] = (p.forward[c] + sx * p.right[c]) + sy * p.up[c];
   }
-  return sky_radiance(plan, d);
+  const Vec3<Real> d =
+      normalize_or(Vec3<Real>{Real(ray[0]), Real(ray[1]), Real(ray[2])}, p.camera_forward);
+  if (d.y < Real(0)) {
+    if (p.water_enabled) {
+      const Real surface = p.water_level / d.y;
+      const Real footprint = surface_footprint(p, surface, d);
+      const Vec3<Real> open =
+          shade_water(p, *r.lattice, d, surface, Real(1e6), Vec3<Real>{0, 0, 0}, footprint);
+      return apply_fog(p, open, d, surface);
+    }
+    return fog_color(p, d);
+  }
+  return sky_radiance(p, d);
 }
 
-}  // namespace
-
 template <class Real>
-void shade_pixels(const ShadingPlan& plan, const ShadingInputs& in, RowRange rows,
-                  std::span<Real> rgb) {
-  const Real exposure = Real(plan.light.exposure);
+void shade_pixels(const ShadeParams<Real>& p, const ShadeResources& r, const ShadingInputs& in,
+                  RowRange rows, std::span<Real> rgb) {
+  const Real exposure = p.exposure;
   for (int py = rows.begin; py < rows.end; ++py) {
-    for (int px = 0; px < plan.width; ++px) {
-      const std::size_t k = static_cast<std::size_t>(py) * plan.width + px;
+    for (int px = 0; px < p.width; ++px) {
+      const std::size_t k = static_cast<std::size_t>(py) * p.width + px;
       const Vec3<Real> radiance = in.primitive[k] != 0xffffffffu
-                                      ? terrain_radiance<Real>(plan, in, k)
-                                      : background_radiance<Real>(plan, px, py);
+                                      ? terrain_radiance<Real>(p, r, in.at<Real>(k))
+                                      : background_radiance<Real>(p, r, px, py);
       rgb[3 * k] = radiance.x * exposure;
       rgb[3 * k + 1] = radiance.y * exposure;
       rgb[3 * k + 2] = radiance.z * exposure;
@@ -195,9 +190,17 @@ void shade_pixels(const ShadingPlan& plan, const ShadingInputs& in, RowRange row
   }
 }
 
-template void shade_pixels<float>(const ShadingPlan&, const ShadingInputs&, RowRange,
-                                  std::span<float>);
-template void shade_pixels<double>(const ShadingPlan&, const ShadingInputs&, RowRange,
-                                   std::span<double>);
+template Vec3<float> terrain_radiance<float>(const ShadeParams<float>&, const ShadeResources&,
+                                             const PixelAttributes<float>&);
+template Vec3<double> terrain_radiance<double>(const ShadeParams<double>&, const ShadeResources&,
+                                               const PixelAttributes<double>&);
+template Vec3<float> background_radiance<float>(const ShadeParams<float>&, const ShadeResources&,
+                                                int, int);
+template Vec3<double> background_radiance<double>(const ShadeParams<double>&, const ShadeResources&,
+                                                  int, int);
+template void shade_pixels<float>(const ShadeParams<float>&, const ShadeResources&,
+                                  const ShadingInputs&, RowRange, std::span<float>);
+template void shade_pixels<double>(const ShadeParams<double>&, const ShadeResources&,
+                                   const ShadingInputs&, RowRange, std::span<double>);
 
 }  // namespace relief

@@ -15,11 +15,41 @@
 #include <span>
 
 #include "core/grid_buffers.h"
-#include "core/shading_plan.h"
+#include "core/lattice.h"
+#include "core/proto_texture.h"
+#include "core/stage_params.h"
+#include "core/vec3.h"
 
 namespace relief {
 
-// Per-pixel inputs, row 0 the bottom of the image; all spans width * height long.
+// The scene's resources stage 8 samples: the noise lattice (dithering, waves) and one
+// proto-texture per material layer, in the order of the scene's layers.
+struct ShadeResources {
+  const NoiseLattice* lattice = nullptr;
+  std::span<const ProtoTexture> textures;
+};
+
+// What stage 8 reads at one covered pixel: the attributes stage 7 resolved there.
+template <class Real>
+struct PixelAttributes {
+  Real dx, dz, height;  // camera-relative position (height: y)
+  Real dx_ddx, dx_ddy, dz_ddx, dz_ddy, height_ddx, height_ddy;  // quad derivatives
+  Real nx, ny, nz;                                              // normal (renormalised here)
+  Real slope;                                                   // |grad h|
+  Real water_depth;                                             // §4.3, interpolated
+};
+
+// Radiance of a covered pixel, before the exposure.
+template <class Real>
+Vec3<Real> terrain_radiance(const ShadeParams<Real>& params, const ShadeResources& resources,
+                            const PixelAttributes<Real>& a);
+
+// Radiance of pixel (px, py) where no terrain covers it, before the exposure.
+template <class Real>
+Vec3<Real> background_radiance(const ShadeParams<Real>& params, const ShadeResources& resources,
+                               int px, int py);
+
+// Per-pixel inputs of a whole image, row 0 the bottom; all spans width * height long.
 struct ShadingInputs {
   std::span<const std::uint32_t> primitive;  // 0xffffffff where no terrain covers the pixel
   std::span<const float> dx, dz, height;     // camera-relative x, height (y), z
@@ -27,11 +57,20 @@ struct ShadingInputs {
   std::span<const float> nx, ny, nz;  // interpolated normal (renormalised here)
   std::span<const float> slope;
   std::span<const float> water_depth;  // interpolated per-vertex depth (§4.3)
+
+  template <class Real>
+  PixelAttributes<Real> at(std::size_t k) const {
+    return {Real(dx[k]),         Real(dz[k]),         Real(height[k]), Real(dx_ddx[k]),
+            Real(dx_ddy[k]),     Real(dz_ddx[k]),     Real(dz_ddy[k]), Real(height_ddx[k]),
+            Real(height_ddy[k]), Real(nx[k]),         Real(ny[k]),     Real(nz[k]),
+            Real(slope[k]),      Real(water_depth[k])};
+  }
 };
 
-// Writes rows [rows.begin, rows.end) of `rgb` (3 values per pixel). Output finite everywhere.
+// Writes rows [rows.begin, rows.end) of `rgb` (3 values per pixel): radiance times the
+// exposure. Output finite everywhere.
 template <class Real>
-void shade_pixels(const ShadingPlan& plan, const ShadingInputs& in, RowRange rows,
-                  std::span<Real> rgb);
+void shade_pixels(const ShadeParams<Real>& params, const ShadeResources& resources,
+                  const ShadingInputs& in, RowRange rows, std::span<Real> rgb);
 
 }  // namespace relief

@@ -36,9 +36,7 @@ glm::dvec3 vec(const Vec3d& v) {
 
 }  // namespace
 
-ShadingPlan make_shading_plan(const Scene& scene, const FramePlan& frame,
-                              const std::vector<ProtoTexture>& textures,
-                              const NoiseLattice& lattice) {
+ShadingPlan make_shading_plan(const Scene& scene, const FramePlan& frame, int lattice_size) {
   ShadingPlan plan;
   plan.camera = frame.camera;
   plan.width = scene.viewport.width;
@@ -51,7 +49,6 @@ ShadingPlan make_shading_plan(const Scene& scene, const FramePlan& frame,
   for (std::size_t k = 0; k < scene.shading.layers.size(); ++k) {
     const MaterialLayer& m = scene.shading.layers[k];
     LayerPlan layer;
-    layer.texture = &textures[k];
     layer.inv_tile = 1.0 / m.tile_size;  // tile_size > 0 (validated)
     layer.offset_x = positive_fraction(camera.x * layer.inv_tile);
     layer.offset_y = positive_fraction(camera.y * layer.inv_tile);
@@ -94,12 +91,11 @@ ShadingPlan make_shading_plan(const Scene& scene, const FramePlan& frame,
   water.extinction_log2 = vec(w.extinction) / M_LN2;
   water.inv_full_depth = 1.0 / w.full_depth;
   water.strength = w.wave_strength;
-  water.lattice = &lattice;
   // Three octaves of waves, each shorter, weaker and travelling in its own direction.
   const double lengths[kWaveOctaves] = {1.0, 1.0 / 2.3, 1.0 / 5.1};
   const double amplitudes[kWaveOctaves] = {1.0, 0.5, 0.25};
   const double directions_deg[kWaveOctaves] = {20.0, 75.0, -40.0};
-  const double period = lattice.size;
+  const double period = lattice_size;
   for (int o = 0; o < kWaveOctaves; ++o) {
     const double length = w.wave_length * lengths[o];
     const double inv = 1.0 / length;
@@ -112,7 +108,6 @@ ShadingPlan make_shading_plan(const Scene& scene, const FramePlan& frame,
   }
 
   plan.dither.amount = scene.shading.dither;
-  plan.dither.lattice = &lattice;
   plan.dither.inv_scale = 1.0 / scene.shading.dither_scale;
   plan.dither.offset_x = positive_mod(camera.x * plan.dither.inv_scale + 0.5 * period, period);
   plan.dither.offset_z = positive_mod(camera.z * plan.dither.inv_scale + 0.25 * period, period);

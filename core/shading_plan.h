@@ -3,13 +3,12 @@
 // terrain's lattice offsets are), light, sky and water constants.
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "core/camera.h"
 #include "core/frame_plan.h"
-#include "core/lattice.h"
 #include "core/limits.h"
-#include "core/proto_texture.h"
 #include "core/scene/scene.h"
 
 namespace relief {
@@ -23,7 +22,6 @@ struct Ramp {
 };
 
 struct LayerPlan {
-  const ProtoTexture* texture = nullptr;
   double inv_tile = 1;  // texture repeats per world unit
   // Camera position in texture repeats, reduced modulo 1: u = offset_x + dx * inv_tile.
   double offset_x = 0, offset_y = 0, offset_z = 0;
@@ -56,7 +54,6 @@ struct WaterPlan {
   glm::dvec3 extinction_log2;  // per world unit, / ln 2
   double inv_full_depth = 1;
   double strength = 0;
-  const NoiseLattice* lattice = nullptr;
   double wave_inv_length[kWaveOctaves]{};  // lattice cells per world unit
   double wave_offset_x[kWaveOctaves]{};    // (camera + velocity time) in cells, mod P
   double wave_offset_z[kWaveOctaves]{};
@@ -65,7 +62,6 @@ struct WaterPlan {
 
 struct DitherPlan {
   double amount = 0;  // 0: no dithering
-  const NoiseLattice* lattice = nullptr;
   double inv_scale = 1;
   double offset_x = 0, offset_z = 0;  // camera in lattice cells, mod P
 };
@@ -82,10 +78,9 @@ struct ShadingPlan {
   double pixel_angle = 0;     // radians subtended by one pixel (vertical field / height)
 };
 
-// `textures[k]` is the proto-texture of scene layer k; `lattice` the terrain's noise lattice
-// (the dithering and the waves reuse it). The plan refers to both; they must outlive it.
-ShadingPlan make_shading_plan(const Scene& scene, const FramePlan& frame,
-                              const std::vector<ProtoTexture>& textures,
-                              const NoiseLattice& lattice);
+// `lattice_size`: P of the terrain's noise lattice, which the dithering and the waves reuse
+// (their offsets are reduced modulo it). The textures and the lattice themselves are
+// resources the stage reads (shade.h), not part of the plan.
+ShadingPlan make_shading_plan(const Scene& scene, const FramePlan& frame, int lattice_size);
 
 }  // namespace relief

@@ -8,11 +8,6 @@ namespace relief {
 
 namespace {
 
-template <class Real>
-Vec3<Real> vec(const glm::dvec3& v) {
-  return {Real(v.x), Real(v.y), Real(v.z)};
-}
-
 // ((1 + c) / 2)^(2^n) by repeated squaring: no pow.
 template <class Real>
 Real power_of_half_cosine(Real c, int squarings) {
@@ -26,41 +21,41 @@ Real power_of_half_cosine(Real c, int squarings) {
 }  // namespace
 
 template <class Real>
-Vec3<Real> sky_radiance(const ShadingPlan& plan, const Vec3<Real>& d) {
-  const Vec3<Real> zenith = vec<Real>(plan.sky.zenith), horizon = vec<Real>(plan.sky.horizon);
+Vec3<Real> sky_radiance(const ShadeParams<Real>& p, const Vec3<Real>& d) {
+  const Vec3<Real>& zenith = p.zenith;
+  const Vec3<Real>& horizon = p.horizon;
   Vec3<Real> color = horizon;
   if (d.y > Real(0)) {
     color = mix(horizon, zenith, std::sqrt(d.y));  // domain: d.y > 0
   }
-  const Vec3<Real> sun = vec<Real>(plan.light.sun);
-  const Real c = dot(d, vec<Real>(plan.light.sun_direction));
-  const Real inner = Real(plan.sky.sun_cos_inner), outer = Real(plan.sky.sun_cos_outer);
+  const Vec3<Real>& sun = p.sun;
+  const Real c = dot(d, p.sun_direction);
+  const Real inner = p.sun_cos_inner, outer = p.sun_cos_outer;
   const Real disc = inner > outer ? smooth01((c - outer) / (inner - outer)) : Real(c >= inner);
   const Real halo = Real(0.06) * power_of_half_cosine(c, 5);
   return color + sun * (Real(20) * disc + halo);
 }
 
 template <class Real>
-Vec3<Real> fog_color(const ShadingPlan& plan, const Vec3<Real>& d) {
-  const Real c = dot(d, vec<Real>(plan.light.sun_direction));
-  return vec<Real>(plan.sky.horizon) +
-         vec<Real>(plan.light.sun) * (Real(0.05) * power_of_half_cosine(c, 3));
+Vec3<Real> fog_color(const ShadeParams<Real>& p, const Vec3<Real>& d) {
+  const Real c = dot(d, p.sun_direction);
+  return p.horizon + p.sun * (Real(0.05) * power_of_half_cosine(c, 3));
 }
 
 template <class Real>
-Vec3<Real> apply_fog(const ShadingPlan& plan, const Vec3<Real>& radiance, const Vec3<Real>& d,
+Vec3<Real> apply_fog(const ShadeParams<Real>& p, const Vec3<Real>& radiance, const Vec3<Real>& d,
                      Real distance) {
-  const Real clear = exp2_det(-Real(plan.sky.fog_density_log2) * distance);  // in (0, 1]
-  return mix(fog_color(plan, d), radiance, clear);
+  const Real clear = exp2_det(-p.fog_density_log2 * distance);  // in (0, 1]
+  return mix(fog_color(p, d), radiance, clear);
 }
 
-template Vec3<float> sky_radiance<float>(const ShadingPlan&, const Vec3<float>&);
-template Vec3<double> sky_radiance<double>(const ShadingPlan&, const Vec3<double>&);
-template Vec3<float> fog_color<float>(const ShadingPlan&, const Vec3<float>&);
-template Vec3<double> fog_color<double>(const ShadingPlan&, const Vec3<double>&);
-template Vec3<float> apply_fog<float>(const ShadingPlan&, const Vec3<float>&, const Vec3<float>&,
-                                      float);
-template Vec3<double> apply_fog<double>(const ShadingPlan&, const Vec3<double>&,
+template Vec3<float> sky_radiance<float>(const ShadeParams<float>&, const Vec3<float>&);
+template Vec3<double> sky_radiance<double>(const ShadeParams<double>&, const Vec3<double>&);
+template Vec3<float> fog_color<float>(const ShadeParams<float>&, const Vec3<float>&);
+template Vec3<double> fog_color<double>(const ShadeParams<double>&, const Vec3<double>&);
+template Vec3<float> apply_fog<float>(const ShadeParams<float>&, const Vec3<float>&,
+                                      const Vec3<float>&, float);
+template Vec3<double> apply_fog<double>(const ShadeParams<double>&, const Vec3<double>&,
                                         const Vec3<double>&, double);
 
 }  // namespace relief

@@ -2,7 +2,7 @@
 // no terrain covers the pixel, and fog toward the horizon colour over every surface.
 #pragma once
 
-#include "core/shading_plan.h"
+#include "core/stage_params.h"
 #include "core/vec3.h"
 
 namespace relief {
@@ -11,16 +11,16 @@ namespace relief {
 // the horizon, sqrt-shaped toward the zenith above it), the sun disc with a smooth edge
 // (20 x the sun's radiance), and a halo ((1 + cos)/2)^32 around it.
 template <class Real>
-Vec3<Real> sky_radiance(const ShadingPlan& plan, const Vec3<Real>& d);
+Vec3<Real> sky_radiance(const ShadeParams<Real>& params, const Vec3<Real>& d);
 
 // The fog colour seen along unit direction `d`: the horizon, warmer toward the sun.
 template <class Real>
-Vec3<Real> fog_color(const ShadingPlan& plan, const Vec3<Real>& d);
+Vec3<Real> fog_color(const ShadeParams<Real>& params, const Vec3<Real>& d);
 
 // Exponential fog: the fraction 1 - exp(-density distance) of the fog colour, computed with
 // exp2_det. distance >= 0.
 template <class Real>
-Vec3<Real> apply_fog(const ShadingPlan& plan, const Vec3<Real>& radiance, const Vec3<Real>& d,
-                     Real distance);
+Vec3<Real> apply_fog(const ShadeParams<Real>& params, const Vec3<Real>& radiance,
+                     const Vec3<Real>& d, Real distance);
 
 }  // namespace relief

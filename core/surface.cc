@@ -47,12 +47,12 @@ Tangent<Real> axis_tangent(const SurfaceInputs<Real>& in, std::ptrdiff_t minus, 
 }  // namespace
 
 template <class Real>
-void surface_pass(const FramePlan& plan, RowRange rows, SurfaceInputs<Real> in,
+void surface_pass(const SurfaceParams<Real>& p, RowRange rows, SurfaceInputs<Real> in,
                   SurfaceSpans<Real> out) {
-  const GridLayout& layout = plan.layout;
-  const Real min_sine_sq = Real(limits::kMinTangentSine * limits::kMinTangentSine);
-  const Real water_level = Real(plan.relative_water_level);  // heights are camera-relative
-  const Real max_slope = Real(limits::kMaxSlope);
+  const GridLayout layout{p.width, p.height, p.pitch};
+  const Real min_sine_sq = p.min_sine_sq;
+  const Real water_level = p.water_level;  // heights are camera-relative
+  const Real max_slope = p.max_slope;
   for (int j = rows.begin; j < rows.end; ++j) {
     for (int i = 0; i < layout.pitch; ++i) {
       const std::size_t k = layout.index(i, j);
@@ -105,16 +105,16 @@ void surface_pass(const FramePlan& plan, RowRange rows, SurfaceInputs<Real> in,
       out.nz[k] = nz * inv_length;
       // |g| = horizontal / ny; ny > 0 but may be tiny for a near-vertical cell.
       out.slope[k] = std::min(std::sqrt(horizontal_sq) / ny, max_slope);
-      if (plan.water_enabled) {
+      if (p.water_enabled) {
         out.water_depth[k] = std::max(Real(0), water_level - in.height[k]);
       }
     }
   }
 }
 
-template void surface_pass<float>(const FramePlan&, RowRange, SurfaceInputs<float>,
+template void surface_pass<float>(const SurfaceParams<float>&, RowRange, SurfaceInputs<float>,
                                   SurfaceSpans<float>);
-template void surface_pass<double>(const FramePlan&, RowRange, SurfaceInputs<double>,
+template void surface_pass<double>(const SurfaceParams<double>&, RowRange, SurfaceInputs<double>,
                                    SurfaceSpans<double>);
 
 }  // namespace relief

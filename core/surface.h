@@ -17,8 +17,8 @@
 #include <cstdint>
 #include <span>
 
-#include "core/frame_plan.h"
 #include "core/grid_buffers.h"
+#include "core/stage_params.h"
 
 namespace relief {
 
@@ -40,7 +40,7 @@ struct SurfaceInputs {
 // its largest component before normalising, so no square overflows; slope = |g| is capped at
 // kMaxSlope (a vertical wall for every consumer).
 template <class Real>
-void surface_pass(const FramePlan& plan, RowRange rows, SurfaceInputs<Real> in,
+void surface_pass(const SurfaceParams<Real>& params, RowRange rows, SurfaceInputs<Real> in,
                   SurfaceSpans<Real> out);
 
 }  // namespace relief

@@ -8,6 +8,7 @@
 #include "core/frame_plan.h"
 #include "core/grid_buffers.h"
 #include "core/projected_domain.h"
+#include "core/stage_params.h"
 #include "core/surface.h"
 
 namespace relief {
@@ -19,18 +20,20 @@ SurfaceInputs<Real> surface_inputs(const GridBuffers<Real>& buffers) {
 
 // Stage 3 over whole rows [rows.begin, rows.end).
 template <class Real>
-void evaluate_fbm_rows(const FramePlan& plan, RowRange rows, GridBuffers<Real>& buffers) {
+void evaluate_fbm_rows(const FbmParams<Real>& params, const NoiseLattice& lattice, RowRange rows,
+                       GridBuffers<Real>& buffers) {
   const IndexRange range{buffers.layout.index(0, rows.begin), buffers.layout.index(0, rows.end)};
-  evaluate_fbm<Real>(plan.terrain, range, buffers.dx, buffers.dz, buffers.nu, buffers.height);
+  evaluate_fbm<Real>(params, lattice, range, buffers.dx, buffers.dz, buffers.nu, buffers.height);
 }
 
-// Stages 2, 3 and 4 over the whole grid.
+// Stages 2, 3 and 4 over the whole grid, with parameters derived from `plan` for this call.
 template <class Real>
 void run_terrain_stages(const FramePlan& plan, GridBuffers<Real>& buffers) {
+  const TerrainParams<Real> params = make_terrain_params<Real>(plan);
   const RowRange all{0, buffers.layout.height};
-  project_domain<Real>(plan, all, buffers.domain());
-  evaluate_fbm_rows<Real>(plan, all, buffers);
-  surface_pass<Real>(plan, all, surface_inputs(buffers), buffers.surface());
+  project_domain<Real>(params.domain, params.row_descents, all, buffers.domain());
+  evaluate_fbm_rows<Real>(params.fbm, *plan.terrain.lattice, all, buffers);
+  surface_pass<Real>(params.surface, all, surface_inputs(buffers), buffers.surface());
 }
 
 }  // namespace relief

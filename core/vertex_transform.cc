@@ -1,5 +1,7 @@
 #include "core/vertex_transform.h"
 
+#include "core/stage_params.h"
+
 namespace relief {
 
 ClipTransform make_clip_transform(const CameraFrame& camera) {
@@ -16,13 +18,13 @@ ClipTransform make_clip_transform(const CameraFrame& camera) {
 }
 
 template <class Real>
-void transform_vertices(const ClipTransform& t, IndexRange range, std::span<const Real> dx,
+void transform_vertices(const TransformParams<Real>& t, IndexRange range, std::span<const Real> dx,
                         std::span<const Real> dz, std::span<const Real> height,
                         ClipSpans<Real> clip) {
-  const Real x0 = Real(t.row_x[0]), x1 = Real(t.row_x[1]), x2 = Real(t.row_x[2]);
-  const Real y0 = Real(t.row_y[0]), y1 = Real(t.row_y[1]), y2 = Real(t.row_y[2]);
-  const Real w0 = Real(t.row_w[0]), w1 = Real(t.row_w[1]), w2 = Real(t.row_w[2]);
-  const Real z = Real(t.z_clip);
+  const Real x0 = t.row_x[0], x1 = t.row_x[1], x2 = t.row_x[2];
+  const Real y0 = t.row_y[0], y1 = t.row_y[1], y2 = t.row_y[2];
+  const Real w0 = t.row_w[0], w1 = t.row_w[1], w2 = t.row_w[2];
+  const Real z = t.z_clip;
   for (std::size_t k = range.begin; k < range.end; ++k) {
     const Real px = dx[k];
     const Real py = height[k];
@@ -34,11 +36,11 @@ void transform_vertices(const ClipTransform& t, IndexRange range, std::span<cons
   }
 }
 
-template void transform_vertices<float>(const ClipTransform&, IndexRange, std::span<const float>,
+template void transform_vertices<float>(const TransformParams<float>&, IndexRange,
                                         std::span<const float>, std::span<const float>,
-                                        ClipSpans<float>);
-template void transform_vertices<double>(const ClipTransform&, IndexRange, std::span<const double>,
+                                        std::span<const float>, ClipSpans<float>);
+template void transform_vertices<double>(const TransformParams<double>&, IndexRange,
                                          std::span<const double>, std::span<const double>,
-                                         ClipSpans<double>);
+                                         std::span<const double>, ClipSpans<double>);
 
 }  // namespace relief

@@ -32,10 +32,13 @@ struct ClipSpans {
   std::span<Real> x, y, z, w;
 };
 
+template <class Real>
+struct TransformParams;  // stage_params.h: ClipTransform's rows, rounded once
+
 // clip[k] for k in range, from camera-relative (dx, dz) and camera-relative height h.
 template <class Real>
-void transform_vertices(const ClipTransform& transform, IndexRange range, std::span<const Real> dx,
-                        std::span<const Real> dz, std::span<const Real> height,
-                        ClipSpans<Real> clip);
+void transform_vertices(const TransformParams<Real>& params, IndexRange range,
+                        std::span<const Real> dx, std::span<const Real> dz,
+                        std::span<const Real> height, ClipSpans<Real> clip);
 
 }  // namespace relief

@@ -14,7 +14,8 @@
 // exp(-extinction length) per channel, and the water body's colour fills the rest.
 #pragma once
 
-#include "core/shading_plan.h"
+#include "core/lattice.h"
+#include "core/stage_params.h"
 #include "core/vec3.h"
 
 namespace relief {
@@ -23,12 +24,15 @@ namespace relief {
 // surface (> 0); `depth`: water depth below that point (>= 0; a large value for open water
 // with no ground in view); `ground`: radiance of the lit ground; `footprint`: the pixel's
 // size on the surface, world units.
+// `lattice`: the terrain's noise lattice, which the waves reuse.
 template <class Real>
-Vec3<Real> shade_water(const ShadingPlan& plan, const Vec3<Real>& view, Real surface_distance,
-                       Real depth, const Vec3<Real>& ground, Real footprint);
+Vec3<Real> shade_water(const ShadeParams<Real>& params, const NoiseLattice& lattice,
+                       const Vec3<Real>& view, Real surface_distance, Real depth,
+                       const Vec3<Real>& ground, Real footprint);
 
 // The wave normal at camera-relative surface position (x, z), for bump strength `strength`.
 template <class Real>
-Vec3<Real> wave_normal(const ShadingPlan& plan, Real x, Real z, Real strength, Real footprint);
+Vec3<Real> wave_normal(const ShadeParams<Real>& params, const NoiseLattice& lattice, Real x, Real z,
+                       Real strength, Real footprint);
 
 }  // namespace relief

@@ -1,11 +1,63 @@
 #include "pipeline/frame.h"
 
 #include <chrono>
+#include <memory>
 
-#include "pipeline/memory_budget.h"
-#include "pipeline/render_frame.h"
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+
+#include "pipeline/reference_backend.h"
+#include "pipeline/stage_table.h"
 
 namespace relief {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double milliseconds_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Walks the stage table up to and including `last`: each stage's units in fixed chunks of its
+// grain (simple_partitioner: the chunks never depend on the thread count), a stage starting
+// when the previous one has finished.
+void run_table(FrameBackend& backend, StageId last, std::vector<StageTime>& times) {
+  for (const StageInfo& stage : kFrameStages) {
+    const Clock::time_point start = Clock::now();
+    backend.prepare(stage.id);
+    const std::size_t units = backend.units(stage.id);
+    if (units > 0) {
+      tbb::parallel_for(
+          tbb::blocked_range<std::size_t>(0, units, stage.grain),
+          [&](const tbb::blocked_range<std::size_t>& r) {
+            backend.run(stage.id, r.begin(), r.end());
+          },
+          tbb::simple_partitioner());
+    }
+    backend.after(stage.id);
+    times.push_back({stage.name, milliseconds_since(start)});
+    if (stage.id == last) {
+      return;
+    }
+  }
+}
+
+template <class Real>
+Frame render_with(const Scene& scene, const SceneResources& resources,
+                  const FrameRequest& request) {
+  const Clock::time_point start = Clock::now();
+  ReferenceBackend<Real> backend(scene, resources.lattice, resources.textures, request);
+  Frame frame;
+  frame.stats.stages.push_back({"frame plan", milliseconds_since(start)});
+  run_table(backend, StageId::kTiles, frame.stats.stages);
+  backend.finish(frame);
+  frame.stats.total_ms = milliseconds_since(start);
+  return frame;
+}
+
+}  // namespace
 
 std::string_view backend_name(Backend backend) {
   return backend == Backend::kReference ? "reference" : "reference-double";
@@ -26,31 +78,20 @@ std::vector<std::string_view> backend_names() {
 
 Frame render_frame(const Scene& scene, const SceneResources& resources,
                    const FrameRequest& request) {
-  if (request.backend != Backend::kReference) {
-    throw MemoryLimitError("the reference-double backend is not wired yet");
-  }
-  const auto start = std::chrono::steady_clock::now();
-  FrameTimings t;
-  RenderedImage rendered = render_frame(scene, resources, t, {request.max_bin_bytes});
-  Frame frame;
-  frame.image.width = rendered.width;
-  frame.image.height = rendered.height;
-  frame.image.srgb = std::move(rendered.rgb);
-  if (request.outputs.linear) {
-    frame.image.linear = std::move(rendered.linear);
-  }
-  frame.stats.stages = {{"projected domain", t.terrain.projected_domain_ms},
-                        {"fractal", t.terrain.fbm_ms},
-                        {"surface", t.terrain.surface_ms},
-                        {"vertex transform", t.transform_ms},
-                        {"rasterisation", t.raster_ms},
-                        {"resolve", t.resolve_ms},
-                        {"shading", t.shade_ms},
-                        {"sRGB encoding", t.encode_ms}};
-  frame.stats.raster = t.raster;
-  frame.stats.total_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  return frame;
+  return request.backend == Backend::kReference ? render_with<float>(scene, resources, request)
+                                                : render_with<double>(scene, resources, request);
 }
+
+template <class Real>
+TerrainRun<Real> run_terrain_stages(const Scene& scene, const NoiseLattice& lattice) {
+  const Clock::time_point start = Clock::now();
+  ReferenceBackend<Real> backend(scene, lattice, {}, FrameRequest{});
+  std::vector<StageTime> times{{"frame plan", milliseconds_since(start)}};
+  run_table(backend, StageId::kSurface, times);
+  return {backend.plan(), backend.take_grid(), std::move(times)};
+}
+
+template TerrainRun<float> run_terrain_stages<float>(const Scene&, const NoiseLattice&);
+template TerrainRun<double> run_terrain_stages<double>(const Scene&, const NoiseLattice&);
 
 }  // namespace relief

@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/frame_plan.h"
+#include "core/grid_buffers.h"
 #include "core/scene/scene.h"
 #include "pipeline/scene_resources.h"
 #include "raster/rasterize.h"
@@ -67,8 +69,10 @@ struct StageTime {
 };
 
 struct FrameStats {
-  std::vector<StageTime> stages;  // in the order they ran
-  double total_ms = 0;            // the frame, start to end
+  std::vector<StageTime> stages;  // in the order they ran (frame plan, then the stage table)
+  // The parts of the fused tile stage, as CPU time summed over the threads that ran tiles.
+  std::vector<StageTime> tile_parts;
+  double total_ms = 0;  // the frame, start to end
   raster::RasterStats raster;
 };
 
@@ -81,5 +85,17 @@ struct Frame {
 // Throws MemoryLimitError when the rasteriser's bins exceed request.max_bin_bytes.
 Frame render_frame(const Scene& scene, const SceneResources& resources,
                    const FrameRequest& request);
+
+// Stages 1-4 alone (relief stages), by the reference backend in Real: the frame's plan, the
+// grid buffers and the time of each stage.
+template <class Real>
+struct TerrainRun {
+  FramePlan plan;
+  GridBuffers<Real> grid;
+  std::vector<StageTime> stages;
+};
+
+template <class Real>
+TerrainRun<Real> run_terrain_stages(const Scene& scene, const NoiseLattice& lattice);
 
 }  // namespace relief

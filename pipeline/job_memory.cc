@@ -17,11 +17,13 @@ namespace {
 // Bytes per element of the arrays each job holds at its peak.
 constexpr std::uintmax_t kGridVertexBytes = 10 * 4 + 1;  // GridBuffers<float>: 10 planes + valid
 constexpr std::uintmax_t kClipVertexBytes = 4 * 4;       // clip x, y, z, w
-// Visibility (id + depth) 8, resolve 17 float planes (3 barycentrics, 8 attributes, 6
-// derivatives) 68, linear RGB 12, sRGB bytes 3, PNG encoding (filtered rows, deflate output
-// and the copy handed to the writer) at most 13.
-constexpr std::uintmax_t kRenderPixelBytes = 8 + 68 + 12 + 3 + 13;
-constexpr std::uintmax_t kFloatImagePixelBytes = 12;  // the PFM encoding of --float
+// In double: 10 planes of 8 bytes and valid, clip coordinates in double and their float copy
+// for the rasteriser.
+constexpr std::uintmax_t kDoubleVertexBytes = 10 * 8 + 1 + 4 * 8 + 4 * 4;
+// The tile-fused back end keeps no per-pixel attribute: per pixel only the sRGB bytes (3) and
+// their PNG encoding (filtered rows, deflate output and the copy handed to the writer: at most
+// 13), plus each requested output and its encoding (twice its size: the PFM copy).
+constexpr std::uintmax_t kRenderPixelBytes = 3 + 13;
 // A set-up triangle, twice over for the growth of its chunk's vector.
 constexpr std::uintmax_t kSetupTriangleBytes = 2 * sizeof(raster::RasterTriangle);
 // Texture texels: float RGB (12) and the mip chain's third (4); PNG files decode through
@@ -80,26 +82,33 @@ std::uintmax_t grid_vertices(const Scene& scene) {
 
 }  // namespace
 
-MemoryEstimate estimate_render_memory(const Scene& scene, bool float_output) {
+MemoryEstimate estimate_render_memory(const Scene& scene, Backend backend,
+                                      const FrameOutputs& outputs) {
   MemoryEstimate estimate;
   add_resources(scene, estimate);
   const std::uintmax_t vertices = grid_vertices(scene);
   const std::uintmax_t triangles =
       2 * std::uintmax_t(scene.grid.width - 1) * std::uintmax_t(scene.grid.height - 1);
+  const std::uintmax_t vertex_bytes =
+      backend == Backend::kReference ? kGridVertexBytes + kClipVertexBytes : kDoubleVertexBytes;
   estimate.add("grid " + size_text(scene.grid.width, scene.grid.height),
-               vertices * (kGridVertexBytes + kClipVertexBytes) + triangles * kSetupTriangleBytes);
+               vertices * vertex_bytes + triangles * kSetupTriangleBytes);
   const std::uintmax_t pixels = std::uintmax_t(scene.viewport.width) * scene.viewport.height;
+  // Floats per pixel of the requested outputs; the primitive ids are written without a copy.
+  const std::uintmax_t output_floats = 3 * outputs.linear + outputs.depth + 3 * outputs.normal +
+                                       outputs.world_height + outputs.octaves;
   estimate.add("image " + size_text(scene.viewport.width, scene.viewport.height),
-               pixels * (kRenderPixelBytes + (float_output ? kFloatImagePixelBytes : 0)));
+               pixels * (kRenderPixelBytes + 2 * 4 * output_floats + 4 * outputs.primitive));
   return estimate;
 }
 
-MemoryEstimate estimate_stages_memory(const Scene& scene) {
+MemoryEstimate estimate_stages_memory(const Scene& scene, Backend backend) {
   MemoryEstimate estimate;
   const std::uintmax_t lattice = std::uintmax_t(scene.terrain.lattice_size);
   estimate.add("noise lattice", lattice * lattice * sizeof(float));
+  const std::uintmax_t grid_bytes = backend == Backend::kReference ? kGridVertexBytes : 10 * 8 + 1;
   estimate.add("grid " + size_text(scene.grid.width, scene.grid.height),
-               grid_vertices(scene) * (kGridVertexBytes + kStagesVertexBytes));
+               grid_vertices(scene) * (grid_bytes + kStagesVertexBytes));
   return estimate;
 }
 

@@ -6,19 +6,22 @@
 #include <cstdint>
 
 #include "core/scene/scene.h"
+#include "pipeline/frame.h"
 #include "pipeline/memory_budget.h"
 
 namespace relief {
 
 // `relief render`: scene resources (lattice, textures with their mip chains), grid buffers
-// and clip coordinates, the rasteriser's set-up triangles, and per pixel the visibility
-// buffer, the resolved attributes, the linear and sRGB images and the encoded outputs. The
-// rasteriser's bins depend on the triangles' sizes and are checked when they are counted.
-MemoryEstimate estimate_render_memory(const Scene& scene, bool float_output);
+// and clip coordinates in the backend's precision, the rasteriser's set-up triangles, and per
+// pixel the sRGB image, its PNG encoding and each requested output with its encoding. The
+// tile-fused back end keeps no per-pixel attribute planes (tile_pass.h). The rasteriser's bins
+// depend on the triangles' sizes and are checked when they are counted.
+MemoryEstimate estimate_render_memory(const Scene& scene, Backend backend,
+                                      const FrameOutputs& outputs);
 
 // `relief stages`: the lattice, the grid buffers, and one field's picture and raw file at a
 // time.
-MemoryEstimate estimate_stages_memory(const Scene& scene);
+MemoryEstimate estimate_stages_memory(const Scene& scene, Backend backend);
 
 // `relief raster`, before parsing: the parsed form of a soup file of `file_bytes` bytes.
 MemoryEstimate estimate_soup_memory(std::uintmax_t file_bytes);

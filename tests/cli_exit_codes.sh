@@ -48,8 +48,8 @@ fi
 if [ "$sanitized" != 1 ]; then
   (
     ulimit -v 1500000
-    "$relief" render --set viewport.width=4096 --set viewport.height=4096 -o "$work/out.png" \
-      >"$work/stdout" 2>"$work/stderr"
+    "$relief" render --set viewport.width=8192 --set viewport.height=8192 -o "$work/out.png" \
+      --float "$work/out.pfm" >"$work/stdout" 2>"$work/stderr"
   )
   code=$?
   [ "$code" -eq 1 ] || fail "a render out of memory exited $code, expected 1"

@@ -9,7 +9,7 @@
 #include "core/frame_plan.h"
 #include "core/lattice.h"
 #include "core/terrain_stages.h"
-#include "pipeline/frame_runner.h"
+#include "pipeline/frame.h"
 #include "test_support.h"
 
 namespace relief {
@@ -191,10 +191,9 @@ TEST_CASE("stageBuffersAreIdenticalForEveryThreadCountAndEqualTheSerialReference
   run_terrain_stages(plan, serial);
   for (int threads : {1, 2, 3, 8}) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    GridBuffers<float> parallel(plan.layout);
-    run_terrain_stages_parallel(plan, parallel);
+    const TerrainRun<float> parallel = run_terrain_stages<float>(scene, lattice);
     INFO(threads << " threads");
-    CHECK(same_buffers(serial, parallel));
+    CHECK(same_buffers(serial, parallel.grid));
   }
 }
 

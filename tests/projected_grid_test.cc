@@ -8,6 +8,7 @@
 #include "core/frame_plan.h"
 #include "core/lattice.h"
 #include "core/projected_domain.h"
+#include "core/stage_params.h"
 #include "core/terrain_stages.h"
 #include "test_support.h"
 
@@ -89,7 +90,9 @@ TEST_CASE("projectedGridCoversEveryBasePointVisibleInTheViewport", "[projected_g
     INFO("camera: " << c.name);
     REQUIRE(plan.projector.terrain_visible);
     GridBuffers<double> b(plan.layout);
-    project_domain<double>(plan, RowRange{0, plan.layout.height}, b.domain());
+    project_domain<double>(make_terrain_params<double>(plan).domain,
+                           make_row_descents<double>(plan), RowRange{0, plan.layout.height},
+                           b.domain());
     const CameraFrame& cam = plan.camera;
     const double y_lo = plan.bounds.world_min - cam.position.y;
     const double y_hi = plan.bounds.world_max - cam.position.y;
@@ -126,7 +129,9 @@ TEST_CASE("projectedGridSpacingGrowsAndOctavesFallWithDistance", "[projected_gri
     const Scene scene = scene_for(c);
     const FramePlan plan = make_frame_plan(scene, lattice);
     GridBuffers<double> b(plan.layout);
-    project_domain<double>(plan, RowRange{0, plan.layout.height}, b.domain());
+    project_domain<double>(make_terrain_params<double>(plan).domain,
+                           make_row_descents<double>(plan), RowRange{0, plan.layout.height},
+                           b.domain());
     INFO("camera: " << c.name);
     // Along the centre column, the valid vertices of the covered region (the margin rows may
     // reach behind the camera), in order of their distance ahead of it.

@@ -12,7 +12,8 @@
 #include "core/scene/scene_json.h"
 #include "core/shade.h"
 #include "core/shading_plan.h"
-#include "pipeline/render_frame.h"
+#include "pipeline/frame.h"
+#include "pipeline/whole_frame.h"
 #include "raster/resolve.h"
 
 namespace relief {
@@ -40,8 +41,7 @@ TEST_CASE("terrainImageHasNoHolesAtTheBordersAndNoCracks", "[render]") {
     overrides.insert(overrides.end(), c.overrides.begin(), c.overrides.end());
     const Scene scene = resolve_scene("default", overrides);
     const NoiseLattice lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
-    FrameTimings timings;
-    const TerrainFrame frame = rasterize_terrain(scene, lattice, timings);
+    const TerrainFrame frame = rasterize_terrain(scene, lattice);
     // The property needs the camera above the ground beneath it.
     REQUIRE(scene.camera.position[1] >
             fbm_height<double>(frame.plan.terrain, 0.0, 0.0, frame.plan.lod.nu_max));
@@ -74,12 +74,13 @@ TEST_CASE("renderedImageIsIdenticalForEveryThreadCount", "[render]") {
   const Scene scene = resolve_scene(
       "lava", {"viewport.width=200", "viewport.height=160", "grid.width=120", "grid.height=120"});
   const SceneResources resources = load_scene_resources(scene);
-  FrameTimings timings;
-  const RenderedImage reference = render_frame(scene, resources, timings);
+  FrameRequest request;
+  request.outputs.linear = true;
+  const FrameImage reference = render_frame(scene, resources, request).image;
   for (int threads : {1, 3}) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    const RenderedImage image = render_frame(scene, resources, timings);
-    CHECK(image.rgb == reference.rgb);
+    const FrameImage image = render_frame(scene, resources, request).image;
+    CHECK(image.srgb == reference.srgb);
     CHECK(image.linear == reference.linear);
   }
 }
@@ -89,8 +90,9 @@ TEST_CASE("everyPresetRendersWithoutNanOrInfinity", "[render]") {
     const Scene scene = resolve_scene(
         preset, {"viewport.width=192", "viewport.height=144", "grid.width=96", "grid.height=96"});
     const SceneResources resources = load_scene_resources(scene);
-    FrameTimings timings;
-    const RenderedImage image = render_frame(scene, resources, timings);
+    FrameRequest request;
+    request.outputs.linear = true;
+    const FrameImage image = render_frame(scene, resources, request).image;
     INFO(preset);
     REQUIRE(image.linear.size() == 192u * 144u * 3u);
     int covered = 0;
@@ -98,7 +100,7 @@ TEST_CASE("everyPresetRendersWithoutNanOrInfinity", "[render]") {
       REQUIRE(std::isfinite(image.linear[k]));
       REQUIRE(image.linear[k] >= 0.0f);
     }
-    const TerrainFrame frame = rasterize_terrain(scene, resources.lattice, timings);
+    const TerrainFrame frame = rasterize_terrain(scene, resources.lattice);
     for (std::uint32_t p : frame.visibility.primitive) {
       covered += p != raster::kNoPrimitive;
     }
@@ -110,17 +112,17 @@ TEST_CASE("waterCoversOnlyPixelsBelowTheWaterLevel", "[render]") {
   const Scene scene = resolve_scene(
       "lake", {"viewport.width=160", "viewport.height=120", "grid.width=96", "grid.height=96"});
   const SceneResources resources = load_scene_resources(scene);
-  FrameTimings timings;
-  const TerrainFrame frame = rasterize_terrain(scene, resources.lattice, timings);
+  const TerrainFrame frame = rasterize_terrain(scene, resources.lattice);
   const raster::ResolvedFrame r = resolve_for_shading(frame);
   const ShadingInputs in = shading_inputs(frame, r);
-  ShadingPlan with_water =
-      make_shading_plan(scene, frame.plan, resources.textures, resources.lattice);
-  ShadingPlan without_water = with_water;
-  without_water.water.enabled = false;
+  const ShadeParams<float> with_water =
+      make_shade_params<float>(make_shading_plan(scene, frame.plan, resources.lattice.size));
+  ShadeParams<float> without_water = with_water;
+  without_water.water_enabled = 0;
+  const ShadeResources shade_resources{&resources.lattice, resources.textures};
   std::vector<float> a(160 * 120 * 3), b(a.size());
-  shade_pixels<float>(with_water, in, RowRange{0, 120}, a);
-  shade_pixels<float>(without_water, in, RowRange{0, 120}, b);
+  shade_pixels<float>(with_water, shade_resources, in, RowRange{0, 120}, a);
+  shade_pixels<float>(without_water, shade_resources, in, RowRange{0, 120}, b);
   int wet = 0, dry = 0;
   for (std::size_t k = 0; k < 160 * 120; ++k) {
     if (frame.visibility.primitive[k] == raster::kNoPrimitive) {

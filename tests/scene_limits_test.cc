@@ -21,7 +21,8 @@
 #include "core/limits.h"
 #include "core/scene/json_fields.h"
 #include "core/scene/scene_json.h"
-#include "pipeline/render_frame.h"
+#include "pipeline/frame.h"
+#include "pipeline/whole_frame.h"
 #include "raster/resolve.h"
 
 namespace relief {
@@ -263,7 +264,7 @@ TEST_CASE("rulesAcrossFieldsRefuseTheValueJustBeyondThemNamingTheFieldsAndTheRan
 }
 
 // What a frame at a bound must show.
-struct Frame {
+struct FrameCheck {
   std::size_t pixels = 0;
   std::size_t covered = 0;
   std::size_t bad_radiance = 0;  // NaN, infinite or negative
@@ -295,13 +296,14 @@ const SceneResources& resources_for(const Scene& scene) {
   return it->second;
 }
 
-Frame render_scene(const Scene& scene) {
+FrameCheck render_scene(const Scene& scene) {
   const SceneResources& resources = resources_for(scene);
-  FrameTimings timings;
-  const RenderedImage image = render_frame(scene, resources, timings);
-  const TerrainFrame terrain = rasterize_terrain(scene, resources.lattice, timings);
+  FrameRequest request;
+  request.outputs.linear = true;
+  const FrameImage image = render_frame(scene, resources, request).image;
+  const TerrainFrame terrain = rasterize_terrain(scene, resources.lattice);
   const raster::ResolvedFrame resolved = resolve_for_shading(terrain);
-  Frame f;
+  FrameCheck f;
   f.pixels = terrain.visibility.primitive.size();
   for (std::uint32_t p : terrain.visibility.primitive) {
     f.covered += p != raster::kNoPrimitive;
@@ -329,7 +331,7 @@ Frame render_scene(const Scene& scene) {
   return f;
 }
 
-Frame render_small(const std::vector<std::string>& overrides) {
+FrameCheck render_small(const std::vector<std::string>& overrides) {
   std::vector<std::string> set = kSmallFrame;
   set.insert(set.end(), overrides.begin(), overrides.end());
   return render_scene(resolve_scene("default", set));
@@ -481,7 +483,7 @@ TEST_CASE("everyNumericFieldRendersFiniteNonNegativeFramesAtBothOfItsBounds", "[
       label.append(" --set ").append(s);
     }
     INFO(label);
-    const Frame f = render_small(c.set);
+    const FrameCheck f = render_small(c.set);
     CHECK(f.bad_radiance == 0);
     CHECK(f.bad_buffers == 0);
     if (c.shows_terrain) {
@@ -501,7 +503,7 @@ TEST_CASE("issueCaseTileSize1e-36IsRefusedAndTheSmallestAllowedTileRendersFinite
   for (int k = 0; k < 5; ++k) {
     set.push_back(cat({"shading.layers.", std::to_string(k), ".tile_size=1e-4"}));
   }
-  const Frame f = render_small(set);
+  const FrameCheck f = render_small(set);
   CHECK(f.bad_radiance == 0);
   CHECK(f.bad_buffers == 0);
   CHECK(f.covered >= f.pixels / 10);
@@ -514,8 +516,8 @@ TEST_CASE("issueCaseTinyCameraNearIsRefusedAndTheSmallestAllowedNearStillShowsTh
     CHECK_THAT(error_of({tiny}),
                Contains("is out of range; allowed 1e-17 <= camera.near <= 1e+09"));
   }
-  const Frame reference = render_small(std::vector<std::string>{});
-  const Frame f = render_small({"camera.near=1e-17"});
+  const FrameCheck reference = render_small(std::vector<std::string>{});
+  const FrameCheck f = render_small({"camera.near=1e-17"});
   CHECK(f.bad_radiance == 0);
   CHECK(f.bad_buffers == 0);
   CHECK(f.covered == reference.covered);
@@ -537,7 +539,7 @@ TEST_CASE("issueCaseTinyHorizontalScaleIsRefusedAndTheSmallestAllowedScaleStillV
     return std::set<float>(v.begin(), v.end()).size();
   };
   // One octave, so that a height depends on the lattice alone (not on the LOD weights).
-  const Frame f = render_small({"terrain.horizontal_scale=0.01", "terrain.last_octave=0"});
+  const FrameCheck f = render_small({"terrain.horizontal_scale=0.01", "terrain.last_octave=0"});
   CHECK(f.bad_radiance == 0);
   CHECK(f.bad_buffers == 0);
   CHECK(distinct(f.heights) > f.heights.size() / 2);  // noise, not a constant
@@ -589,7 +591,7 @@ TEST_CASE("issueCaseTinyHurstExponentIsRefusedAndTheSmallestAllowedKeepsFloatNuA
     INFO("amplitude " << amplitude);
     CHECK(worst_float_nu_error(t) <= 1.0 / 256);
   }
-  const Frame f = render_small({"terrain.H=0.0009765625"});
+  const FrameCheck f = render_small({"terrain.H=0.0009765625"});
   CHECK(f.bad_radiance == 0);
   CHECK(f.bad_buffers == 0);
   for (float nu : f.nu) {
@@ -613,7 +615,7 @@ TEST_CASE("issueCaseTinyDitherScaleIsRefusedAndTheSmallestAllowedRendersFinite",
   // The smallest allowed scale, and one whose noise cells the near pixels still resolve: the
   // noise is sampled only where it is coarser than the pixels, so both render finite.
   for (const char* scale : {"shading.dither_scale=1e-26", "shading.dither_scale=0.01"}) {
-    const Frame f = render_small({scale, "shading.dither=4"});
+    const FrameCheck f = render_small({scale, "shading.dither=4"});
     CHECK(f.bad_radiance == 0);
     CHECK(f.bad_buffers == 0);
     CHECK(f.covered >= f.pixels / 10);

@@ -13,6 +13,7 @@
 #include "core/proto_texture.h"
 #include "core/scene/scene_json.h"
 #include "core/srgb.h"
+#include "core/stage_params.h"
 #include "core/texture_synthesis.h"
 #include "core/water.h"
 #include "raster/rasterize.h"
@@ -28,6 +29,7 @@ struct PlanFixture {
   FramePlan frame;
   std::vector<ProtoTexture> textures;
   ShadingPlan plan;
+  ShadeParams<double> params;  // the plan rounded to double: its values unchanged
 
   explicit PlanFixture(Scene s)
       : scene(std::move(s)),
@@ -38,7 +40,8 @@ struct PlanFixture {
       RgbImage flat{4, std::vector<float>(48, 0.5f)};
       textures.push_back(build_proto_texture(flat, 0.0));
     }
-    plan = make_shading_plan(scene, frame, textures, lattice);
+    plan = make_shading_plan(scene, frame, lattice.size);
+    params = make_shade_params<double>(plan);
   }
 };
 
@@ -62,7 +65,7 @@ TEST_CASE("layerWeightsSumToOneEverywhereForEveryPreset", "[shading]") {
     test::TestRandom random(5);
     for (int k = 0; k < 20000; ++k) {
       double w[limits::kMaxMaterialLayers];
-      layer_weights(f.plan, random.uniform(-2000, 3000), random.uniform(0, 6),
+      layer_weights(f.params, random.uniform(-2000, 3000), random.uniform(0, 6),
                     random.uniform(-2, 2), w);
       double sum = 0;
       for (std::size_t l = 0; l < f.plan.layers.size(); ++l) {
@@ -84,7 +87,7 @@ TEST_CASE("grassVanishesOnSlopesAboveTheRockThreshold", "[shading]") {
   const double beyond = degrees_to_slope(g.slope_deg[1] + g.slope_spread_deg + 0.01);
   for (double height = 10; height < 500; height += 7) {
     double w[limits::kMaxMaterialLayers];
-    layer_weights(f.plan, height - scene.camera.position[1], beyond, 0.0, w);
+    layer_weights(f.params, height - scene.camera.position[1], beyond, 0.0, w);
     CHECK(w[grass] < 1e-12);
     CHECK(w[rock] > 0.5);
   }
@@ -96,7 +99,7 @@ TEST_CASE("grassVanishesOnSlopesAboveTheRockThreshold", "[shading]") {
   const double dithered_end = end + shift * (end - start);
   for (double noise : {-4.0, -1.0, 0.0, 2.0, 4.0}) {
     double w[limits::kMaxMaterialLayers];
-    layer_weights(f.plan, 200.0 - scene.camera.position[1], dithered_end * 1.001,
+    layer_weights(f.params, 200.0 - scene.camera.position[1], dithered_end * 1.001,
                   0.5 * scene.shading.dither * noise, w);
     CHECK(w[grass] < 1e-12);
   }
@@ -112,14 +115,14 @@ TEST_CASE("layerHeightRangesAreRespected", "[shading]") {
   const double camera_y = scene.camera.position[1];  // the pixels' heights are camera-relative
   for (double slope : {0.0, 0.2, 0.5}) {
     double w[limits::kMaxMaterialLayers];
-    layer_weights(f.plan, s.height[0] - s.height_spread - 1.0 - camera_y, slope, 0.0, w);
+    layer_weights(f.params, s.height[0] - s.height_spread - 1.0 - camera_y, slope, 0.0, w);
     CHECK(w[snow] == 0.0);
-    layer_weights(f.plan, s.height[0] + s.height_spread + 1.0 - camera_y, slope, 0.0, w);
+    layer_weights(f.params, s.height[0] + s.height_spread + 1.0 - camera_y, slope, 0.0, w);
     CHECK(w[snow] > 0.5);
     // The bed's range is measured from the water level.
-    layer_weights(f.plan, water + b.height[1] + b.height_spread + 0.5 - camera_y, slope, 0.0, w);
+    layer_weights(f.params, water + b.height[1] + b.height_spread + 0.5 - camera_y, slope, 0.0, w);
     CHECK(w[bed] == 0.0);
-    layer_weights(f.plan, water - 20.0 - camera_y, slope, 0.0, w);
+    layer_weights(f.params, water - 20.0 - camera_y, slope, 0.0, w);
     CHECK(w[bed] == Approx(1.0));
   }
 }
@@ -305,19 +308,20 @@ TEST_CASE("waterFadesIntoTheGroundAtTheShorelineAndDeepensWithDepth", "[shading]
   const Vec3<double> view = normalize_or(Vec3<double>{0.3, -0.4, -1.0}, Vec3<double>{0, -1, 0});
   const Vec3<double> ground{0.3, 0.25, 0.2};
   // At zero depth only a weak Fresnel reflection covers the ground.
-  const Vec3<double> shore = shade_water(f.plan, view, 100.0, 0.0, ground, 1e3);
+  const Vec3<double> shore = shade_water(f.params, f.lattice, view, 100.0, 0.0, ground, 1e3);
   CHECK(std::abs(shore.x - ground.x) < 0.05);
   CHECK(std::abs(shore.y - ground.y) < 0.05);
   // Deeper water hides the ground: the result stops depending on it.
-  const Vec3<double> deep_a = shade_water(f.plan, view, 100.0, 200.0, ground, 1e3);
-  const Vec3<double> deep_b = shade_water(f.plan, view, 100.0, 200.0, Vec3<double>{0, 0, 0}, 1e3);
+  const Vec3<double> deep_a = shade_water(f.params, f.lattice, view, 100.0, 200.0, ground, 1e3);
+  const Vec3<double> deep_b =
+      shade_water(f.params, f.lattice, view, 100.0, 200.0, Vec3<double>{0, 0, 0}, 1e3);
   CHECK(std::abs(deep_a.x - deep_b.x) < 1e-6);
   // Red is absorbed first: deep water is greener than it is red.
   CHECK(deep_a.y > deep_a.x);
   // Continuous in depth.
-  double previous = shade_water(f.plan, view, 100.0, 0.0, ground, 1e3).x;
+  double previous = shade_water(f.params, f.lattice, view, 100.0, 0.0, ground, 1e3).x;
   for (double depth = 0.01; depth < 30; depth += 0.01) {
-    const double now = shade_water(f.plan, view, 100.0, depth, ground, 1e3).x;
+    const double now = shade_water(f.params, f.lattice, view, 100.0, depth, ground, 1e3).x;
     REQUIRE(std::abs(now - previous) < 0.01);
     previous = now;
   }

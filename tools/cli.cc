@@ -10,6 +10,7 @@
 #include <ostream>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <vector>
 
 #include <tbb/global_control.h>
@@ -17,6 +18,7 @@
 
 #include "core/scene/json_input.h"
 #include "core/scene/scene_json.h"
+#include "pipeline/frame.h"
 #include "pipeline/memory_budget.h"
 #include "tools/atomic_file.h"
 #include "tools/commands.h"
@@ -102,6 +104,23 @@ bool given_empty(const CLI::Option* option, const std::string& value) {
   return option->count() > 0 && value.empty();
 }
 
+// --backend NAME (pipeline/frame.h): which implementation runs the frame's stages.
+void add_backend(CLI::App* command, std::string& backend) {
+  std::string names;
+  for (std::string_view name : backend_names()) {
+    names += (names.empty() ? "" : ", ") + std::string(name);
+  }
+  command
+      ->add_option("--backend", backend,
+                   "Implementation of the stages: reference (float, the default) or "
+                   "reference-double (every stage in double, for accuracy comparisons)")
+      ->check(CLI::Validator(
+          [names](std::string& text) -> std::string {
+            return backend_from_name(text) ? "" : "unknown backend; allowed: " + names;
+          },
+          "NAME"));
+}
+
 void add_threads(CLI::App* command, int& threads) {
   command
       ->add_option("--threads", threads,
@@ -149,6 +168,8 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   add_threads(stages_cmd, threads);
   std::string max_memory;
   add_max_memory(stages_cmd, max_memory);
+  std::string backend = "reference";
+  add_backend(stages_cmd, backend);
 
   RenderOptions render;
   CLI::App* render_cmd =
@@ -164,12 +185,26 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       render_cmd->add_option("--float", render.float_output,
                              "Also write the linear radiance as a PFM file (default: the "
                              "scene's output.float_image, if set)");
+  // Extra per-pixel outputs of the fused back end, each written only when named.
+  const std::vector<std::tuple<const char*, std::string*, const char*>> extra_outputs = {
+      {"--depth", &render.depth_output, "window depth (reverse-Z) as a PFM file"},
+      {"--primitive", &render.primitive_output,
+       "winning triangle id per pixel, uint32 little-endian (4294967295: none)"},
+      {"--normal", &render.normal_output, "unit normal as a 3-channel PFM file"},
+      {"--height", &render.height_output, "world height of the terrain as a PFM file"},
+      {"--octaves", &render.octaves_output, "octave count nu as a PFM file"}};
+  std::vector<const CLI::Option*> extra_options;
+  for (const auto& [name, target, what] : extra_outputs) {
+    extra_options.push_back(render_cmd->add_option(
+        name, *target, std::string("Also write the ") + what + ", rows bottom to top"));
+  }
   render_cmd
       ->add_option("--repeat", render.repeat,
                    "Render this many times and report the median stage times")
       ->check(CLI::Range(1, 1000));
   add_threads(render_cmd, threads);
   add_max_memory(render_cmd, max_memory);
+  add_backend(render_cmd, backend);
 
   RasterOptions raster_options;
   CLI::App* raster_cmd = app.add_subcommand(
@@ -226,10 +261,15 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
         << "\nRun 'relief --help' for usage.\n";
     return kExitBadInput;
   }
-  for (const auto& [option, value] : {std::pair{stages_out, stages.out_dir},
-                                      {render_out, render.output},
-                                      {render_float, render.float_output},
-                                      {raster_out, raster_options.prefix}}) {
+  std::vector<std::pair<const CLI::Option*, std::string>> named = {
+      {stages_out, stages.out_dir},
+      {render_out, render.output},
+      {render_float, render.float_output},
+      {raster_out, raster_options.prefix}};
+  for (std::size_t k = 0; k < extra_options.size(); ++k) {
+    named.emplace_back(extra_options[k], *std::get<1>(extra_outputs[k]));
+  }
+  for (const auto& [option, value] : named) {
     if (given_empty(option, value)) {
       err << "relief: error: " << option->get_name()
           << " is empty; give a file or directory name\n";
@@ -258,6 +298,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   }
   const MemoryBudget budget = memory_budget(parse_memory_size(max_memory), max_memory);
   stages.budget = render.budget = raster_options.budget = budget;
+  stages.backend = render.backend = *backend_from_name(backend);
 
   std::unique_ptr<tbb::global_control> thread_limit;
   if (threads > 0) {
@@ -296,11 +337,19 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
             << ": the image is written as PNG; give a file name ending in .png\n";
         return kExitBadInput;
       }
-      const std::string& f = render.float_output;
-      if (!f.empty() && !has_extension(f, ".pfm")) {
-        err << "relief: error: --float " << brief_text(f)
-            << ": linear radiance is written as PFM; give a file name ending in .pfm\n";
-        return kExitBadInput;
+      for (const auto& [name, value, extension] :
+           std::vector<std::tuple<const char*, const std::string*, const char*>>{
+               {"--float", &render.float_output, ".pfm"},
+               {"--depth", &render.depth_output, ".pfm"},
+               {"--primitive", &render.primitive_output, ".bin"},
+               {"--normal", &render.normal_output, ".pfm"},
+               {"--height", &render.height_output, ".pfm"},
+               {"--octaves", &render.octaves_output, ".pfm"}}) {
+        if (!value->empty() && !has_extension(*value, extension)) {
+          err << "relief: error: " << name << " " << brief_text(*value) << ": give a file name "
+              << "ending in " << extension << "\n";
+          return kExitBadInput;
+        }
       }
       return run_render_command(scene, render, out);
     }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/scene/scene.h"
+#include "pipeline/frame.h"
 #include "pipeline/memory_budget.h"
 
 namespace relief {
@@ -13,6 +14,7 @@ namespace relief {
 struct StagesOptions {
   std::string out_dir;  // empty: scene.output.stages_dir
   int repeat = 1;
+  Backend backend = Backend::kReference;
   MemoryBudget budget;
 };
 
@@ -25,7 +27,10 @@ int run_stages_command(const Scene& scene, const StagesOptions& options, std::os
 struct RenderOptions {
   std::string output;        // empty: scene.output.image
   std::string float_output;  // empty: scene.output.float_image (or none)
+  // Extra per-pixel outputs (pipeline/frame.h), each written only when named.
+  std::string depth_output, primitive_output, normal_output, height_output, octaves_output;
   int repeat = 1;
+  Backend backend = Backend::kReference;
   MemoryBudget budget;
 };
 

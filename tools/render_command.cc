@@ -4,9 +4,9 @@
 #include <ostream>
 #include <vector>
 
+#include "pipeline/frame.h"
 #include "pipeline/image_io.h"
 #include "pipeline/job_memory.h"
-#include "pipeline/render_frame.h"
 #include "pipeline/statistics.h"
 #include "tools/atomic_file.h"
 #include "tools/cli.h"
@@ -14,58 +14,94 @@
 
 namespace relief {
 
+namespace {
+
+std::span<const unsigned char> bytes_of(const std::vector<std::uint32_t>& values) {
+  return {reinterpret_cast<const unsigned char*>(values.data()), values.size() * 4};
+}
+
+// Prints one line per stage: the median over the runs of each named time.
+void print_medians(std::ostream& out, const std::vector<std::vector<StageTime>>& runs,
+                   const char* indent) {
+  for (std::size_t s = 0; s < runs.front().size(); ++s) {
+    std::vector<double> values;
+    for (const std::vector<StageTime>& run : runs) {
+      values.push_back(run[s].ms);
+    }
+    out << indent << std::left << std::setw(40) << runs.front()[s].name << std::right
+        << std::setw(10) << median(values) << " ms\n";
+  }
+}
+
+}  // namespace
+
 int run_render_command(const Scene& scene, const RenderOptions& options, std::ostream& out) {
   const std::string path = options.output.empty() ? scene.output.image : options.output;
   const std::string float_path =
       options.float_output.empty() ? scene.output.float_image.value_or("") : options.float_output;
-  const MemoryEstimate estimate = estimate_render_memory(scene, !float_path.empty());
+  FrameRequest request;
+  request.backend = options.backend;
+  request.outputs.linear = !float_path.empty();
+  request.outputs.depth = !options.depth_output.empty();
+  request.outputs.primitive = !options.primitive_output.empty();
+  request.outputs.normal = !options.normal_output.empty();
+  request.outputs.world_height = !options.height_output.empty();
+  request.outputs.octaves = !options.octaves_output.empty();
+  const MemoryEstimate estimate = estimate_render_memory(scene, request.backend, request.outputs);
   check_memory(estimate, options.budget, "this render",
                "Lower viewport.width/height or grid.width/height");
-  const raster::RasterLimits limits{memory_left(estimate, options.budget)};
+  request.max_bin_bytes = memory_left(estimate, options.budget);
+
   const auto setup_start = std::chrono::steady_clock::now();
   const SceneResources resources = load_scene_resources(scene);  // validates texture files
   const double setup_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - setup_start)
           .count();
-  RenderedImage image;
-  std::vector<FrameTimings> runs;
+  Frame frame;
+  std::vector<std::vector<StageTime>> stages, parts;
+  std::vector<double> totals;
   for (int run = 0; run < options.repeat; ++run) {
-    FrameTimings timings;
-    image = render_frame(scene, resources, timings, limits);
-    runs.push_back(timings);
+    frame = render_frame(scene, resources, request);
+    stages.push_back(frame.stats.stages);
+    parts.push_back(frame.stats.tile_parts);
+    totals.push_back(frame.stats.total_ms);
   }
-  OutputSet files;  // the image and the float image appear together or not at all
-  files.add(path, encode_png_rgb(image.width, image.height, image.rgb));
+
+  const FrameImage& image = frame.image;
+  const std::size_t row = std::size_t(image.width);
+  OutputSet files;  // every requested file appears, or none does
+  files.add(path, encode_png_rgb(image.width, image.height, image.srgb));
   if (!float_path.empty()) {
-    files.add(float_path,
-              encode_pfm(image.width, image.height, 3, image.linear, std::size_t(image.width) * 3));
+    files.add(float_path, encode_pfm(image.width, image.height, 3, image.linear, 3 * row));
+  }
+  if (request.outputs.depth) {
+    files.add(options.depth_output, encode_pfm(image.width, image.height, 1, image.depth, row));
+  }
+  if (request.outputs.primitive) {
+    files.add(options.primitive_output, bytes_of(image.primitive));
+  }
+  if (request.outputs.normal) {
+    files.add(options.normal_output,
+              encode_pfm(image.width, image.height, 3, image.normal, 3 * row));
+  }
+  if (request.outputs.world_height) {
+    files.add(options.height_output,
+              encode_pfm(image.width, image.height, 1, image.world_height, row));
+  }
+  if (request.outputs.octaves) {
+    files.add(options.octaves_output, encode_pfm(image.width, image.height, 1, image.octaves, row));
   }
   files.commit();
-  auto stage = [&](const char* name, auto field) {
-    std::vector<double> values;
-    for (const FrameTimings& t : runs) {
-      values.push_back(field(t));
-    }
-    out << "  " << std::left << std::setw(28) << name << std::right << std::setw(9)
-        << median(values) << " ms\n";
-  };
+
   out << std::fixed << std::setprecision(3) << image.width << "x" << image.height << " image, "
-      << scene.grid.width << "x" << scene.grid.height << " grid, median of " << options.repeat
-      << " run(s):\n";
-  stage("stage 1-2 projected domain",
-        [](const FrameTimings& t) { return t.terrain.projected_domain_ms; });
-  stage("stage 3   fractal", [](const FrameTimings& t) { return t.terrain.fbm_ms; });
-  stage("stage 4   surface", [](const FrameTimings& t) { return t.terrain.surface_ms; });
-  stage("stage 5   vertex transform", [](const FrameTimings& t) { return t.transform_ms; });
-  stage("stage 6   rasterisation", [](const FrameTimings& t) { return t.raster_ms; });
-  stage("stage 7   resolve", [](const FrameTimings& t) { return t.resolve_ms; });
-  stage("stage 8   shading", [](const FrameTimings& t) { return t.shade_ms; });
-  stage("stage 9   sRGB encoding", [](const FrameTimings& t) { return t.encode_ms; });
-  stage("total", [](const FrameTimings& t) {
-    return t.terrain.projected_domain_ms + t.terrain.fbm_ms + t.terrain.surface_ms +
-           t.transform_ms + t.raster_ms + t.resolve_ms + t.shade_ms + t.encode_ms;
-  });
-  const raster::RasterStats& s = runs.back().raster;
+      << scene.grid.width << "x" << scene.grid.height << " grid, backend "
+      << backend_name(request.backend) << ", median of " << options.repeat << " run(s):\n";
+  print_medians(out, stages, "  ");
+  out << "    of which, CPU time summed over the threads:\n";
+  print_medians(out, parts, "    ");
+  out << "  " << std::left << std::setw(40) << "frame" << std::right << std::setw(10)
+      << median(totals) << " ms\n";
+  const raster::RasterStats& s = frame.stats.raster;
   out << "  scene set-up (lattice, textures, mip chains) " << setup_ms << " ms, once\n"
       << "  triangles submitted " << s.triangles << ", set up " << s.setup << "\n"
       << "wrote " << path << (float_path.empty() ? "" : " and " + float_path) << "\n";

@@ -5,7 +5,7 @@
 
 #include "core/frame_plan.h"
 #include "core/lattice.h"
-#include "pipeline/frame_runner.h"
+#include "pipeline/frame.h"
 #include "pipeline/job_memory.h"
 #include "pipeline/statistics.h"
 #include "tools/cli.h"
@@ -14,28 +14,71 @@
 
 namespace relief {
 
+namespace {
+
+// The double backend's buffers for the PFM files, each value rounded once to float.
+GridBuffers<float> rounded(const GridBuffers<double>& d) {
+  GridBuffers<float> f(d.layout);
+  const auto copy = [](const AlignedVector<double>& from, AlignedVector<float>& to) {
+    std::transform(from.begin(), from.end(), to.begin(),
+                   [](double v) { return static_cast<float>(v); });
+  };
+  copy(d.dx, f.dx);
+  copy(d.dz, f.dz);
+  copy(d.sigma, f.sigma);
+  copy(d.nu, f.nu);
+  f.valid = d.valid;
+  copy(d.height, f.height);
+  copy(d.nx, f.nx);
+  copy(d.ny, f.ny);
+  copy(d.nz, f.nz);
+  copy(d.slope, f.slope);
+  copy(d.water_depth, f.water_depth);
+  return f;
+}
+
+// Runs stages 1-4 `repeat` times; returns the plan and the last run's buffers in float.
+template <class Real>
+std::pair<FramePlan, GridBuffers<float>> run(const Scene& scene, const NoiseLattice& lattice,
+                                             int repeat,
+                                             std::vector<std::vector<StageTime>>& times) {
+  for (int k = 0;; ++k) {
+    TerrainRun<Real> terrain = run_terrain_stages<Real>(scene, lattice);
+    times.push_back(std::move(terrain.stages));
+    if (k + 1 == repeat) {
+      if constexpr (std::is_same_v<Real, float>) {
+        return {std::move(terrain.plan), std::move(terrain.grid)};
+      } else {
+        return {std::move(terrain.plan), rounded(terrain.grid)};
+      }
+    }
+  }
+}
+
+}  // namespace
+
 int run_stages_command(const Scene& scene, const StagesOptions& options, std::ostream& out) {
-  check_memory(estimate_stages_memory(scene), options.budget, "relief stages",
+  check_memory(estimate_stages_memory(scene, options.backend), options.budget, "relief stages",
                "Lower grid.width/height");
   const NoiseLattice lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
-  const FramePlan plan = make_frame_plan(scene, lattice);
-  GridBuffers<float> buffers(plan.layout);
-  std::vector<double> domain_ms, fbm_ms, surface_ms;
-  for (int run = 0; run < options.repeat; ++run) {
-    const StageTimings t = run_terrain_stages_parallel(plan, buffers);
-    domain_ms.push_back(t.projected_domain_ms);
-    fbm_ms.push_back(t.fbm_ms);
-    surface_ms.push_back(t.surface_ms);
-  }
+  std::vector<std::vector<StageTime>> times;
+  const auto [plan, buffers] = options.backend == Backend::kReference
+                                   ? run<float>(scene, lattice, options.repeat, times)
+                                   : run<double>(scene, lattice, options.repeat, times);
   const std::string dir = options.out_dir.empty() ? scene.output.stages_dir : options.out_dir;
   write_stage_outputs(dir, scene, plan, buffers);
   out << std::fixed << std::setprecision(3) << "grid " << plan.layout.width << "x"
-      << plan.layout.height << ", " << plan.terrain.octaves.count << " octaves, median of "
-      << options.repeat << " run(s):\n"
-      << "  stage 1-2 projected domain  " << median(domain_ms) << " ms\n"
-      << "  stage 3   fractal           " << median(fbm_ms) << " ms\n"
-      << "  stage 4   surface           " << median(surface_ms) << " ms\n"
-      << "wrote " << dir << "/stages.json and one PNG + PFM per field\n";
+      << plan.layout.height << ", " << plan.terrain.octaves.count << " octaves, backend "
+      << backend_name(options.backend) << ", median of " << options.repeat << " run(s):\n";
+  for (std::size_t s = 0; s < times.front().size(); ++s) {
+    std::vector<double> values;
+    for (const std::vector<StageTime>& run_times : times) {
+      values.push_back(run_times[s].ms);
+    }
+    out << "  " << std::left << std::setw(28) << times.front()[s].name << std::right
+        << std::setw(10) << median(values) << " ms\n";
+  }
+  out << "wrote " << dir << "/stages.json and one PNG + PFM per field\n";
   return kExitOk;
 }
 

@@ -1,0 +1,172 @@
+#include "core/stage_params.h"
+
+namespace relief {
+
+namespace {
+
+template <class Real>
+Vec3<Real> rounded(const glm::dvec3& v) {
+  return {Real(v.x), Real(v.y), Real(v.z)};
+}
+
+template <class Real>
+RampParams<Real> rounded(const Ramp& r) {
+  return {Real(r.start), Real(r.end), r.open ? 1 : 0};
+}
+
+template <class Real>
+DomainParams<Real> make_domain_params(const FramePlan& plan) {
+  DomainParams<Real> p{ProjectorRays<Real>(plan.projector)};
+  p.x0 = Real(plan.screen.x0);
+  p.step_x = Real(plan.screen.step_x);
+  p.y0 = Real(plan.screen.y0);
+  p.step_y = Real(plan.screen.step_y);
+  p.c0 = Real(plan.lod.c0);
+  p.c1 = Real(plan.lod.c1);
+  p.nu_max = Real(plan.lod.nu_max);
+  p.min_spacing_sq = Real(limits::kMinSpacingSq);
+  p.width = plan.layout.width;
+  p.height = plan.layout.height;
+  p.pitch = plan.layout.pitch;
+  p.terrain_visible = plan.projector.terrain_visible ? 1 : 0;
+  return p;
+}
+
+}  // namespace
+
+template <class Real>
+FbmParams<Real> make_fbm_params(const TerrainPlan& plan) {
+  FbmParams<Real> p;
+  const OctaveTable& o = plan.octaves;
+  p.count = o.count;
+  p.interpolant = static_cast<std::int32_t>(plan.interpolant);
+  for (int n = 0; n < o.count; ++n) {
+    p.frequency[n] = Real(o.frequency[n]);
+    p.amplitude[n] = Real(o.amplitude[n]);
+    p.offset_x[n] = Real(o.offset_x[n]);
+    p.offset_z[n] = Real(o.offset_z[n]);
+  }
+  p.inv_scale = Real(plan.inv_horizontal_scale);
+  p.relative_base_height = Real(plan.relative_base_height);
+  p.height_scale = Real(plan.amplitude);
+  const WarpPlan& w = plan.warp;
+  p.warp = w.enabled ? 1 : 0;
+  p.c1x = Real(w.c1x), p.c1z = Real(w.c1z), p.c2x = Real(w.c2x), p.c2z = Real(w.c2z);
+  p.c3x = Real(w.c3x), p.c3z = Real(w.c3z), p.r0x = Real(w.r0x), p.r0z = Real(w.r0z);
+  p.t0x = Real(w.t0x), p.t0z = Real(w.t0z);
+  p.roughness0 = Real(w.roughness0);
+  p.guard_sq = Real(w.guard_sq);
+  p.min_rotation_sq = Real(limits::kMinRotationLengthSq);
+  p.lacunarity = Real(w.lacunarity);
+  return p;
+}
+
+template <class Real>
+std::vector<Real> make_row_descents(const FramePlan& plan) {
+  std::vector<Real> descents(static_cast<std::size_t>(plan.layout.height) + 2);
+  for (int j = -1; j <= plan.layout.height; ++j) {
+    descents[static_cast<std::size_t>(j + 1)] =
+        Real(projector_descent(plan.projector, plan.screen.image_y(j)));
+  }
+  return descents;
+}
+
+template <class Real>
+TerrainParams<Real> make_terrain_params(const FramePlan& plan) {
+  TerrainParams<Real> p{make_domain_params<Real>(plan),
+                        make_row_descents<Real>(plan),
+                        make_fbm_params<Real>(plan.terrain),
+                        {},
+                        {}};
+  SurfaceParams<Real>& s = p.surface;
+  s.width = plan.layout.width;
+  s.height = plan.layout.height;
+  s.pitch = plan.layout.pitch;
+  s.water_enabled = plan.water_enabled ? 1 : 0;
+  s.water_level = Real(plan.relative_water_level);
+  s.min_sine_sq = Real(limits::kMinTangentSine * limits::kMinTangentSine);
+  s.max_slope = Real(limits::kMaxSlope);
+  TransformParams<Real>& t = p.transform;
+  for (int c = 0; c < 3; ++c) {
+    t.row_x[c] = Real(plan.clip.row_x[c]);
+    t.row_y[c] = Real(plan.clip.row_y[c]);
+    t.row_w[c] = Real(plan.clip.row_w[c]);
+  }
+  t.z_clip = Real(plan.clip.z_clip);
+  return p;
+}
+
+template <class Real>
+ShadeParams<Real> make_shade_params(const ShadingPlan& plan) {
+  ShadeParams<Real> p;
+  p.width = plan.width;
+  p.height = plan.height;
+  p.layer_count = static_cast<std::int32_t>(plan.layers.size());
+  p.triplanar = plan.triplanar ? 1 : 0;
+  for (std::size_t k = 0; k < plan.layers.size(); ++k) {
+    const LayerPlan& l = plan.layers[k];
+    LayerParams<Real>& q = p.layers[k];
+    q.inv_tile = Real(l.inv_tile);
+    q.offset_x = Real(l.offset_x);
+    q.offset_y = Real(l.offset_y);
+    q.offset_z = Real(l.offset_z);
+    q.height_up = rounded<Real>(l.height_up);
+    q.height_down = rounded<Real>(l.height_down);
+    q.slope_up = rounded<Real>(l.slope_up);
+    q.slope_down = rounded<Real>(l.slope_down);
+    q.specular = Real(l.specular);
+  }
+  const LightPlan& light = plan.light;
+  p.sun_direction = rounded<Real>(light.sun_direction);
+  p.sun = rounded<Real>(light.sun);
+  p.sky_light = rounded<Real>(light.sky);
+  p.ground_light = rounded<Real>(light.ground);
+  p.ambient = Real(light.ambient);
+  p.shininess = Real(light.shininess);
+  p.exposure = Real(light.exposure);
+  p.zenith = rounded<Real>(plan.sky.zenith);
+  p.horizon = rounded<Real>(plan.sky.horizon);
+  p.sun_cos_inner = Real(plan.sky.sun_cos_inner);
+  p.sun_cos_outer = Real(plan.sky.sun_cos_outer);
+  p.fog_density_log2 = Real(plan.sky.fog_density_log2);
+  const WaterPlan& w = plan.water;
+  p.water_enabled = w.enabled ? 1 : 0;
+  p.water_level = Real(w.level);
+  p.shallow = rounded<Real>(w.shallow);
+  p.deep = rounded<Real>(w.deep);
+  p.extinction_log2 = rounded<Real>(w.extinction_log2);
+  p.inv_full_depth = Real(w.inv_full_depth);
+  p.wave_strength = Real(w.strength);
+  for (int o = 0; o < kWaveOctaves; ++o) {
+    p.wave_inv_length[o] = Real(w.wave_inv_length[o]);
+    p.wave_offset_x[o] = Real(w.wave_offset_x[o]);
+    p.wave_offset_z[o] = Real(w.wave_offset_z[o]);
+    p.wave_amplitude[o] = Real(w.wave_amplitude[o]);
+  }
+  p.dither_enabled = plan.dither.amount > 0.0 ? 1 : 0;
+  p.dither_half_amount = Real(0.5 * plan.dither.amount);
+  p.dither_inv_scale = Real(plan.dither.inv_scale);
+  p.dither_offset_x = Real(plan.dither.offset_x);
+  p.dither_offset_z = Real(plan.dither.offset_z);
+  p.pixel_angle = Real(plan.pixel_angle);
+  p.camera_forward = rounded<Real>(plan.camera.forward);
+  for (int c = 0; c < 3; ++c) {
+    p.forward[c] = plan.camera.forward[c];
+    p.right[c] = plan.camera.right[c];
+    p.up[c] = plan.camera.up[c];
+  }
+  p.tan_half_fov_x = plan.camera.tan_half_fov_x;
+  p.tan_half_fov_y = plan.camera.tan_half_fov_y;
+  return p;
+}
+
+template std::vector<float> make_row_descents<float>(const FramePlan&);
+template std::vector<double> make_row_descents<double>(const FramePlan&);
+template FbmParams<float> make_fbm_params<float>(const TerrainPlan&);
+template FbmParams<double> make_fbm_params<double>(const TerrainPlan&);
+template TerrainParams<float> make_terrain_params<float>(const FramePlan&);
+template TerrainParams<double> make_terrain_params<double>(const FramePlan&);
+template ShadeParams<float> make_shade_params<float>(const ShadingPlan&);
+template ShadeParams<double> make_shade_params<double>(const ShadingPlan&);
+
+}  // namespace relief

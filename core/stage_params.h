@@ -1,0 +1,141 @@
+// The parameters of every stage, derived once per frame from the FramePlan (and, for stage 8,
+// the ShadingPlan), in double, and rounded once to the precision the stage runs in. Each stage
+// reads exactly one of these structs (plus its input buffers and the scene's resources:
+// lattice, textures); it never rounds a plan value itself. They are plain data: scalars,
+// fixed-size arrays and nested structs of them, no pointers, so the same struct can be copied
+// into a SIMD kernel's registers or a GLSL storage block field by field.
+//
+// The rounding of each field is part of the specification: the float frame is defined by these
+// float values (Real(double) of the plan's value, one rounding).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/frame_plan.h"
+#include "core/limits.h"
+#include "core/projector.h"
+#include "core/shading_plan.h"
+#include "core/vec3.h"
+
+namespace relief {
+
+// Stage 2 (§4.1): the projector rays, the screen grid and the LOD rule.
+template <class Real>
+struct DomainParams {
+  ProjectorRays<Real> rays;
+  Real x0 = 0, step_x = 0;  // image point of grid vertex (i, j): (x0 + i step_x, y0 + j step_y)
+  Real y0 = 0, step_y = 0;
+  Real c0 = 0, c1 = 0, nu_max = 1;  // nu = clamp(c0 - c1 log2(sigma^2), 1, nu_max)
+  Real min_spacing_sq = 0;          // kMinSpacingSq: the log's domain guard
+  std::int32_t width = 0, height = 0, pitch = 0;
+  std::int32_t terrain_visible = 0;
+};
+
+// Stage 2's per-row table: -ray.y of row j's projector rays at index j + 1, rows -1 .. height
+// (projector.h: formed in double per row, where the per-vertex form would cancel in float).
+template <class Real>
+std::vector<Real> make_row_descents(const FramePlan& plan);
+
+// Stage 3 (Eq. 1, §2.2, §4.1): the octave table and the warp.
+template <class Real>
+struct FbmParams {
+  std::int32_t count = 0;        // N octaves
+  std::int32_t interpolant = 0;  // Interpolant
+  std::int32_t warp = 0;         // §2.2 on or off
+  Real frequency[limits::kMaxOctaves] = {};
+  Real amplitude[limits::kMaxOctaves] = {};
+  Real offset_x[limits::kMaxOctaves] = {};
+  Real offset_z[limits::kMaxOctaves] = {};
+  Real inv_scale = 1;             // world units to octave-0 lattice cells
+  Real relative_base_height = 0;  // base_height - camera y
+  Real height_scale = 1;          // amplitude
+  Real c1x = 0, c1z = 0, c2x = 0, c2z = 0, c3x = 0, c3z = 0;
+  Real r0x = 1, r0z = 0, t0x = 0, t0z = 0;
+  Real roughness0 = 1, guard_sq = 0, min_rotation_sq = 0, lacunarity = 2;
+};
+
+template <class Real>
+FbmParams<Real> make_fbm_params(const TerrainPlan& plan);
+
+// Stage 4 (§4.1 second pass).
+template <class Real>
+struct SurfaceParams {
+  std::int32_t width = 0, height = 0, pitch = 0;
+  std::int32_t water_enabled = 0;
+  Real water_level = 0;  // camera-relative
+  Real min_sine_sq = 0;  // kMinTangentSine^2
+  Real max_slope = 0;    // kMaxSlope
+};
+
+// Stage 5: the rows of the view-projection matrix (vertex_transform.h).
+template <class Real>
+struct TransformParams {
+  Real row_x[3] = {}, row_y[3] = {}, row_w[3] = {};
+  Real z_clip = 0;  // the near distance
+};
+
+// Stage 8 (§4.2, §4.3): one material layer's ranges and texture placement.
+template <class Real>
+struct RampParams {
+  Real start = 0, end = 0;
+  std::int32_t open = 1;  // 1: the ramp does not limit the layer
+};
+
+template <class Real>
+struct LayerParams {
+  Real inv_tile = 1;  // texture repeats per world unit
+  Real offset_x = 0, offset_y = 0, offset_z = 0;
+  RampParams<Real> height_up, height_down;  // camera-relative heights
+  RampParams<Real> slope_up, slope_down;    // |grad h|
+  Real specular = 0;
+};
+
+template <class Real>
+struct ShadeParams {
+  std::int32_t width = 0, height = 0;  // the image
+  std::int32_t layer_count = 0;
+  std::int32_t triplanar = 0;
+  LayerParams<Real> layers[limits::kMaxMaterialLayers];
+  // Light (Scape): sun, hemisphere, ambient.
+  Vec3<Real> sun_direction{}, sun{}, sky_light{}, ground_light{};
+  Real ambient = 0, shininess = 1, exposure = 1;
+  // Sky and fog.
+  Vec3<Real> zenith{}, horizon{};
+  Real sun_cos_inner = 1, sun_cos_outer = 1, fog_density_log2 = 0;
+  // Water (§4.3).
+  std::int32_t water_enabled = 0;
+  Real water_level = 0;  // camera-relative
+  Vec3<Real> shallow{}, deep{}, extinction_log2{};
+  Real inv_full_depth = 1, wave_strength = 0;
+  Real wave_inv_length[kWaveOctaves] = {}, wave_offset_x[kWaveOctaves] = {};
+  Real wave_offset_z[kWaveOctaves] = {}, wave_amplitude[kWaveOctaves] = {};
+  // Dithered layer transitions (Scape).
+  std::int32_t dither_enabled = 0;
+  Real dither_half_amount = 0;  // 0.5 x shading.dither
+  Real dither_inv_scale = 1, dither_offset_x = 0, dither_offset_z = 0;
+  Real pixel_angle = 0;  // radians per pixel
+  Vec3<Real> camera_forward{};
+  // The background's view ray per pixel is formed in double (it is the sky's direction to a
+  // thousandth of a pixel at any field of view) and rounded once: these stay double.
+  double forward[3] = {}, right[3] = {}, up[3] = {};
+  double tan_half_fov_x = 0, tan_half_fov_y = 0;
+};
+
+// The parameters of stages 2-5, both precisions of which a frame may run.
+template <class Real>
+struct TerrainParams {
+  DomainParams<Real> domain;
+  std::vector<Real> row_descents;
+  FbmParams<Real> fbm;
+  SurfaceParams<Real> surface;
+  TransformParams<Real> transform;
+};
+
+template <class Real>
+TerrainParams<Real> make_terrain_params(const FramePlan& plan);
+
+template <class Real>
+ShadeParams<Real> make_shade_params(const ShadingPlan& plan);
+
+}  // namespace relief

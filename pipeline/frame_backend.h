@@ -1,0 +1,36 @@
+// What a backend supplies to the frame runner: the units of work of each stage of the table
+// (stage_table.h), and the work of any range of them. The runner schedules; the backend
+// computes. The reference backends (reference_backend.h) run the scalar stages of core/ in
+// float or double; a SIMD or GL backend implements the same entries.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "pipeline/frame.h"
+#include "pipeline/stage_table.h"
+
+namespace relief {
+
+class FrameBackend {
+ public:
+  virtual ~FrameBackend() = default;
+
+  // Called once before the units of stage `id` run: allocates the stage's outputs (so that a
+  // run that stops early, like relief stages, allocates nothing for the stages it skips).
+  virtual void prepare(StageId /*id*/) {}
+  // Units of work of stage `id` in this frame (rows, vertices, chunks or tiles); 0 skips it.
+  virtual std::size_t units(StageId id) const = 0;
+  // Runs units [begin, end) of stage `id`. Called concurrently for disjoint ranges of one
+  // stage; a stage starts only when the previous one has finished every unit.
+  virtual void run(StageId id, std::size_t begin, std::size_t end) = 0;
+  // Called once after every unit of stage `id` has run, before the next stage. May throw
+  // MemoryLimitError (the bins are checked here, before they are allocated).
+  virtual void after(StageId /*id*/) {}
+  // Moves the frame's results (image, requested outputs, rasteriser statistics and the
+  // per-part times the fused stage measured) into `frame`.
+  virtual void finish(Frame& frame) = 0;
+};
+
+}  // namespace relief

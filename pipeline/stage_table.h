@@ -1,0 +1,63 @@
+// The frame as a table: every stage in order, what it reads and writes, and its unit of
+// parallel work. The frame runner (frame.cc) walks this table and nothing else decides the
+// order of the stages; a backend (frame_backend.h) supplies the work of each entry.
+//
+// Stages 6 to 9 after binning are fused per 64 x 64 screen tile, as GPUs and llvmpipe do:
+// each tile is rasterised, resolved (2 x 2 quads, derivatives), shaded and encoded in tile-local
+// buffers that stay in cache, and only finished pixels are written to the frame. No per-pixel
+// attribute makes a round trip through memory.
+#pragma once
+
+#include <cstddef>
+
+namespace relief {
+
+enum class StageId {
+  kProjectedDomain,  // stages 1-2
+  kFractal,          // stage 3
+  kSurface,          // stage 4
+  kVertexTransform,  // stage 5
+  kTriangleSetup,    // stage 6, first half: clip, snap, cull, edge functions
+  kBinning,          // stage 6: triangles into screen tiles
+  kTiles,            // stages 6-9 per tile: rasterise, resolve, shade, encode
+};
+
+enum class WorkUnit {
+  kGridRows,        // rows of the projected grid
+  kVertices,        // grid vertices, flat
+  kTriangleChunks,  // fixed chunks of kSetupChunk triangles
+  kScreenTiles,     // 64 x 64 tiles of the image
+};
+
+struct StageInfo {
+  StageId id;
+  const char* name;    // as the timing reports print it
+  const char* number;  // the stages of README.md's table it covers
+  const char* reads;
+  const char* writes;
+  WorkUnit unit;
+  std::size_t grain;  // units per task: fixed, so results never depend on the thread count
+};
+
+// Grains: a 512-vertex row makes ~40 us of fBm, so 4 rows amortise the scheduling while
+// leaving 128 tasks to balance; 16384 vertices transform in ~20 us; a chunk of 4096 triangles
+// sets up in ~0.3 ms; a tile takes 0.1 to 2 ms.
+inline constexpr StageInfo kFrameStages[] = {
+    {StageId::kProjectedDomain, "projected domain", "1-2", "camera, projector, LOD rule",
+     "dx, dz, sigma, nu, valid", WorkUnit::kGridRows, 4},
+    {StageId::kFractal, "fractal", "3", "dx, dz, nu; lattice", "height", WorkUnit::kGridRows, 4},
+    {StageId::kSurface, "surface", "4", "dx, dz, height, valid", "nx, ny, nz, slope, water depth",
+     WorkUnit::kGridRows, 4},
+    {StageId::kVertexTransform, "vertex transform", "5", "dx, dz, height", "clip x, y, z, w",
+     WorkUnit::kVertices, 16384},
+    {StageId::kTriangleSetup, "triangle setup", "6", "clip coordinates, valid",
+     "set-up triangles per chunk", WorkUnit::kTriangleChunks, 1},
+    {StageId::kBinning, "binning", "6", "set-up triangles", "tile bins per chunk",
+     WorkUnit::kTriangleChunks, 1},
+    {StageId::kTiles, "tiles: raster, resolve, shade, encode", "6-9",
+     "bins, vertex streams, textures", "sRGB image, requested outputs", WorkUnit::kScreenTiles, 1},
+};
+
+inline constexpr std::size_t kFrameStageCount = sizeof(kFrameStages) / sizeof(kFrameStages[0]);
+
+}  // namespace relief

@@ -1,0 +1,85 @@
+// The fused back end of a frame, one 64 x 64 screen tile at a time (stage_table.h, kTiles):
+//   rasterise (stage 6) into a tile-local visibility buffer,
+//   resolve (stage 7) the winning triangle's attributes and their quad derivatives into
+//     tile-local structure-of-arrays buffers with named fields,
+//   shade (stage 8) every pixel, and
+//   encode (stage 9) it to sRGB in the frame's image, plus the outputs the caller asked for.
+// Quads start at even coordinates and tiles at multiples of 64, so no quad crosses a tile: a
+// tile needs nothing from its neighbours. The arithmetic is raster::resolve's and
+// shade_pixels'; the images are bit-identical to running the stages one after another over
+// the whole frame (tests/tile_pass_test.cc).
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <span>
+
+#include "core/shade.h"
+#include "core/stage_params.h"
+#include "pipeline/frame.h"
+#include "raster/bins.h"
+#include "raster/topology.h"
+
+namespace relief {
+
+// Per grid vertex, what the resolve interpolates: the positions (clip x, y, w) and the
+// attribute streams of stages 2-4, in the backend's precision. `nu` may be empty (then the
+// octave-count output is not available).
+template <class Real>
+struct VertexStreams {
+  std::span<const Real> clip_x, clip_y, clip_w;
+  std::span<const Real> dx, dz, height, nx, ny, nz, slope, water_depth, nu;
+};
+
+// Stage 7's output for one tile: one named array per field, kTileSize x kTileSize each, row-
+// major from the tile's bottom row. Only covered pixels are written.
+template <class Real>
+struct TileAttributes {
+  static constexpr int kPixels = raster::kTileSize * raster::kTileSize;
+  Real dx[kPixels], dz[kPixels], height[kPixels];
+  Real dx_ddx[kPixels], dx_ddy[kPixels], dz_ddx[kPixels], dz_ddy[kPixels];
+  Real height_ddx[kPixels], height_ddy[kPixels];
+  Real nx[kPixels], ny[kPixels], nz[kPixels];
+  Real slope[kPixels], water_depth[kPixels], nu[kPixels];
+
+  PixelAttributes<Real> at(std::size_t k) const {
+    return {dx[k],     dz[k],     height[k],     dx_ddx[k],     dx_ddy[k],
+            dz_ddx[k], dz_ddy[k], height_ddx[k], height_ddy[k], nx[k],
+            ny[k],     nz[k],     slope[k],      water_depth[k]};
+  }
+};
+
+// CPU time spent in each part of the fused stage, summed over all threads.
+struct TileTimes {
+  std::atomic<std::int64_t> raster_ns{0}, resolve_ns{0}, shade_ns{0}, encode_ns{0};
+};
+
+template <class Real>
+class TilePass {
+ public:
+  // `image` must be sized (width, height, srgb, and each requested output) before run().
+  TilePass(const raster::RasterState& state, const raster::GridTriangles& triangles,
+           VertexStreams<Real> streams, const ShadeParams<Real>& shade,
+           const ShadeResources& resources, const FrameOutputs& outputs, double camera_y,
+           FrameImage& image);
+
+  // Renders tile `tile`; tiles may run concurrently (each writes only its own pixels).
+  void run(std::span<const raster::SetupChunk> chunks, const raster::TileGrid& tiles, int tile,
+           TileTimes& times) const;
+
+ private:
+  void resolve(const raster::TileVisibility& visibility, TileAttributes<Real>& out) const;
+  void position(std::uint32_t vertex, double& x, double& y, double& w) const;
+
+  const raster::RasterState& state_;
+  raster::GridTriangles triangles_;
+  VertexStreams<Real> streams_;
+  const ShadeParams<Real>& shade_;
+  ShadeResources resources_;
+  FrameOutputs outputs_;
+  double camera_y_;
+  FrameImage& image_;
+  double scale_x_, scale_y_, translate_x_, translate_y_;  // viewport, as VertexPositions
+};
+
+}  // namespace relief
