@@ -82,36 +82,27 @@ void TilePass<Real>::resolve(const raster::TileVisibility& visibility,
         }
         plane = raster::PerspectivePlane(x, y, w);
       }
-      double b[3], bx[3], by[3];
-      if (!plane.barycentrics(px + 0.5, py + 0.5, b)) {
-        b[0] = b[1] = b[2] = 1.0 / 3.0;
-      }
-      // Quad partners: same row, the other column of the quad; same column, other row.
-      const bool has_x = plane.barycentrics((px ^ 1) + 0.5, py + 0.5, bx);
-      const bool has_y = plane.barycentrics(px + 0.5, (py ^ 1) + 0.5, by);
-      // Signs: dFdx = right column - left column, dFdy = top row - bottom row.
-      const double sign_x = (px & 1) ? -1.0 : 1.0;
-      const double sign_y = (py & 1) ? -1.0 : 1.0;
+      const raster::QuadWeights q = raster::quad_weights(plane, px, py);
       const auto at = [&](std::span<const Real> a, const double weights[3]) {
-        return weights[0] * a[v[0]] + weights[1] * a[v[1]] + weights[2] * a[v[2]];
+        return raster::QuadWeights::at(weights, a[v[0]], a[v[1]], a[v[2]]);
       };
       const auto with_derivatives = [&](std::span<const Real> a, Real& value, Real& ddx,
                                         Real& ddy) {
-        const double centre = at(a, b);
+        const double centre = at(a, q.b);
         value = static_cast<Real>(centre);
-        ddx = has_x ? static_cast<Real>(sign_x * (at(a, bx) - centre)) : Real(0);
-        ddy = has_y ? static_cast<Real>(sign_y * (at(a, by) - centre)) : Real(0);
+        ddx = q.has_x ? static_cast<Real>(q.sign_x * (at(a, q.bx) - centre)) : Real(0);
+        ddy = q.has_y ? static_cast<Real>(q.sign_y * (at(a, q.by) - centre)) : Real(0);
       };
       with_derivatives(s.dx, out.dx[k], out.dx_ddx[k], out.dx_ddy[k]);
       with_derivatives(s.dz, out.dz[k], out.dz_ddx[k], out.dz_ddy[k]);
       with_derivatives(s.height, out.height[k], out.height_ddx[k], out.height_ddy[k]);
-      out.nx[k] = static_cast<Real>(at(s.nx, b));
-      out.ny[k] = static_cast<Real>(at(s.ny, b));
-      out.nz[k] = static_cast<Real>(at(s.nz, b));
-      out.slope[k] = static_cast<Real>(at(s.slope, b));
-      out.water_depth[k] = static_cast<Real>(at(s.water_depth, b));
+      out.nx[k] = static_cast<Real>(at(s.nx, q.b));
+      out.ny[k] = static_cast<Real>(at(s.ny, q.b));
+      out.nz[k] = static_cast<Real>(at(s.nz, q.b));
+      out.slope[k] = static_cast<Real>(at(s.slope, q.b));
+      out.water_depth[k] = static_cast<Real>(at(s.water_depth, q.b));
       if (with_nu) {
-        out.nu[k] = static_cast<Real>(at(s.nu, b));
+        out.nu[k] = static_cast<Real>(at(s.nu, q.b));
       }
     }
   }

@@ -46,38 +46,44 @@ TileGrid make_tile_grid(const RasterState& state) {
   return {(state.width + kTileSize - 1) / kTileSize, (state.height + kTileSize - 1) / kTileSize};
 }
 
+namespace {
+
+// Calls set_up_one(t, v) for each drawn triangle t of chunk `chunk`, v its vertex indices.
+template <class Source, class SetUpOne>
+void for_each_triangle_of_chunk(const Source& source, std::size_t chunk, SetUpOne set_up_one) {
+  const auto begin = static_cast<std::uint32_t>(chunk * kSetupChunk);
+  for (std::uint32_t t = begin; t < chunk_end(source, chunk); ++t) {
+    std::uint32_t v[3];
+    if (source.vertices(t, v)) {
+      set_up_one(t, v);
+    }
+  }
+}
+
+}  // namespace
+
 template <class Source>
 void setup_chunk(const TriangleSetup& setup, ClipVertices vertices, const Source& source,
                  std::size_t chunk, SetupChunk& out) {
   out.triangles.clear();
-  const auto begin = static_cast<std::uint32_t>(chunk * kSetupChunk);
-  for (std::uint32_t t = begin; t < chunk_end(source, chunk); ++t) {
-    std::uint32_t v[3];
-    if (!source.vertices(t, v)) {
-      continue;
-    }
+  for_each_triangle_of_chunk(source, chunk, [&](std::uint32_t t, const std::uint32_t v[3]) {
     const ClipVertex clip[3] = {
         {vertices.x[v[0]], vertices.y[v[0]], vertices.z[v[0]], vertices.w[v[0]]},
         {vertices.x[v[1]], vertices.y[v[1]], vertices.z[v[1]], vertices.w[v[1]]},
         {vertices.x[v[2]], vertices.y[v[2]], vertices.z[v[2]], vertices.w[v[2]]}};
     setup.setup_clip(t, clip, out.triangles);
-  }
+  });
 }
 
 void setup_window_chunk(const TriangleSetup& setup, WindowVertices vertices,
                         const IndexedTriangles& source, std::size_t chunk, SetupChunk& out) {
   out.triangles.clear();
-  const auto begin = static_cast<std::uint32_t>(chunk * kSetupChunk);
-  for (std::uint32_t t = begin; t < chunk_end(source, chunk); ++t) {
-    std::uint32_t v[3];
-    if (!source.vertices(t, v)) {
-      continue;
-    }
+  for_each_triangle_of_chunk(source, chunk, [&](std::uint32_t t, const std::uint32_t v[3]) {
     const float x[3] = {vertices.x[v[0]], vertices.x[v[1]], vertices.x[v[2]]};
     const float y[3] = {vertices.y[v[0]], vertices.y[v[1]], vertices.y[v[2]]};
     const float z[3] = {vertices.z[v[0]], vertices.z[v[1]], vertices.z[v[2]]};
     setup.setup_window(t, x, y, z, out.triangles);
-  }
+  });
 }
 
 BinSize bin_size(std::span<const SetupChunk> chunks, const TileGrid& tiles) {

@@ -64,6 +64,19 @@ bool PerspectivePlane::barycentrics(double u, double v, double b[3]) const {
   return std::isfinite(b[0]) && std::isfinite(b[1]) && std::isfinite(b[2]);
 }
 
+QuadWeights quad_weights(const PerspectivePlane& plane, int px, int py) {
+  QuadWeights q;
+  if (!plane.barycentrics(px + 0.5, py + 0.5, q.b)) {
+    q.b[0] = q.b[1] = q.b[2] = 1.0 / 3.0;
+  }
+  // Quad partners: same row, the other column of the quad; same column, other row.
+  q.has_x = plane.barycentrics((px ^ 1) + 0.5, py + 0.5, q.bx);
+  q.has_y = plane.barycentrics(px + 0.5, (py ^ 1) + 0.5, q.by);
+  q.sign_x = (px & 1) ? -1.0 : 1.0;
+  q.sign_y = (py & 1) ? -1.0 : 1.0;
+  return q;
+}
+
 template <class Source>
 void resolve(const VisibilityBuffer& visibility, const VertexPositions& positions,
              const Source& source, std::span<const std::span<const float>> attributes,
@@ -104,35 +117,24 @@ void resolve(const VisibilityBuffer& visibility, const VertexPositions& position
           }
           plane = PerspectivePlane(x, y, w);
         }
-        // Quad partners: same row, the other column of the quad; same column, other row.
-        const int partner_x = px ^ 1;
-        const int partner_y = py ^ 1;
-        double b[3], bx[3], by[3];
-        if (!plane.barycentrics(px + 0.5, py + 0.5, b)) {
-          b[0] = b[1] = b[2] = 1.0 / 3.0;
-        }
-        const bool has_x = plane.barycentrics(partner_x + 0.5, py + 0.5, bx);
-        const bool has_y = plane.barycentrics(px + 0.5, partner_y + 0.5, by);
-        out.b0[k] = static_cast<float>(b[0]);
-        out.b1[k] = static_cast<float>(b[1]);
-        out.b2[k] = static_cast<float>(b[2]);
-        // Signs: dFdx = right column - left column, dFdy = top row - bottom row.
-        const double sign_x = (px & 1) ? -1.0 : 1.0;
-        const double sign_y = (py & 1) ? -1.0 : 1.0;
+        const QuadWeights q = quad_weights(plane, px, py);
+        out.b0[k] = static_cast<float>(q.b[0]);
+        out.b1[k] = static_cast<float>(q.b[1]);
+        out.b2[k] = static_cast<float>(q.b[2]);
         for (std::size_t s = 0; s < streams; ++s) {
           const std::span<const float> a = attributes[s];
-          const double value = b[0] * a[v[0]] + b[1] * a[v[1]] + b[2] * a[v[2]];
+          const double value = QuadWeights::at(q.b, a[v[0]], a[v[1]], a[v[2]]);
           out.value[s][k] = static_cast<float>(value);
           if (s >= derivative_streams) {
             continue;
           }
-          if (has_x) {
-            const double other = bx[0] * a[v[0]] + bx[1] * a[v[1]] + bx[2] * a[v[2]];
-            out.ddx[s][k] = static_cast<float>(sign_x * (other - value));
+          if (q.has_x) {
+            const double other = QuadWeights::at(q.bx, a[v[0]], a[v[1]], a[v[2]]);
+            out.ddx[s][k] = static_cast<float>(q.sign_x * (other - value));
           }
-          if (has_y) {
-            const double other = by[0] * a[v[0]] + by[1] * a[v[1]] + by[2] * a[v[2]];
-            out.ddy[s][k] = static_cast<float>(sign_y * (other - value));
+          if (q.has_y) {
+            const double other = QuadWeights::at(q.by, a[v[0]], a[v[1]], a[v[2]]);
+            out.ddy[s][k] = static_cast<float>(q.sign_y * (other - value));
           }
         }
       }

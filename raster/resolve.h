@@ -57,6 +57,26 @@ void resolve(const VisibilityBuffer& visibility, const VertexPositions& position
              const Source& source, std::span<const std::span<const float>> attributes,
              std::size_t derivative_streams, ResolvedFrame& out);
 
+struct PerspectivePlane;
+
+// The interpolation weights of one pixel of a 2 x 2 quad: its own perspective-correct
+// barycentrics (1/3 each where undefined), those of its quad partners in the same row (bx) and
+// the same column (by) where defined, and the signs that turn partner minus pixel into GL's
+// dFdxFine / dFdyFine (right column minus left, top row minus bottom). Quads start at even
+// coordinates.
+struct QuadWeights {
+  double b[3], bx[3], by[3];
+  bool has_x = false, has_y = false;
+  double sign_x = 1, sign_y = 1;
+
+  // a(b) = sum b_i a_i over the triangle's vertex values a0, a1, a2, in double.
+  static double at(const double weights[3], double a0, double a1, double a2) {
+    return weights[0] * a0 + weights[1] * a1 + weights[2] * a2;
+  }
+};
+
+QuadWeights quad_weights(const PerspectivePlane& plane, int px, int py);
+
 // The three cross products above are linear in (u, v) (the u v terms cancel):
 // l_i(u, v) = k_i + ku_i u + kv_i v, so a triangle's are set up once and evaluated per pixel.
 struct PerspectivePlane {
