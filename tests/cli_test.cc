@@ -152,13 +152,68 @@ TEST_CASE("renderRejectsBadInputWithoutWritingAFile", "[cli]") {
        std::vector<std::vector<std::string>>{{"render", "-o", (dir.path() / "x.jpg").string()},
                                              {"render", "--set", "camera.fov_y_deg=0", "-o", png},
                                              {"render", "--set", "grid.margin=99", "-o", png},
-                                             {"render", "--repeat", "0", "-o", png}}) {
+                                             {"render", "--repeat", "0", "-o", png},
+                                             {"render", "--backend", "simd", "-o", png},
+                                             {"stages", "--backend", "", "--out", png},
+                                             {"render", "--depth", png, "-o", png},
+                                             {"render", "--primitive", png, "-o", png},
+                                             {"render", "--normal", "", "-o", png}}) {
     const CliResult r = run(args);
     INFO(r.err);
     CHECK(r.code == kExitBadInput);
     CHECK_THAT(r.err, Contains("relief: error:"));
   }
   CHECK(dir.empty());
+}
+
+TEST_CASE("renderWritesEveryRequestedOutputOfEitherBackend", "[cli]") {
+  test::TempDir dir("render-outputs");
+  for (const char* backend : {"reference", "reference-double"}) {
+    const auto file = [&](const char* name) {
+      return (dir.path() / (std::string(backend) + name)).string();
+    };
+    const CliResult r = run({"render",
+                             "--set",
+                             "viewport.width=40",
+                             "--set",
+                             "viewport.height=30",
+                             "--set",
+                             "grid.width=24",
+                             "--set",
+                             "grid.height=24",
+                             "--backend",
+                             backend,
+                             "-o",
+                             file(".png"),
+                             "--float",
+                             file(".pfm"),
+                             "--depth",
+                             file("-depth.pfm"),
+                             "--primitive",
+                             file("-id.bin"),
+                             "--normal",
+                             file("-normal.pfm"),
+                             "--height",
+                             file("-height.pfm"),
+                             "--octaves",
+                             file("-nu.pfm")});
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    CHECK_THAT(r.out, Contains(std::string("backend ") + backend));
+    CHECK(read_bytes(file("-id.bin")).size() == 40u * 30u * 4u);
+    for (const auto& [name, header] :
+         std::vector<std::pair<const char*, std::string>>{{".pfm", "PF\n40 30\n-1.0\n"},
+                                                          {"-depth.pfm", "Pf\n40 30\n-1.0\n"},
+                                                          {"-normal.pfm", "PF\n40 30\n-1.0\n"},
+                                                          {"-height.pfm", "Pf\n40 30\n-1.0\n"},
+                                                          {"-nu.pfm", "Pf\n40 30\n-1.0\n"}}) {
+      const std::vector<unsigned char> pfm = read_bytes(file(name));
+      const std::size_t channels = header[1] == 'F' ? 3 : 1;
+      INFO(name);
+      REQUIRE(pfm.size() == header.size() + 40 * 30 * 4 * channels);
+      CHECK(std::string(pfm.begin(), pfm.begin() + header.size()) == header);
+    }
+  }
 }
 
 TEST_CASE("renderRejectsUnusableTextureFilesNamingTheLayer", "[cli]") {
