@@ -48,7 +48,7 @@ void BM_Baseline_ClearHeight(benchmark::State& state) {
 
 void BM_Stage2_ProjectedDomain(benchmark::State& state) {
   for (auto _ : state) {
-    project_domain<float>(frame().params.domain, frame().params.row_descents, all_rows(),
+    project_domain<float>(frame().params.domain, frame().params.domain_rows, all_rows(),
                           frame().buffers.domain());
     benchmark::ClobberMemory();
   }
@@ -68,7 +68,7 @@ void BM_Stage3_FractalWarped(benchmark::State& state) {
   const FramePlan plan = make_frame_plan(scene, frame().lattice);
   const TerrainParams<float> params = make_terrain_params<float>(plan);
   GridBuffers<float> b(plan.layout);
-  project_domain<float>(params.domain, params.row_descents, all_rows(), b.domain());
+  project_domain<float>(params.domain, params.domain_rows, all_rows(), b.domain());
   for (auto _ : state) {
     evaluate_fbm_rows<float>(params.fbm, frame().lattice, all_rows(), b);
     benchmark::ClobberMemory();

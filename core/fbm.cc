@@ -10,7 +10,8 @@ namespace relief {
 namespace {
 
 template <Interpolant kKind, class Real>
-Real fbm_point(const FbmParams<Real>& c, const NoiseLattice& lattice, Real dx, Real dz, Real nu) {
+Real fbm_point(const FbmParams<Real>& c, const NoiseLattice& lattice, Real dx, Real dz, Real nu,
+               std::uint64_t& octaves_summed) {
   const Real ux = dx * c.inv_scale;
   const Real uz = dz * c.inv_scale;
   const Real whole = std::floor(nu);
@@ -29,6 +30,7 @@ Real fbm_point(const FbmParams<Real>& c, const NoiseLattice& lattice, Real dx, R
     const Real px = c.offset_x[n] + c.frequency[n] * ux + wx;
     const Real pz = c.offset_z[n] + c.frequency[n] * uz + wz;
     h = h + (weight * c.amplitude[n]) * sample_lattice<kKind>(lattice, px, pz);
+    ++octaves_summed;
     if (!c.warp || n == full_octaves || n + 1 == c.count) {
       continue;  // no further octave reads W
     }
@@ -57,28 +59,37 @@ Real fbm_point(const FbmParams<Real>& c, const NoiseLattice& lattice, Real dx, R
 }
 
 template <Interpolant kKind, class Real>
-void evaluate_range(const FbmParams<Real>& c, const NoiseLattice& lattice, IndexRange range,
-                    std::span<const Real> dx, std::span<const Real> dz, std::span<const Real> nu,
-                    std::span<Real> height) {
+FbmWork evaluate_range(const FbmParams<Real>& c, const NoiseLattice& lattice, IndexRange range,
+                       std::span<const Real> dx, std::span<const Real> dz, std::span<const Real> nu,
+                       std::span<const std::uint8_t> mask, std::span<Real> height) {
+  FbmWork work;
   for (std::size_t k = range.begin; k < range.end; ++k) {
-    height[k] = fbm_point<kKind>(c, lattice, dx[k], dz[k], nu[k]);
+    if (!mask.empty() && !mask[k]) {
+      height[k] = Real(0);  // not needed (core/vertex_culling.h): no consumer reads it
+      continue;
+    }
+    height[k] = fbm_point<kKind>(c, lattice, dx[k], dz[k], nu[k], work.octaves);
+    ++work.points;
   }
+  return work;
 }
 
 }  // namespace
 
 template <class Real>
-void evaluate_fbm(const FbmParams<Real>& params, const NoiseLattice& lattice, IndexRange range,
-                  std::span<const Real> dx, std::span<const Real> dz, std::span<const Real> nu,
-                  std::span<Real> height) {
+FbmWork evaluate_fbm(const FbmParams<Real>& params, const NoiseLattice& lattice, IndexRange range,
+                     std::span<const Real> dx, std::span<const Real> dz, std::span<const Real> nu,
+                     std::span<const std::uint8_t> mask, std::span<Real> height) {
   switch (static_cast<Interpolant>(params.interpolant)) {
     case Interpolant::kLinear:
-      return evaluate_range<Interpolant::kLinear>(params, lattice, range, dx, dz, nu, height);
+      return evaluate_range<Interpolant::kLinear>(params, lattice, range, dx, dz, nu, mask, height);
     case Interpolant::kCubic:
-      return evaluate_range<Interpolant::kCubic>(params, lattice, range, dx, dz, nu, height);
+      return evaluate_range<Interpolant::kCubic>(params, lattice, range, dx, dz, nu, mask, height);
     case Interpolant::kQuintic:
-      return evaluate_range<Interpolant::kQuintic>(params, lattice, range, dx, dz, nu, height);
+      return evaluate_range<Interpolant::kQuintic>(params, lattice, range, dx, dz, nu, mask,
+                                                   height);
   }
+  return {};
 }
 
 template <class Real>
@@ -86,16 +97,18 @@ Real fbm_height(const TerrainPlan& plan, Real dx, Real dz, Real nu) {
   Real height = 0;
   evaluate_fbm<Real>(make_fbm_params<Real>(plan), *plan.lattice, IndexRange{0, 1},
                      std::span<const Real>(&dx, 1), std::span<const Real>(&dz, 1),
-                     std::span<const Real>(&nu, 1), std::span<Real>(&height, 1));
+                     std::span<const Real>(&nu, 1), {}, std::span<Real>(&height, 1));
   return height;
 }
 
-template void evaluate_fbm<float>(const FbmParams<float>&, const NoiseLattice&, IndexRange,
-                                  std::span<const float>, std::span<const float>,
-                                  std::span<const float>, std::span<float>);
-template void evaluate_fbm<double>(const FbmParams<double>&, const NoiseLattice&, IndexRange,
-                                   std::span<const double>, std::span<const double>,
-                                   std::span<const double>, std::span<double>);
+template FbmWork evaluate_fbm<float>(const FbmParams<float>&, const NoiseLattice&, IndexRange,
+                                     std::span<const float>, std::span<const float>,
+                                     std::span<const float>, std::span<const std::uint8_t>,
+                                     std::span<float>);
+template FbmWork evaluate_fbm<double>(const FbmParams<double>&, const NoiseLattice&, IndexRange,
+                                      std::span<const double>, std::span<const double>,
+                                      std::span<const double>, std::span<const std::uint8_t>,
+                                      std::span<double>);
 template float fbm_height<float>(const TerrainPlan&, float, float, float);
 template double fbm_height<double>(const TerrainPlan&, double, double, double);
 

@@ -23,6 +23,7 @@
 // and the guard eps = kRoughnessGuard.
 #pragma once
 
+#include <cstdint>
 #include <span>
 
 #include "core/frame_plan.h"
@@ -36,10 +37,19 @@ namespace relief {
 // range.
 // Precondition: finite inputs; nu in [0, N] is the meaningful range (nu >= N sums every
 // octave, nu <= 0 none). Output finite.
+// The work done: points evaluated and octaves summed over them (a fractional octave counts
+// as one).
+struct FbmWork {
+  std::uint64_t points = 0;
+  std::uint64_t octaves = 0;
+};
+
+// `mask`: evaluate only where it is non-zero (heights elsewhere are 0: no consumer reads them,
+// core/vertex_culling.h); empty: everywhere.
 template <class Real>
-void evaluate_fbm(const FbmParams<Real>& params, const NoiseLattice& lattice, IndexRange range,
-                  std::span<const Real> dx, std::span<const Real> dz, std::span<const Real> nu,
-                  std::span<Real> height);
+FbmWork evaluate_fbm(const FbmParams<Real>& params, const NoiseLattice& lattice, IndexRange range,
+                     std::span<const Real> dx, std::span<const Real> dz, std::span<const Real> nu,
+                     std::span<const std::uint8_t> mask, std::span<Real> height);
 
 // One point of evaluate_fbm with the parameters of `plan` (rounded for this call), for tests
 // and tools.

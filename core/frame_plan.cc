@@ -61,14 +61,16 @@ FramePlan make_frame_plan(const Scene& scene, const NoiseLattice& lattice) {
   FramePlan plan;
   plan.camera = make_camera_frame(scene.camera, scene.viewport);
   plan.bounds = derive_height_bounds(lattice, scene.terrain);
-  plan.projector = make_projector(plan.camera, plan.bounds, scene.terrain.base_height);
-  plan.screen = make_screen_grid(scene.grid, plan.projector.coverage);
   plan.layout = make_grid_layout(scene.grid.width, scene.grid.height);
   plan.lod = make_lod_plan(scene.terrain);
   plan.terrain = make_terrain_plan(scene.terrain, lattice, scene.camera.position);
+  // After the terrain plan: the projector refines the slab by its regional height bound.
+  plan.projector =
+      make_projector(plan.camera, plan.bounds, scene.terrain.base_height, &plan.terrain);
+  plan.screen = make_screen_grid(scene.grid, plan.projector);
   plan.clip = make_clip_transform(plan.camera);
-  plan.water_enabled = scene.terrain.water_level.has_value();
   plan.relative_water_level = scene.terrain.water_level.value_or(0.0) - scene.camera.position[1];
+  plan.water_enabled = scene.terrain.water_level.has_value() && plan.relative_water_level < 0.0;
   return plan;
 }
 

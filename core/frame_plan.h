@@ -57,6 +57,8 @@ struct FramePlan {
   LodPlan lod;
   TerrainPlan terrain;
   ClipTransform clip;  // stage 5
+  // Water (§4.3), decided once for every stage: a water level is set and the camera is above
+  // it (from below, the surface is not drawn: the terrain is seen as if there were none).
   bool water_enabled = false;
   double relative_water_level = 0;  // terrain.water_level - camera y, formed in double
 };

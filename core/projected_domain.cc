@@ -43,19 +43,25 @@ Real axis_spacing_sq(const Footprint<Real>& minus, const Footprint<Real>& centre
 }  // namespace
 
 template <class Real>
-void project_domain(const DomainParams<Real>& p, std::span<const Real> row_descents, RowRange rows,
+void project_domain(const DomainParams<Real>& p, const DomainRows<Real>& table, RowRange rows,
                     DomainSpans<Real> out) {
-  // Per-row ray descents, formed in double (projector.h explains why), for rows j - 1, j, j + 1.
-  auto descent = [&](int j) { return row_descents[static_cast<std::size_t>(j + 1)]; };
-  auto footprint = [&](int i, int j, Real row_descent) {
+  // Per-row values formed in double (projector.h, screen_grid.h explain why), for rows j - 1,
+  // j, j + 1: the ray descent and the row's column placement.
+  struct Row {
+    Real descent, x0, step_x;
+  };
+  auto row = [&](int j) {
+    const auto k = static_cast<std::size_t>(j + 1);
+    return Row{table.descent[k], table.x0[k], table.step_x[k]};
+  };
+  auto footprint = [&](int i, int j, const Row& r) {
     Footprint<Real> f;
-    f.valid =
-        p.terrain_visible && p.rays.footprint(p.x0 + Real(i) * p.step_x, p.y0 + Real(j) * p.step_y,
-                                              row_descent, f.x, f.z);
+    f.valid = p.terrain_visible && p.rays.footprint(r.x0 + Real(i) * r.step_x,
+                                                    p.y0 + Real(j) * p.step_y, r.descent, f.x, f.z);
     return f;
   };
   for (int j = rows.begin; j < rows.end; ++j) {
-    const Real below = descent(j - 1), here = descent(j), above = descent(j + 1);
+    const Row below = row(j - 1), here = row(j), above = row(j + 1);
     for (int i = 0; i < p.pitch; ++i) {
       const std::size_t k = static_cast<std::size_t>(j) * p.pitch + i;
       out.dx[k] = Real(0);
@@ -86,9 +92,9 @@ void project_domain(const DomainParams<Real>& p, std::span<const Real> row_desce
   }
 }
 
-template void project_domain<float>(const DomainParams<float>&, std::span<const float>, RowRange,
+template void project_domain<float>(const DomainParams<float>&, const DomainRows<float>&, RowRange,
                                     DomainSpans<float>);
-template void project_domain<double>(const DomainParams<double>&, std::span<const double>, RowRange,
-                                     DomainSpans<double>);
+template void project_domain<double>(const DomainParams<double>&, const DomainRows<double>&,
+                                     RowRange, DomainSpans<double>);
 
 }  // namespace relief

@@ -22,9 +22,10 @@ namespace relief {
 //          kMinSpacingSq, the log's domain guard.
 // Invalid vertices (ray at or above the horizon, or beyond the farthest footprint) get
 // dx = dz = sigma = 0 and nu = 1: finite, and skipped by every later stage.
-// `row_descents`: make_row_descents() of the same plan.
+// Vertex (i, j) is the image point (x0_j + i step_x_j, y0 + j step_y), x0_j and step_x_j its
+// row's (screen_grid.h). `rows_table`: make_domain_rows() of the same plan.
 template <class Real>
-void project_domain(const DomainParams<Real>& params, std::span<const Real> row_descents,
+void project_domain(const DomainParams<Real>& params, const DomainRows<Real>& rows_table,
                     RowRange rows, DomainSpans<Real> out);
 
 }  // namespace relief

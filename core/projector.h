@@ -7,13 +7,28 @@
 // frustum's edges with the slab's two planes. Their vertical projections span every base-domain
 // point whose terrain could appear on screen.
 //
+// The slab is the terrain's global height range, about three times the relief near any one
+// place, and it usually contains the camera: the polytope then reaches from the near plane
+// under the camera, and half the grid used to cover ground below the bottom of the screen. So
+// the polytope is refined per region (docs/paper-reading.md, "§4.1: the projector"): the
+// projector image of the global polytope is cut into kRefineCells^2 cells, each the image of a
+// convex quadrilateral of the base plane; over each, the terrain lies within its regional
+// height bound [L, U] (height_bound_pyramid.h), so every visible terrain point there lies in
+// frustum ∩ (quad x [L, U]), a convex polytope. The cells tile the image, so every visible
+// terrain point lies in one of these pieces (Figure 5's requirement), and the pieces' vertices
+// take the place of the global polytope's below. Pieces a regional bound keeps out of the
+// frustum (ground under the camera whose terrain cannot reach the lowest rays) contribute
+// nothing.
+//
 // The projector is a pinhole at the camera position, without roll, looking down at a
 // horizontal "projection plane" below it. The plane's height only parametrises the grid, so it
 // is placed at the base height when the camera is above it: the projector then sees the
 // terrain the way the camera does. The pitch bisects the depression angles of the projected
 // polytope vertices, so all of them are in front of it (|angle off axis| < 90 degrees). The
-// bounding box of their projector-image coordinates is the coverage box; since the projected
-// polytope is convex and the projector is a projective map, the box covers all of it.
+// convex hull of their projector-image coordinates is the coverage hull, and its bounding box
+// the coverage box; since each piece is convex and the projector is a projective map, the hull
+// covers every piece's image. Stage 1 spans each grid row over the hull's extent between its
+// neighbouring rows (screen_grid.h), so few columns land left or right of what can be seen.
 #pragma once
 
 #include <vector>
@@ -24,6 +39,8 @@
 #include "core/height_bounds.h"
 
 namespace relief {
+
+struct TerrainPlan;  // frame_plan.h, which includes this header
 
 struct ImageBox {
   double x0 = 0, x1 = 0;  // projector-image coordinates: x right, y up, focal length 1
@@ -37,14 +54,25 @@ struct Projector {
   glm::dvec3 up{0, 0, -1};
   double height_above_plane = 1;      // camera height above the projection plane, > 0
   ImageBox coverage;                  // covers every footprint that can be seen
+  std::vector<glm::dvec2> hull;       // and so does this convex polygon (counter-clockwise)
   double max_footprint_distance = 0;  // kMaxFootprintFactor x the farthest footprint
 };
+
+// Cells per side of the projector-image tiling the polytope is refined over (header), and the
+// passes: the second tiles the first's coverage, finer where it matters. Two passes of 24^2
+// cells take 2 ms a frame and set up 46% of the default frame's triangles; one pass of 32^2,
+// 46%; 64^2 cells, about 49% for 20 ms.
+inline constexpr int kRefineCells = 24;
+inline constexpr int kRefinePasses = 2;
 
 // Vertices of (frustum between near and far plane) intersected with the slab
 // y_lo <= y <= y_hi; positions relative to the camera, slab heights relative to the camera.
 std::vector<glm::dvec3> frustum_slab_vertices(const CameraFrame& camera, double y_lo, double y_hi);
 
-Projector make_projector(const CameraFrame& camera, const HeightBounds& bounds, double base_height);
+// `terrain`: refine the polytope by the regional height bound of this terrain (header); null
+// takes the global slab alone.
+Projector make_projector(const CameraFrame& camera, const HeightBounds& bounds, double base_height,
+                         const TerrainPlan* terrain = nullptr);
 
 // The footprint of the projector ray through image point (x, y) on the projection plane, as
 // camera-relative (dx, dz). `descent` is the ray's downward component -ray.y for that image

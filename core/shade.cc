@@ -34,7 +34,7 @@ Vec3<Real> sample(const ProtoTexture& t, Real u, Real v, Real dudx, Real dvdx, R
 template <class Real>
 Vec3<Real> layer_albedo(const ShadeParams<Real>& p, const LayerParams<Real>& l,
                         const ProtoTexture& texture, const PixelAttributes<Real>& a,
-                        const Vec3<Real>& n) {
+                        const Vec3<Real>& n, ShadeWork& work) {
   const Real inv = l.inv_tile;
   const Real x = l.offset_x + a.dx * inv, z = l.offset_z + a.dz * inv;
   const Real y = l.offset_y + a.height * inv;
@@ -42,6 +42,7 @@ Vec3<Real> layer_albedo(const ShadeParams<Real>& p, const LayerParams<Real>& l,
   const Real zdx = a.dz_ddx * inv, zdy = a.dz_ddy * inv;
   const Real ydx = a.height_ddx * inv, ydy = a.height_ddy * inv;
   if (!p.triplanar) {
+    ++work.texture_fetches;
     return sample<Real>(texture, x, z, xdx, zdx, xdy, zdy);
   }
   // Squared-normal weights (Mekala; Scape): they sum to one for a unit normal.
@@ -51,14 +52,20 @@ Vec3<Real> layer_albedo(const ShadeParams<Real>& p, const LayerParams<Real>& l,
     weight = weight < Real(kMinProjectionWeight) ? Real(0) : weight;
     used = used + weight;
   }
+  // A projection of weight zero adds zero: skipped (p.skip_zero_weights) it costs no fetch.
+  const auto used_projection = [&](int axis) {
+    const bool sampled = w[axis] > Real(0) || !p.skip_zero_weights;
+    work.texture_fetches += sampled;
+    return sampled;
+  };
   Vec3<Real> sum{0, 0, 0};
-  if (w[0] > Real(0)) {
+  if (used_projection(0)) {
     sum = sum + sample<Real>(texture, z, y, zdx, ydx, zdy, ydy) * w[0];
   }
-  if (w[1] > Real(0)) {
+  if (used_projection(1)) {
     sum = sum + sample<Real>(texture, x, z, xdx, zdx, xdy, zdy) * w[1];
   }
-  if (w[2] > Real(0)) {
+  if (used_projection(2)) {
     sum = sum + sample<Real>(texture, x, y, xdx, ydx, xdy, ydy) * w[2];
   }
   return sum * (Real(1) / used);  // domain: used >= 1/3 - 2% for a unit normal
@@ -67,14 +74,15 @@ Vec3<Real> layer_albedo(const ShadeParams<Real>& p, const LayerParams<Real>& l,
 // Sun (Lambert, Phong), hemispherical sky light and ambient.
 template <class Real>
 Vec3<Real> light(const ShadeParams<Real>& p, const Vec3<Real>& albedo, const Vec3<Real>& n,
-                 const Vec3<Real>& view, Real specular) {
+                 const Vec3<Real>& view, Real specular, ShadeWork& work) {
   const Vec3<Real>& to_sun = p.sun_direction;
   const Vec3<Real>& sun = p.sun;
   const Real ndl = std::max(Real(0), dot(n, to_sun));
   const Vec3<Real> hemisphere = mix(p.ground_light, p.sky_light, Real(0.5) + Real(0.5) * n.y);
   const Real ambient = p.ambient;
   Vec3<Real> radiance = albedo * (sun * ndl + hemisphere + Vec3<Real>{ambient, ambient, ambient});
-  if (specular > Real(0) && ndl > Real(0)) {
+  if ((specular > Real(0) || p.always_specular) && ndl > Real(0)) {
+    ++work.specular_pixels;
     const Vec3<Real> reflected = n * (Real(2) * ndl) - to_sun;
     const Real rv = -dot(reflected, view);
     if (rv > Real(0)) {  // log's domain
@@ -96,7 +104,8 @@ Real surface_footprint(const ShadeParams<Real>& p, Real distance, const Vec3<Rea
 
 template <class Real>
 Vec3<Real> terrain_radiance(const ShadeParams<Real>& p, const ShadeResources& r,
-                            const PixelAttributes<Real>& a) {
+                            const PixelAttributes<Real>& a, ShadeWork& work) {
+  ++work.terrain_pixels;
   const Real relative_y = a.height;  // camera-relative (stage 3)
   const Vec3<Real> position{a.dx, relative_y, a.dz};
   const Real distance = std::sqrt(dot(position, position));
@@ -116,40 +125,53 @@ Vec3<Real> terrain_radiance(const ShadeParams<Real>& p, const ShadeResources& r,
     const Real noise = sample_lattice<Interpolant::kCubic>(
         *r.lattice, p.dither_offset_x + a.dx * inv, p.dither_offset_z + a.dz * inv);
     dither_offset = p.dither_half_amount * noise * dither_fade;
+    ++work.dither_samples;
   }
   Real weights[limits::kMaxMaterialLayers];
   layer_weights(p, relative_y, a.slope, dither_offset, weights);
   Vec3<Real> albedo{0, 0, 0};
   Real specular = Real(0), used = Real(0);
   for (int layer = 0; layer < p.layer_count; ++layer) {
+    // Below kMinLayerWeight a layer's weight is zero (its share goes to the others by the
+    // renormalisation below), and a zero weight adds zero: skipped, it costs no fetch.
     if (weights[layer] < Real(kMinLayerWeight)) {
-      continue;
+      weights[layer] = Real(0);
+      if (p.skip_zero_weights) {
+        continue;
+      }
     }
-    albedo = albedo + layer_albedo(p, p.layers[layer], r.textures[layer], a, n) * weights[layer];
+    albedo =
+        albedo + layer_albedo(p, p.layers[layer], r.textures[layer], a, n, work) * weights[layer];
     specular = specular + p.layers[layer].specular * weights[layer];
     used = used + weights[layer];
   }
   // Domain: the largest weight is >= 1/8 > kMinLayerWeight, so used > 0.
   albedo = albedo * (Real(1) / used);
-  Vec3<Real> radiance = light(p, albedo, n, view, specular / used);
+  Vec3<Real> radiance = light(p, albedo, n, view, specular / used, work);
 
   Real fog_distance = distance;
-  if (p.water_enabled && relative_y < p.water_level && view.y < Real(0)) {
+  if (p.water_enabled && p.terrain_water && relative_y < p.water_level && view.y < Real(0)) {
     // The view ray meets the surface before the ground (the camera is above the water).
     const Real surface = p.water_level / view.y;  // both negative: surface > 0
     const Real footprint = surface_footprint(p, surface, view);
     radiance = shade_water(p, *r.lattice, view, surface, std::max(Real(0), a.water_depth), radiance,
                            footprint);
     fog_distance = surface;
+    ++work.water_pixels;
   }
+  if (!p.fog_enabled) {
+    return radiance;
+  }
+  ++work.fogged_pixels;
   return apply_fog(p, radiance, view, fog_distance);
 }
 
 // No terrain at this pixel: the sky above the horizon; below it, open water if the camera is
 // above the water, else the fog colour (terrain beyond the far distance).
 template <class Real>
-Vec3<Real> background_radiance(const ShadeParams<Real>& p, const ShadeResources& r, int px,
-                               int py) {
+Vec3<Real> background_radiance(const ShadeParams<Real>& p, const ShadeResources& r, int px, int py,
+                               ShadeWork& work) {
+  ++work.background_pixels;
   // The view ray in double (stage_params.h), rounded once.
   const double ndc_x = 2.0 * (px + 0.5) / p.width - 1.0;
   const double ndc_y = 2.0 * (py + 0.5) / p.height - 1.0;
@@ -166,6 +188,11 @@ Vec3<Real> background_radiance(const ShadeParams<Real>& p, const ShadeResources&
       const Real footprint = surface_footprint(p, surface, d);
       const Vec3<Real> open =
           shade_water(p, *r.lattice, d, surface, Real(1e6), Vec3<Real>{0, 0, 0}, footprint);
+      ++work.water_pixels;
+      if (!p.fog_enabled) {
+        return open;
+      }
+      ++work.fogged_pixels;
       return apply_fog(p, open, d, surface);
     }
     return fog_color(p, d);
@@ -177,12 +204,13 @@ template <class Real>
 void shade_pixels(const ShadeParams<Real>& p, const ShadeResources& r, const ShadingInputs& in,
                   RowRange rows, std::span<Real> rgb) {
   const Real exposure = p.exposure;
+  ShadeWork work;
   for (int py = rows.begin; py < rows.end; ++py) {
     for (int px = 0; px < p.width; ++px) {
       const std::size_t k = static_cast<std::size_t>(py) * p.width + px;
       const Vec3<Real> radiance = in.primitive[k] != 0xffffffffu
-                                      ? terrain_radiance<Real>(p, r, in.at<Real>(k))
-                                      : background_radiance<Real>(p, r, px, py);
+                                      ? terrain_radiance<Real>(p, r, in.at<Real>(k), work)
+                                      : background_radiance<Real>(p, r, px, py, work);
       rgb[3 * k] = radiance.x * exposure;
       rgb[3 * k + 1] = radiance.y * exposure;
       rgb[3 * k + 2] = radiance.z * exposure;
@@ -191,13 +219,13 @@ void shade_pixels(const ShadeParams<Real>& p, const ShadeResources& r, const Sha
 }
 
 template Vec3<float> terrain_radiance<float>(const ShadeParams<float>&, const ShadeResources&,
-                                             const PixelAttributes<float>&);
+                                             const PixelAttributes<float>&, ShadeWork&);
 template Vec3<double> terrain_radiance<double>(const ShadeParams<double>&, const ShadeResources&,
-                                               const PixelAttributes<double>&);
+                                               const PixelAttributes<double>&, ShadeWork&);
 template Vec3<float> background_radiance<float>(const ShadeParams<float>&, const ShadeResources&,
-                                                int, int);
+                                                int, int, ShadeWork&);
 template Vec3<double> background_radiance<double>(const ShadeParams<double>&, const ShadeResources&,
-                                                  int, int);
+                                                  int, int, ShadeWork&);
 template void shade_pixels<float>(const ShadeParams<float>&, const ShadeResources&,
                                   const ShadingInputs&, RowRange, std::span<float>);
 template void shade_pixels<double>(const ShadeParams<double>&, const ShadeResources&,

@@ -39,15 +39,37 @@ struct PixelAttributes {
   Real water_depth;                                             // §4.3, interpolated
 };
 
-// Radiance of a covered pixel, before the exposure.
+// The work stage 8 did, counted per pixel (README.md, "Skipped work").
+struct ShadeWork {
+  std::uint64_t terrain_pixels = 0;     // covered pixels shaded as terrain
+  std::uint64_t background_pixels = 0;  // sky, fog or open water
+  std::uint64_t texture_fetches = 0;    // trilinear proto-texture samples
+  std::uint64_t water_pixels = 0;       // pixels through the water pass
+  std::uint64_t fogged_pixels = 0;      // pixels through the fog pass
+  std::uint64_t dither_samples = 0;     // dithering noise lookups
+  std::uint64_t specular_pixels = 0;    // pixels whose specular term was computed
+
+  ShadeWork& operator+=(const ShadeWork& o) {
+    terrain_pixels += o.terrain_pixels;
+    background_pixels += o.background_pixels;
+    texture_fetches += o.texture_fetches;
+    water_pixels += o.water_pixels;
+    fogged_pixels += o.fogged_pixels;
+    dither_samples += o.dither_samples;
+    specular_pixels += o.specular_pixels;
+    return *this;
+  }
+};
+
+// Radiance of a covered pixel, before the exposure; counts its work into `work`.
 template <class Real>
 Vec3<Real> terrain_radiance(const ShadeParams<Real>& params, const ShadeResources& resources,
-                            const PixelAttributes<Real>& a);
+                            const PixelAttributes<Real>& a, ShadeWork& work);
 
 // Radiance of pixel (px, py) where no terrain covers it, before the exposure.
 template <class Real>
 Vec3<Real> background_radiance(const ShadeParams<Real>& params, const ShadeResources& resources,
-                               int px, int py);
+                               int px, int py, ShadeWork& work);
 
 // Per-pixel inputs of a whole image, row 0 the bottom; all spans width * height long.
 struct ShadingInputs {

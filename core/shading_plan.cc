@@ -84,7 +84,7 @@ ShadingPlan make_shading_plan(const Scene& scene, const FramePlan& frame, int la
 
   const WaterSettings& w = scene.water;
   WaterPlan& water = plan.water;
-  water.enabled = scene.terrain.water_level.has_value() && camera.y > water_level;
+  water.enabled = frame.water_enabled;  // one decision for every stage (frame_plan.h)
   water.level = water_level - camera.y;
   water.shallow = vec(w.shallow_color);
   water.deep = vec(w.deep_color);

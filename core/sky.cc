@@ -46,6 +46,9 @@ template <class Real>
 Vec3<Real> apply_fog(const ShadeParams<Real>& p, const Vec3<Real>& radiance, const Vec3<Real>& d,
                      Real distance) {
   const Real clear = exp2_det(-p.fog_density_log2 * distance);  // in (0, 1]
+  if (!(clear < Real(1))) {
+    return radiance;  // no fog: exactly the radiance (a mix with weight 1 could round)
+  }
   return mix(fog_color(p, d), radiance, clear);
 }
 

@@ -17,8 +17,6 @@ RampParams<Real> rounded(const Ramp& r) {
 template <class Real>
 DomainParams<Real> make_domain_params(const FramePlan& plan) {
   DomainParams<Real> p{ProjectorRays<Real>(plan.projector)};
-  p.x0 = Real(plan.screen.x0);
-  p.step_x = Real(plan.screen.step_x);
   p.y0 = Real(plan.screen.y0);
   p.step_y = Real(plan.screen.step_y);
   p.c0 = Real(plan.lod.c0);
@@ -62,19 +60,22 @@ FbmParams<Real> make_fbm_params(const TerrainPlan& plan) {
 }
 
 template <class Real>
-std::vector<Real> make_row_descents(const FramePlan& plan) {
-  std::vector<Real> descents(static_cast<std::size_t>(plan.layout.height) + 2);
+DomainRows<Real> make_domain_rows(const FramePlan& plan) {
+  const std::size_t rows = static_cast<std::size_t>(plan.layout.height) + 2;
+  DomainRows<Real> table{std::vector<Real>(rows), std::vector<Real>(rows), std::vector<Real>(rows)};
   for (int j = -1; j <= plan.layout.height; ++j) {
-    descents[static_cast<std::size_t>(j + 1)] =
-        Real(projector_descent(plan.projector, plan.screen.image_y(j)));
+    const auto k = static_cast<std::size_t>(j + 1);
+    table.descent[k] = Real(projector_descent(plan.projector, plan.screen.image_y(j)));
+    table.x0[k] = Real(plan.screen.row_origin(j));
+    table.step_x[k] = Real(plan.screen.row_step(j));
   }
-  return descents;
+  return table;
 }
 
 template <class Real>
 TerrainParams<Real> make_terrain_params(const FramePlan& plan) {
   TerrainParams<Real> p{make_domain_params<Real>(plan),
-                        make_row_descents<Real>(plan),
+                        make_domain_rows<Real>(plan),
                         make_fbm_params<Real>(plan.terrain),
                         {},
                         {}};
@@ -131,6 +132,7 @@ ShadeParams<Real> make_shade_params(const ShadingPlan& plan) {
   p.fog_density_log2 = Real(plan.sky.fog_density_log2);
   const WaterPlan& w = plan.water;
   p.water_enabled = w.enabled ? 1 : 0;
+  p.terrain_water = p.water_enabled;  // until the frame knows the heights it draws
   p.water_level = Real(w.level);
   p.shallow = rounded<Real>(w.shallow);
   p.deep = rounded<Real>(w.deep);
@@ -149,6 +151,7 @@ ShadeParams<Real> make_shade_params(const ShadingPlan& plan) {
   p.dither_offset_x = Real(plan.dither.offset_x);
   p.dither_offset_z = Real(plan.dither.offset_z);
   p.pixel_angle = Real(plan.pixel_angle);
+  p.fog_enabled = plan.sky.fog_density_log2 > 0.0 ? 1 : 0;
   p.camera_forward = rounded<Real>(plan.camera.forward);
   for (int c = 0; c < 3; ++c) {
     p.forward[c] = plan.camera.forward[c];
@@ -160,8 +163,8 @@ ShadeParams<Real> make_shade_params(const ShadingPlan& plan) {
   return p;
 }
 
-template std::vector<float> make_row_descents<float>(const FramePlan&);
-template std::vector<double> make_row_descents<double>(const FramePlan&);
+template DomainRows<float> make_domain_rows<float>(const FramePlan&);
+template DomainRows<double> make_domain_rows<double>(const FramePlan&);
 template FbmParams<float> make_fbm_params<float>(const TerrainPlan&);
 template FbmParams<double> make_fbm_params<double>(const TerrainPlan&);
 template TerrainParams<float> make_terrain_params<float>(const FramePlan&);

@@ -24,7 +24,8 @@ namespace relief {
 template <class Real>
 struct DomainParams {
   ProjectorRays<Real> rays;
-  Real x0 = 0, step_x = 0;  // image point of grid vertex (i, j): (x0 + i step_x, y0 + j step_y)
+  // Image point of grid vertex (i, j): (x0_j + i step_x_j, y0 + j step_y), x0_j and step_x_j
+  // from the per-row table (DomainRows).
   Real y0 = 0, step_y = 0;
   Real c0 = 0, c1 = 0, nu_max = 1;  // nu = clamp(c0 - c1 log2(sigma^2), 1, nu_max)
   Real min_spacing_sq = 0;          // kMinSpacingSq: the log's domain guard
@@ -32,10 +33,19 @@ struct DomainParams {
   std::int32_t terrain_visible = 0;
 };
 
-// Stage 2's per-row table: -ray.y of row j's projector rays at index j + 1, rows -1 .. height
-// (projector.h: formed in double per row, where the per-vertex form would cancel in float).
+// Stage 2's per-row table, rows -1 .. height at index j + 1, each value formed in double per
+// row and rounded once: -ray.y of row j's projector rays (projector.h: the per-vertex form
+// would cancel in float), and where the row's columns lie in the projector image (its span
+// over the coverage hull's cross-section, screen_grid.h).
 template <class Real>
-std::vector<Real> make_row_descents(const FramePlan& plan);
+struct DomainRows {
+  std::vector<Real> descent;
+  std::vector<Real> x0;      // image x of column 0
+  std::vector<Real> step_x;  // image x from one column to the next
+};
+
+template <class Real>
+DomainRows<Real> make_domain_rows(const FramePlan& plan);
 
 // Stage 3 (Eq. 1, §2.2, §4.1): the octave table and the warp.
 template <class Real>
@@ -115,6 +125,15 @@ struct ShadeParams {
   Real dither_half_amount = 0;  // 0.5 x shading.dither
   Real dither_inv_scale = 1, dither_offset_x = 0, dither_offset_z = 0;
   Real pixel_angle = 0;  // radians per pixel
+  // What the frame's plan left out (pipeline/frame.h, FrameSkips): the fog pass (off when its
+  // density is 0); the water pass over terrain (off when no drawn vertex lies below the water
+  // level: the open water of the background stays); the specular term where its weight is 0
+  // (always_specular: computed anyway); the texture fetch of a layer or projection whose
+  // weight is zero.
+  std::int32_t fog_enabled = 1;
+  std::int32_t terrain_water = 0;
+  std::int32_t always_specular = 0;
+  std::int32_t skip_zero_weights = 1;
   Vec3<Real> camera_forward{};
   // The background's view ray per pixel is formed in double (it is the sky's direction to a
   // thousandth of a pixel at any field of view) and rounded once: these stay double.
@@ -126,7 +145,7 @@ struct ShadeParams {
 template <class Real>
 struct TerrainParams {
   DomainParams<Real> domain;
-  std::vector<Real> row_descents;
+  DomainRows<Real> domain_rows;  // stage 2's per-row table
   FbmParams<Real> fbm;
   SurfaceParams<Real> surface;
   TransformParams<Real> transform;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/limits.h"
+#include "core/vertex_culling.h"
 
 namespace relief {
 
@@ -61,7 +62,7 @@ void surface_pass(const SurfaceParams<Real>& p, RowRange rows, SurfaceInputs<Rea
       out.nz[k] = Real(0);
       out.slope[k] = Real(0);
       out.water_depth[k] = Real(0);
-      if (i >= layout.width || !in.valid[k]) {
+      if (i >= layout.width || !in.valid[k] || (!in.need.empty() && !(in.need[k] & kDraw))) {
         continue;
       }
       const auto index_or_none = [&](int ii, int jj) -> std::ptrdiff_t {

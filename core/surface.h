@@ -28,6 +28,9 @@ struct SurfaceInputs {
   std::span<const Real> dz;
   std::span<const Real> height;
   std::span<const std::uint8_t> valid;
+  // VertexNeed flags (vertex_culling.h): only kDraw vertices are computed (the others get the
+  // invalid vertices' defaults); empty: every valid vertex.
+  std::span<const std::uint8_t> need;
 };
 
 // Writes rows [rows.begin, rows.end) of `out`; reads rows begin - 1 .. end of `in`.

@@ -14,25 +14,28 @@
 namespace relief {
 
 template <class Real>
-SurfaceInputs<Real> surface_inputs(const GridBuffers<Real>& buffers) {
-  return {buffers.dx, buffers.dz, buffers.height, buffers.valid};
+SurfaceInputs<Real> surface_inputs(const GridBuffers<Real>& buffers,
+                                   std::span<const std::uint8_t> need = {}) {
+  return {buffers.dx, buffers.dz, buffers.height, buffers.valid, need};
 }
 
-// Stage 3 over whole rows [rows.begin, rows.end).
+// Stage 3 over whole rows [rows.begin, rows.end), where `mask` is non-zero (empty: all).
 template <class Real>
-void evaluate_fbm_rows(const FbmParams<Real>& params, const NoiseLattice& lattice, RowRange rows,
-                       GridBuffers<Real>& buffers) {
+FbmWork evaluate_fbm_rows(const FbmParams<Real>& params, const NoiseLattice& lattice, RowRange rows,
+                          GridBuffers<Real>& buffers, std::span<const std::uint8_t> mask = {}) {
   const IndexRange range{buffers.layout.index(0, rows.begin), buffers.layout.index(0, rows.end)};
-  evaluate_fbm<Real>(params, lattice, range, buffers.dx, buffers.dz, buffers.nu, buffers.height);
+  return evaluate_fbm<Real>(params, lattice, range, buffers.dx, buffers.dz, buffers.nu, mask,
+                            buffers.height);
 }
 
-// Stages 2, 3 and 4 over the whole grid, with parameters derived from `plan` for this call.
+// Stages 2, 3 and 4 over the whole grid, with parameters derived from `plan` for this call:
+// every valid vertex, none culled (heights of invalid vertices 0, as the frame leaves them).
 template <class Real>
 void run_terrain_stages(const FramePlan& plan, GridBuffers<Real>& buffers) {
   const TerrainParams<Real> params = make_terrain_params<Real>(plan);
   const RowRange all{0, buffers.layout.height};
-  project_domain<Real>(params.domain, params.row_descents, all, buffers.domain());
-  evaluate_fbm_rows<Real>(params.fbm, *plan.terrain.lattice, all, buffers);
+  project_domain<Real>(params.domain, params.domain_rows, all, buffers.domain());
+  evaluate_fbm_rows<Real>(params.fbm, *plan.terrain.lattice, all, buffers, buffers.valid);
   surface_pass<Real>(params.surface, all, surface_inputs(buffers), buffers.surface());
 }
 

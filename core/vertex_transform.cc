@@ -1,6 +1,7 @@
 #include "core/vertex_transform.h"
 
 #include "core/stage_params.h"
+#include "core/vertex_culling.h"
 
 namespace relief {
 
@@ -20,12 +21,16 @@ ClipTransform make_clip_transform(const CameraFrame& camera) {
 template <class Real>
 void transform_vertices(const TransformParams<Real>& t, IndexRange range, std::span<const Real> dx,
                         std::span<const Real> dz, std::span<const Real> height,
-                        ClipSpans<Real> clip) {
+                        std::span<const std::uint8_t> need, ClipSpans<Real> clip) {
   const Real x0 = t.row_x[0], x1 = t.row_x[1], x2 = t.row_x[2];
   const Real y0 = t.row_y[0], y1 = t.row_y[1], y2 = t.row_y[2];
   const Real w0 = t.row_w[0], w1 = t.row_w[1], w2 = t.row_w[2];
   const Real z = t.z_clip;
   for (std::size_t k = range.begin; k < range.end; ++k) {
+    if (!need.empty() && !(need[k] & kDraw)) {
+      clip.x[k] = clip.y[k] = clip.z[k] = clip.w[k] = Real(0);  // in no drawn triangle
+      continue;
+    }
     const Real px = dx[k];
     const Real py = height[k];
     const Real pz = dz[k];
@@ -38,9 +43,11 @@ void transform_vertices(const TransformParams<Real>& t, IndexRange range, std::s
 
 template void transform_vertices<float>(const TransformParams<float>&, IndexRange,
                                         std::span<const float>, std::span<const float>,
-                                        std::span<const float>, ClipSpans<float>);
+                                        std::span<const float>, std::span<const std::uint8_t>,
+                                        ClipSpans<float>);
 template void transform_vertices<double>(const TransformParams<double>&, IndexRange,
                                          std::span<const double>, std::span<const double>,
-                                         std::span<const double>, ClipSpans<double>);
+                                         std::span<const double>, std::span<const std::uint8_t>,
+                                         ClipSpans<double>);
 
 }  // namespace relief

@@ -11,6 +11,7 @@
 // The rows are formed in double once per frame (FramePlan) and rounded to float once.
 #pragma once
 
+#include <cstdint>
 #include <span>
 
 #include "core/camera.h"
@@ -35,10 +36,12 @@ struct ClipSpans {
 template <class Real>
 struct TransformParams;  // stage_params.h: ClipTransform's rows, rounded once
 
-// clip[k] for k in range, from camera-relative (dx, dz) and camera-relative height h.
+// clip[k] for k in range, from camera-relative (dx, dz) and camera-relative height h, where
+// need[k] has kDraw (core/vertex_culling.h; elsewhere 0); `need` empty: everywhere.
 template <class Real>
 void transform_vertices(const TransformParams<Real>& params, IndexRange range,
                         std::span<const Real> dx, std::span<const Real> dz,
-                        std::span<const Real> height, ClipSpans<Real> clip);
+                        std::span<const Real> height, std::span<const std::uint8_t> need,
+                        ClipSpans<Real> clip);
 
 }  // namespace relief

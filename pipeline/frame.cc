@@ -37,7 +37,9 @@ void run_table(FrameBackend& backend, StageId last, std::vector<StageTime>& time
           tbb::simple_partitioner());
     }
     backend.after(stage.id);
-    times.push_back({stage.name, milliseconds_since(start)});
+    StageTime time{std::string(stage.name), milliseconds_since(start), units > 0, {}};
+    backend.describe(stage.id, time);
+    times.push_back(std::move(time));
     if (stage.id == last) {
       return;
     }
@@ -50,7 +52,7 @@ Frame render_with(const Scene& scene, const SceneResources& resources,
   const Clock::time_point start = Clock::now();
   ReferenceBackend<Real> backend(scene, resources.lattice, resources.textures, request);
   Frame frame;
-  frame.stats.stages.push_back({"frame plan", milliseconds_since(start)});
+  frame.stats.stages.push_back({"frame plan", milliseconds_since(start), true, {}});
   run_table(backend, StageId::kTiles, frame.stats.stages);
   backend.finish(frame);
   frame.stats.total_ms = milliseconds_since(start);
@@ -85,8 +87,11 @@ Frame render_frame(const Scene& scene, const SceneResources& resources,
 template <class Real>
 TerrainRun<Real> run_terrain_stages(const Scene& scene, const NoiseLattice& lattice) {
   const Clock::time_point start = Clock::now();
-  ReferenceBackend<Real> backend(scene, lattice, {}, FrameRequest{});
-  std::vector<StageTime> times{{"frame plan", milliseconds_since(start)}};
+  // The whole grid, seen or not: relief stages writes every vertex.
+  FrameRequest request;
+  request.skips.unseen_vertices = false;
+  ReferenceBackend<Real> backend(scene, lattice, {}, request);
+  std::vector<StageTime> times{{"frame plan", milliseconds_since(start), true, {}}};
   run_table(backend, StageId::kSurface, times);
   return {backend.plan(), backend.take_grid(), std::move(times)};
 }

@@ -15,6 +15,7 @@
 #include "core/frame_plan.h"
 #include "core/grid_buffers.h"
 #include "core/scene/scene.h"
+#include "pipeline/frame_skips.h"
 #include "pipeline/scene_resources.h"
 #include "raster/rasterize.h"
 
@@ -45,6 +46,7 @@ struct FrameOutputs {
 struct FrameRequest {
   Backend backend = Backend::kReference;
   FrameOutputs outputs;
+  FrameSkips skips;
   // Memory the rasteriser's bins may take (raster/rasterize.h); a frame whose bins need more
   // throws MemoryLimitError.
   std::uint64_t max_bin_bytes = UINT64_MAX;
@@ -62,10 +64,19 @@ struct FrameImage {
   std::vector<float> octaves;            // 1 per pixel, when requested
 };
 
-// Wall time of one stage of the table (or one group of fused stages).
+// A count of work a stage did (vertices evaluated, texture fetches, ...).
+struct WorkCounter {
+  std::string name;
+  std::uint64_t value = 0;
+};
+
+// Wall time of one stage of the table (or one group of fused stages), whether it ran at all,
+// and the work it did.
 struct StageTime {
   std::string name;
   double ms = 0;
+  bool ran = true;
+  std::vector<WorkCounter> counters;
 };
 
 struct FrameStats {

@@ -35,13 +35,21 @@ ReferenceBackend<Real>::ReferenceBackend(const Scene& scene, const NoiseLattice&
       plan_(make_frame_plan(scene, lattice)),
       params_(make_terrain_params<Real>(plan_)),
       grid_(plan_.layout),
+      cull_(make_cull_params<Real>(plan_)),
+      need_(plan_.layout.size()),
+      scene_octaves_(params_.fbm.count),
       state_(frame_raster_state(scene)),
       tiles_(raster::make_tile_grid(state_)) {}
 
 template <class Real>
 std::size_t ReferenceBackend<Real>::units(StageId id) const {
   switch (id) {
+    case StageId::kOutcodes:
+    case StageId::kDrawOutcodes:
+      return request_.skips.unseen_vertices ? static_cast<std::size_t>(plan_.layout.height) : 0;
     case StageId::kProjectedDomain:
+    case StageId::kVertexNeeds:
+    case StageId::kDrawNeeds:
     case StageId::kFractal:
     case StageId::kSurface:
       return static_cast<std::size_t>(plan_.layout.height);
@@ -70,17 +78,45 @@ void ReferenceBackend<Real>::run(StageId id, std::size_t begin, std::size_t end)
   const RowRange rows{static_cast<int>(begin), static_cast<int>(end)};
   switch (id) {
     case StageId::kProjectedDomain:
-      project_domain<Real>(params_.domain, params_.row_descents, rows, grid_.domain());
+      project_domain<Real>(params_.domain, params_.domain_rows, rows, grid_.domain());
       return;
+    case StageId::kOutcodes:
+      vertex_outcodes<Real>(cull_, rows, grid_.dx, grid_.dz, {}, grid_.valid, outcode_);
+      return;
+    case StageId::kDrawOutcodes:
+      vertex_outcodes<Real>(cull_, rows, grid_.dx, grid_.dz, grid_.height, grid_.valid, outcode_);
+      return;
+    case StageId::kDrawNeeds:
+      tally_draws(rows, request_.skips.unseen_vertices
+                            ? refine_draw_needs(plan_.layout, rows, grid_.valid, outcode_, need_)
+                            : count_needs(plan_.layout, rows, grid_.valid, need_));
+      return;
+    case StageId::kVertexNeeds: {
+      const FrameSkips& skips = request_.skips;
+      tally_rows(rows, skips.unseen_vertices
+                           ? vertex_needs(plan_.layout, rows, grid_.valid, outcode_, need_)
+                           : vertex_needs_without_culling(plan_.layout, rows, grid_.valid,
+                                                          !skips.invalid_vertices, need_));
+      return;
+    }
     case StageId::kFractal:
-      evaluate_fbm_rows<Real>(params_.fbm, lattice_, rows, grid_);
+      tally_fbm(evaluate_fbm_rows<Real>(params_.fbm, lattice_, rows, grid_, need_));
       return;
     case StageId::kSurface:
-      surface_pass<Real>(params_.surface, rows, surface_inputs(grid_), grid_.surface());
+      surface_pass<Real>(params_.surface, rows, surface_inputs(grid_, need_), grid_.surface());
       return;
-    case StageId::kVertexTransform:
+    case StageId::kVertexTransform: {
       transform_vertices<Real>(params_.transform, IndexRange{begin, end}, grid_.dx, grid_.dz,
-                               grid_.height, ClipSpans<Real>{clip_x_, clip_y_, clip_z_, clip_w_});
+                               grid_.height, need_,
+                               ClipSpans<Real>{clip_x_, clip_y_, clip_z_, clip_w_});
+      std::uint64_t transformed = 0;
+      for (std::size_t k = begin; k < end; ++k) {
+        transformed += (need_[k] & kDraw) != 0;
+      }
+      {
+        const std::lock_guard<std::mutex> lock(work_mutex_);
+        transformed_ += transformed;
+      }
       if constexpr (!std::is_same_v<Real, float>) {
         for (std::size_t k = begin; k < end; ++k) {
           raster_x_[k] = static_cast<float>(clip_x_[k]);
@@ -90,6 +126,7 @@ void ReferenceBackend<Real>::run(StageId id, std::size_t begin, std::size_t end)
         }
       }
       return;
+    }
     case StageId::kTriangleSetup:
       for (std::size_t c = begin; c < end; ++c) {
         raster::setup_chunk(*setup_, raster_positions(), triangles(), c, chunks_[c]);
@@ -102,7 +139,8 @@ void ReferenceBackend<Real>::run(StageId id, std::size_t begin, std::size_t end)
       return;
     case StageId::kTiles:
       for (std::size_t tile = begin; tile < end; ++tile) {
-        tile_pass_->run(chunks_, tiles_, static_cast<int>(tile), times_);
+        tile_pass_->run(chunks_, tiles_, static_cast<int>(tile), times_,
+                        request_.skips.empty_tiles);
       }
       return;
   }
@@ -111,6 +149,9 @@ void ReferenceBackend<Real>::run(StageId id, std::size_t begin, std::size_t end)
 template <class Real>
 void ReferenceBackend<Real>::prepare(StageId id) {
   switch (id) {
+    case StageId::kOutcodes:
+      outcode_.resize(request_.skips.unseen_vertices ? plan_.layout.size() : 0);
+      return;
     case StageId::kVertexTransform: {
       const std::size_t vertices = plan_.layout.size();
       for (AlignedVector<Real>* v : {&clip_x_, &clip_y_, &clip_z_, &clip_w_}) {
@@ -131,6 +172,7 @@ void ReferenceBackend<Real>::prepare(StageId id) {
       // Stage 8's plan and the frame's outputs.
       shading_plan_ = make_shading_plan(scene_, plan_, lattice_.size);
       shade_ = make_shade_params<Real>(shading_plan_);
+      apply_skips(request_.skips, water_in_view(), shade_);
       const std::size_t pixels = std::size_t(state_.width) * state_.height;
       const FrameOutputs& o = request_.outputs;
       image_.width = state_.width;
@@ -156,8 +198,73 @@ void ReferenceBackend<Real>::prepare(StageId id) {
 }
 
 template <class Real>
+void ReferenceBackend<Real>::tally_rows(RowRange rows, const NeedCount& count) {
+  // The largest nu of the rows' vertices to evaluate: octaves above it are never summed.
+  double max_nu = 0;
+  for (std::size_t k = plan_.layout.index(0, rows.begin); k < plan_.layout.index(0, rows.end);
+       ++k) {
+    if (need_[k] & kEvaluate) {
+      max_nu = std::max(max_nu, double(grid_.nu[k]));
+    }
+  }
+  const std::lock_guard<std::mutex> lock(work_mutex_);
+  needs_.evaluate += count.evaluate;
+  needs_.draw += count.draw;
+  needs_.valid_draw += count.valid_draw;
+  max_nu_ = std::max(max_nu_, max_nu);
+}
+
+template <class Real>
+void ReferenceBackend<Real>::tally_fbm(const FbmWork& work) {
+  const std::lock_guard<std::mutex> lock(work_mutex_);
+  fbm_work_.points += work.points;
+  fbm_work_.octaves += work.octaves;
+}
+
+template <class Real>
+void ReferenceBackend<Real>::tally_draws(RowRange rows, const NeedCount& count) {
+  // The lowest drawn vertex: with none below the water level no pixel shows terrain under
+  // water (a covered pixel's height interpolates its triangle's three: tile_pass.h).
+  double lowest = HUGE_VAL;
+  for (std::size_t k = plan_.layout.index(0, rows.begin); k < plan_.layout.index(0, rows.end);
+       ++k) {
+    if (grid_.valid[k] && (need_[k] & kDraw)) {
+      lowest = std::min(lowest, double(grid_.height[k]));
+    }
+  }
+  const std::lock_guard<std::mutex> lock(work_mutex_);
+  draws_.evaluate += count.evaluate;
+  draws_.draw += count.draw;
+  draws_.valid_draw += count.valid_draw;
+  min_drawn_height_ = std::min(min_drawn_height_, lowest);
+}
+
+template <class Real>
+bool ReferenceBackend<Real>::water_in_view() const {
+  if (!plan_.water_enabled) {
+    return false;
+  }
+  // Interpolated heights round to within 1e-12 of their range in double, to within it in
+  // float: a margin of 1e-9 relative keeps every pixel that could be under water.
+  const double level = plan_.relative_water_level;
+  return min_drawn_height_ < level + 1e-9 * (std::abs(level) + std::abs(min_drawn_height_)) ||
+         !request_.skips.water;
+}
+
+template <class Real>
 void ReferenceBackend<Real>::after(StageId id) {
   switch (id) {
+    case StageId::kVertexNeeds:
+      // §4.1: a vertex sums floor(nu) octaves and a fraction of the next, so the frame's
+      // table needs ceil(max nu) of them (nu >= 0).
+      if (request_.skips.unused_octaves) {
+        params_.fbm.count = static_cast<std::int32_t>(
+            std::min(double(scene_octaves_), std::ceil(max_nu_)));  // in [0, scene's count]
+      }
+      return;
+    case StageId::kDrawNeeds:
+      params_.surface.water_enabled = water_in_view() ? 1 : 0;
+      return;
     case StageId::kTriangleSetup: {
       raster_stats_.triangles = triangles().count();
       for (const raster::SetupChunk& chunk : chunks_) {
@@ -181,15 +288,80 @@ void ReferenceBackend<Real>::after(StageId id) {
 }
 
 template <class Real>
+void ReferenceBackend<Real>::describe(StageId id, StageTime& time) const {
+  const std::lock_guard<std::mutex> lock(work_mutex_);
+  const auto count = [&](const char* name, std::uint64_t value) {
+    time.counters.push_back({name, value});
+  };
+  const GridLayout& layout = plan_.layout;
+  switch (id) {
+    case StageId::kProjectedDomain:
+      count("grid vertices", std::uint64_t(layout.width) * layout.height);
+      return;
+    case StageId::kVertexNeeds:
+      count("vertices to evaluate", needs_.evaluate);
+      count("vertices to draw by the height bounds", needs_.draw);
+      return;
+    case StageId::kDrawNeeds:
+      count("vertices to draw", draws_.draw);
+      return;
+    case StageId::kFractal:
+      count("vertices evaluated", fbm_work_.points);
+      count("point-octaves summed", fbm_work_.octaves);
+      count("octaves in the table", std::uint64_t(params_.fbm.count));
+      return;
+    case StageId::kSurface:
+      count("normals computed", draws_.valid_draw);
+      count("water depths computed", params_.surface.water_enabled ? draws_.valid_draw : 0);
+      return;
+    case StageId::kVertexTransform:
+      count("vertices transformed", transformed_);
+      return;
+    case StageId::kTriangleSetup: {
+      std::uint64_t submitted = 0;
+      for (const raster::SetupChunk& chunk : chunks_) {
+        submitted += chunk.submitted;
+      }
+      count("triangles in the grid", raster_stats_.triangles);
+      count("triangles submitted", submitted);
+      count("triangles set up", raster_stats_.setup);
+      return;
+    }
+    case StageId::kBinning:
+      count("bin entries", raster_stats_.bin_entries);
+      return;
+    case StageId::kTiles: {
+      const TileWork& w = times_.work;
+      const ShadeWork& shade = w.shade;
+      count("tiles", std::uint64_t(tiles_.count()));
+      count("tiles rasterised", w.tiles_drawn);
+      count("triangles rasterised (per tile)", w.tile_triangles);
+      count("pixels covered", w.covered_pixels);
+      count("pixels shaded as terrain", shade.terrain_pixels);
+      count("pixels shaded as background", shade.background_pixels);
+      count("texture fetches", shade.texture_fetches);
+      count("dither samples", shade.dither_samples);
+      count("specular terms", shade.specular_pixels);
+      count("water pixels", shade.water_pixels);
+      count("fogged pixels", shade.fogged_pixels);
+      return;
+    }
+    default:
+      return;
+  }
+}
+
+template <class Real>
 void ReferenceBackend<Real>::finish(Frame& frame) {
   frame.image = std::move(image_);
   frame.stats.raster = raster_stats_;
   // The parts of the fused stage: CPU time summed over the threads that ran tiles.
-  const auto ms = [](const std::atomic<std::int64_t>& ns) { return double(ns.load()) * 1e-6; };
-  frame.stats.tile_parts = {{"raster (CPU)", ms(times_.raster_ns)},
-                            {"resolve (CPU)", ms(times_.resolve_ns)},
-                            {"shade (CPU)", ms(times_.shade_ns)},
-                            {"encode (CPU)", ms(times_.encode_ns)}};
+  const auto part = [](const char* name, const std::atomic<std::int64_t>& ns) {
+    return StageTime{name, double(ns.load()) * 1e-6, true, {}};
+  };
+  frame.stats.tile_parts = {
+      part("raster (CPU)", times_.raster_ns), part("resolve (CPU)", times_.resolve_ns),
+      part("shade (CPU)", times_.shade_ns), part("encode (CPU)", times_.encode_ns)};
 }
 
 template class ReferenceBackend<float>;

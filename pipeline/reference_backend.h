@@ -7,15 +7,19 @@
 // perspective barycentrics come from double positions.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <span>
 #include <vector>
 
+#include "core/fbm.h"
 #include "core/frame_plan.h"
 #include "core/grid_buffers.h"
 #include "core/shading_plan.h"
 #include "core/stage_params.h"
+#include "core/vertex_culling.h"
 #include "pipeline/frame_backend.h"
 #include "pipeline/tile_pass.h"
 #include "raster/bins.h"
@@ -33,6 +37,7 @@ class ReferenceBackend final : public FrameBackend {
   std::size_t units(StageId id) const override;
   void run(StageId id, std::size_t begin, std::size_t end) override;
   void after(StageId id) override;
+  void describe(StageId id, StageTime& time) const override;
   void finish(Frame& frame) override;
 
   const FramePlan& plan() const { return plan_; }
@@ -41,7 +46,11 @@ class ReferenceBackend final : public FrameBackend {
 
  private:
   raster::ClipVertices raster_positions() const;
-  raster::GridTriangles triangles() const { return {plan_.layout, grid_.valid}; }
+  raster::GridTriangles triangles() const { return {plan_.layout, grid_.valid, need_}; }
+  void tally_rows(RowRange rows, const NeedCount& count);
+  void tally_fbm(const FbmWork& work);
+  void tally_draws(RowRange rows, const NeedCount& count);
+  bool water_in_view() const;
 
   const Scene& scene_;
   const NoiseLattice& lattice_;
@@ -50,6 +59,20 @@ class ReferenceBackend final : public FrameBackend {
   FramePlan plan_;
   TerrainParams<Real> params_;
   GridBuffers<Real> grid_;
+  // Which vertices the frame needs (core/vertex_culling.h): the outcodes, then per vertex
+  // kEvaluate | kDraw; with no skip at all every vertex is flagged.
+  CullParams<Real> cull_;
+  AlignedVector<std::uint8_t> outcode_, need_;
+  // The work of the vertex stages, summed over their tasks under work_mutex_ (integer sums
+  // and exact minima and maxima: the same for any split of the rows).
+  mutable std::mutex work_mutex_;
+  NeedCount needs_;                     // before stage 3, by the height bounds
+  NeedCount draws_;                     // after it, by the heights
+  double max_nu_ = 0;                   // largest nu of a vertex evaluated
+  double min_drawn_height_ = HUGE_VAL;  // lowest height of a drawn vertex
+  FbmWork fbm_work_;
+  std::uint64_t transformed_ = 0;
+  std::int32_t scene_octaves_ = 0;
   AlignedVector<Real> clip_x_, clip_y_, clip_z_, clip_w_;
   // The rasteriser's float positions: the clip coordinates themselves in float, rounded once
   // in double (empty in float, where clip_* are used directly).

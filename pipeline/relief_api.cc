@@ -163,11 +163,16 @@ Rendering render_scene(const relief::Scene& scene, Backend backend, const Render
 
   Statistics& stats = out.statistics;
   for (StageTime& stage : frame.stats.stages) {
-    stats.stage_ms.emplace_back(std::move(stage.name), stage.ms);
+    StageReport report{std::move(stage.name), stage.ms, stage.ran, {}};
+    for (WorkCounter& counter : stage.counters) {
+      report.counters.emplace_back(std::move(counter.name), counter.value);
+    }
+    stats.stages.push_back(std::move(report));
   }
   stats.total_ms = frame.stats.total_ms;
   stats.setup_ms = setup_ms;
-  stats.triangles_submitted = frame.stats.raster.triangles;
+  stats.triangles_submitted = frame.stats.raster.triangles;  // the grid's: culling is counted
+                                                             // in the stages' counters
   stats.triangles_set_up = frame.stats.raster.setup;
   return out;
 }

@@ -14,7 +14,11 @@ namespace relief {
 
 enum class StageId {
   kProjectedDomain,  // stages 1-2
+  kOutcodes,         // which frustum planes each vertex's height range lies outside
+  kVertexNeeds,      // which vertices a possibly visible triangle needs
   kFractal,          // stage 3
+  kDrawOutcodes,     // the same from each vertex's own height
+  kDrawNeeds,        // which vertices a possibly visible triangle draws
   kSurface,          // stage 4
   kVertexTransform,  // stage 5
   kTriangleSetup,    // stage 6, first half: clip, snap, cull, edge functions
@@ -39,15 +43,25 @@ struct StageInfo {
   std::size_t grain;  // units per task: fixed, so results never depend on the thread count
 };
 
-// Grains: a 512-vertex row makes ~40 us of fBm, so 4 rows amortise the scheduling while
+// Grains: the outcodes and needs of 16 rows take ~20 us (the needs read two rows around
+// their range); a 512-vertex row makes ~40 us of fBm, so 4 rows amortise the scheduling while
 // leaving 128 tasks to balance; 16384 vertices transform in ~20 us; a chunk of 4096 triangles
 // sets up in ~0.3 ms; a tile takes 0.1 to 2 ms.
 inline constexpr StageInfo kFrameStages[] = {
     {StageId::kProjectedDomain, "projected domain", "1-2", "camera, projector, LOD rule",
      "dx, dz, sigma, nu, valid", WorkUnit::kGridRows, 4},
-    {StageId::kFractal, "fractal", "3", "dx, dz, nu; lattice", "height", WorkUnit::kGridRows, 4},
-    {StageId::kSurface, "surface", "4", "dx, dz, height, valid", "nx, ny, nz, slope, water depth",
-     WorkUnit::kGridRows, 4},
+    {StageId::kOutcodes, "vertex outcodes (height bounds)", "2",
+     "dx, dz, valid; frustum, height bounds", "outcode", WorkUnit::kGridRows, 16},
+    {StageId::kVertexNeeds, "vertex needs (height bounds)", "2", "outcodes, valid",
+     "need (evaluate, draw)", WorkUnit::kGridRows, 16},
+    {StageId::kFractal, "fractal", "3", "dx, dz, nu, need; lattice", "height", WorkUnit::kGridRows,
+     4},
+    {StageId::kDrawOutcodes, "vertex outcodes (heights)", "3", "dx, dz, height, valid; frustum",
+     "outcode", WorkUnit::kGridRows, 16},
+    {StageId::kDrawNeeds, "vertex needs (heights)", "3", "outcodes, valid, need", "need (draw)",
+     WorkUnit::kGridRows, 16},
+    {StageId::kSurface, "surface", "4", "dx, dz, height, valid, need",
+     "nx, ny, nz, slope, water depth", WorkUnit::kGridRows, 4},
     {StageId::kVertexTransform, "vertex transform", "5", "dx, dz, height", "clip x, y, z, w",
      WorkUnit::kVertices, 16384},
     {StageId::kTriangleSetup, "triangle setup", "6", "clip coordinates, valid",

@@ -57,14 +57,16 @@ void TilePass<Real>::position(std::uint32_t vertex, double& x, double& y, double
 // interpolated in double and rounded once to Real; derivatives are GL's dFdxFine/dFdyFine from
 // the winning triangle at the quad partners (helper pixels), zero where undefined.
 template <class Real>
-void TilePass<Real>::resolve(const raster::TileVisibility& visibility,
-                             TileAttributes<Real>& out) const {
+void TilePass<Real>::resolve(const raster::TileVisibility& visibility, TileAttributes<Real>& out,
+                             TileWork& work) const {
   std::uint32_t cached = raster::kNoPrimitive;
   std::uint32_t v[3] = {0, 0, 0};
   const double zero[3] = {0, 0, 0};
   raster::PerspectivePlane plane(zero, zero, zero);
   const VertexStreams<Real>& s = streams_;
   const bool with_nu = outputs_.octaves && !s.nu.empty();
+  // No terrain under water in view: the depth is not interpolated (stage 8 does not read it).
+  const bool with_water = shade_.terrain_water != 0;
   for (int py = visibility.y0; py < visibility.y0 + visibility.height; ++py) {
     for (int px = visibility.x0; px < visibility.x0 + visibility.width; ++px) {
       const std::size_t k = visibility.index(px, py);
@@ -72,6 +74,7 @@ void TilePass<Real>::resolve(const raster::TileVisibility& visibility,
       if (primitive == raster::kNoPrimitive) {
         continue;
       }
+      ++work.covered_pixels;
       // Neighbouring pixels mostly share their triangle: set its plane up once per run.
       if (primitive != cached) {
         cached = primitive;
@@ -100,7 +103,7 @@ void TilePass<Real>::resolve(const raster::TileVisibility& visibility,
       out.ny[k] = static_cast<Real>(at(s.ny, q.b));
       out.nz[k] = static_cast<Real>(at(s.nz, q.b));
       out.slope[k] = static_cast<Real>(at(s.slope, q.b));
-      out.water_depth[k] = static_cast<Real>(at(s.water_depth, q.b));
+      out.water_depth[k] = with_water ? static_cast<Real>(at(s.water_depth, q.b)) : Real(0);
       if (with_nu) {
         out.nu[k] = static_cast<Real>(at(s.nu, q.b));
       }
@@ -110,24 +113,36 @@ void TilePass<Real>::resolve(const raster::TileVisibility& visibility,
 
 template <class Real>
 void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raster::TileGrid& tiles,
-                         int tile, TileTimes& times) const {
+                         int tile, TileTimes& times, bool skip_empty) const {
   // Default-initialised: every field a pixel reads is written first (no 0.3 MB memset).
   const std::unique_ptr<TileScratch<Real>> scratch(new TileScratch<Real>);
   raster::TileVisibility& vis = scratch->visibility;
+  TileWork work;
   const Clock::time_point start = Clock::now();
-  raster::rasterize_tile(chunks, tiles, tile, state_, vis);
+  const std::uint64_t entries = raster::tile_entry_count(chunks, tile);
+  const bool drawn = entries > 0 || !skip_empty;
+  if (drawn) {
+    raster::rasterize_tile(chunks, tiles, tile, state_, vis);
+  } else {
+    raster::clear_tile(tiles, tile, state_, vis);  // nothing binned: nothing covered
+  }
   const Clock::time_point rasterised = Clock::now();
-  resolve(vis, scratch->attributes);
+  if (drawn) {
+    resolve(vis, scratch->attributes, work);
+    ++work.tiles_drawn;
+    work.tile_triangles += entries;
+  }
   const Clock::time_point resolved = Clock::now();
 
-  // Stage 8: every pixel of the tile, radiance times the exposure.
+  // Stage 8: every pixel of the tile, radiance times the exposure; pixels no triangle covers
+  // get the background and no terrain shading.
   for (int py = vis.y0; py < vis.y0 + vis.height; ++py) {
     for (int px = vis.x0; px < vis.x0 + vis.width; ++px) {
       const std::size_t k = vis.index(px, py);
       const Vec3<Real> radiance =
           vis.primitive[k] != raster::kNoPrimitive
-              ? terrain_radiance<Real>(shade_, resources_, scratch->attributes.at(k))
-              : background_radiance<Real>(shade_, resources_, px, py);
+              ? terrain_radiance<Real>(shade_, resources_, scratch->attributes.at(k), work.shade)
+              : background_radiance<Real>(shade_, resources_, px, py, work.shade);
       scratch->rgb[3 * k] = radiance.x * shade_.exposure;
       scratch->rgb[3 * k + 1] = radiance.y * shade_.exposure;
       scratch->rgb[3 * k + 2] = radiance.z * shade_.exposure;
@@ -180,6 +195,7 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
   times.resolve_ns += nanoseconds_between(rasterised, resolved);
   times.shade_ns += nanoseconds_between(resolved, shaded);
   times.encode_ns += nanoseconds_between(shaded, encoded);
+  times.add(work);
 }
 
 template class TilePass<float>;

@@ -12,6 +12,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <mutex>
 #include <span>
 
 #include "core/shade.h"
@@ -49,9 +50,33 @@ struct TileAttributes {
   }
 };
 
-// CPU time spent in each part of the fused stage, summed over all threads.
+// The work of the tiles (README.md, "Skipped work"), summed over all tiles.
+struct TileWork {
+  std::uint64_t tiles_drawn = 0;     // tiles with a triangle binned: rasterised and resolved
+  std::uint64_t tile_triangles = 0;  // (triangle, tile) pairs rasterised
+  std::uint64_t covered_pixels = 0;  // pixels a triangle covers: attributes resolved
+  ShadeWork shade;
+
+  TileWork& operator+=(const TileWork& o) {
+    tiles_drawn += o.tiles_drawn;
+    tile_triangles += o.tile_triangles;
+    covered_pixels += o.covered_pixels;
+    shade += o.shade;
+    return *this;
+  }
+};
+
+// CPU time spent in each part of the fused stage, summed over all threads, and the work done
+// (sums of integers: the same whichever threads ran which tiles).
 struct TileTimes {
   std::atomic<std::int64_t> raster_ns{0}, resolve_ns{0}, shade_ns{0}, encode_ns{0};
+  std::mutex mutex;
+  TileWork work;  // guarded by mutex
+
+  void add(const TileWork& tile) {
+    const std::lock_guard<std::mutex> lock(mutex);
+    work += tile;
+  }
 };
 
 template <class Real>
@@ -63,12 +88,14 @@ class TilePass {
            const ShadeResources& resources, const FrameOutputs& outputs, double camera_y,
            FrameImage& image);
 
-  // Renders tile `tile`; tiles may run concurrently (each writes only its own pixels).
+  // Renders tile `tile`; tiles may run concurrently (each writes only its own pixels). With
+  // `skip_empty`, a tile no triangle is binned to is not rasterised or resolved.
   void run(std::span<const raster::SetupChunk> chunks, const raster::TileGrid& tiles, int tile,
-           TileTimes& times) const;
+           TileTimes& times, bool skip_empty = true) const;
 
  private:
-  void resolve(const raster::TileVisibility& visibility, TileAttributes<Real>& out) const;
+  void resolve(const raster::TileVisibility& visibility, TileAttributes<Real>& out,
+               TileWork& work) const;
   void position(std::uint32_t vertex, double& x, double& y, double& w) const;
 
   const raster::RasterState& state_;

@@ -35,7 +35,7 @@ TerrainFrame rasterize_terrain(const Scene& scene, const NoiseLattice& lattice,
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       transform_vertices<float>(
                           transform, IndexRange{r.begin(), r.end()}, frame.grid.dx, frame.grid.dz,
-                          frame.grid.height,
+                          frame.grid.height, {},
                           ClipSpans<float>{frame.clip_x, frame.clip_y, frame.clip_z, frame.clip_w});
                     });
   frame.raster =

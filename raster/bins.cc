@@ -66,7 +66,9 @@ template <class Source>
 void setup_chunk(const TriangleSetup& setup, ClipVertices vertices, const Source& source,
                  std::size_t chunk, SetupChunk& out) {
   out.triangles.clear();
+  out.submitted = 0;
   for_each_triangle_of_chunk(source, chunk, [&](std::uint32_t t, const std::uint32_t v[3]) {
+    ++out.submitted;
     const ClipVertex clip[3] = {
         {vertices.x[v[0]], vertices.y[v[0]], vertices.z[v[0]], vertices.w[v[0]]},
         {vertices.x[v[1]], vertices.y[v[1]], vertices.z[v[1]], vertices.w[v[1]]},
@@ -78,7 +80,9 @@ void setup_chunk(const TriangleSetup& setup, ClipVertices vertices, const Source
 void setup_window_chunk(const TriangleSetup& setup, WindowVertices vertices,
                         const IndexedTriangles& source, std::size_t chunk, SetupChunk& out) {
   out.triangles.clear();
+  out.submitted = 0;
   for_each_triangle_of_chunk(source, chunk, [&](std::uint32_t t, const std::uint32_t v[3]) {
+    ++out.submitted;
     const float x[3] = {vertices.x[v[0]], vertices.x[v[1]], vertices.x[v[2]]};
     const float y[3] = {vertices.y[v[0]], vertices.y[v[1]], vertices.y[v[2]]};
     const float z[3] = {vertices.z[v[0]], vertices.z[v[1]], vertices.z[v[2]]};
@@ -169,14 +173,26 @@ void draw_tile(std::span<const SetupChunk> chunks, const TileGrid& tiles, int ti
   }
 }
 
-void rasterize_tile(std::span<const SetupChunk> chunks, const TileGrid& tiles, int tile,
-                    const RasterState& state, TileVisibility& out) {
+std::uint64_t tile_entry_count(std::span<const SetupChunk> chunks, int tile) {
+  std::uint64_t entries = 0;
+  for (const SetupChunk& chunk : chunks) {
+    entries += chunk.tile_start[tile + 1] - chunk.tile_start[tile];
+  }
+  return entries;
+}
+
+void clear_tile(const TileGrid& tiles, int tile, const RasterState& state, TileVisibility& out) {
   out.x0 = tile % tiles.columns * kTileSize;
   out.y0 = tile / tiles.columns * kTileSize;
   out.width = std::min(kTileSize, state.width - out.x0);
   out.height = std::min(kTileSize, state.height - out.y0);
   std::fill(std::begin(out.primitive), std::end(out.primitive), kNoPrimitive);
   std::fill(std::begin(out.depth), std::end(out.depth), state.depth_clear);
+}
+
+void rasterize_tile(std::span<const SetupChunk> chunks, const TileGrid& tiles, int tile,
+                    const RasterState& state, TileVisibility& out) {
+  clear_tile(tiles, tile, state, out);
   draw_tile(chunks, tiles, tile, state.depth_test, out);
 }
 

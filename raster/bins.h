@@ -20,6 +20,7 @@ namespace relief::raster {
 // The set-up triangles of one chunk and its bins: the entries of tile k are
 // entries[tile_start[k] .. tile_start[k + 1]), indices into triangles, in submission order.
 struct SetupChunk {
+  std::uint32_t submitted = 0;  // triangles of the chunk its source draws (before culling)
   std::vector<RasterTriangle> triangles;
   std::vector<std::uint32_t> tile_start;
   std::vector<std::uint32_t> entries;
@@ -60,6 +61,10 @@ BinSize bin_size(std::span<const SetupChunk> chunks, const TileGrid& tiles);
 // Fills chunk.tile_start and chunk.entries.
 void bin_chunk(SetupChunk& chunk, const TileGrid& tiles);
 
+// The (triangle, tile) entries binned to tile `tile` over all chunks: 0 for a tile no
+// triangle's bounding box touches.
+std::uint64_t tile_entry_count(std::span<const SetupChunk> chunks, int tile);
+
 // The visibility of one tile: pixels [x0, x0 + width) x [y0, y0 + height) of the framebuffer,
 // row-major from the tile's bottom row, kTileSize pixels a row.
 struct TileVisibility {
@@ -76,6 +81,9 @@ struct TileVisibility {
 // chunk by chunk in order, with the state's depth test.
 void rasterize_tile(std::span<const SetupChunk> chunks, const TileGrid& tiles, int tile,
                     const RasterState& state, TileVisibility& out);
+
+// Only the clear of rasterize_tile: for a tile no triangle is binned to.
+void clear_tile(const TileGrid& tiles, int tile, const RasterState& state, TileVisibility& out);
 
 // The same, drawing into the tile's pixels of a whole visibility buffer (already cleared).
 template <class Target>

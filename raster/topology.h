@@ -31,6 +31,9 @@ struct IndexedTriangles {
 struct GridTriangles {
   GridLayout layout;
   std::span<const std::uint8_t> valid;
+  // VertexNeed flags (core/vertex_culling.h): a triangle is drawn only if its three vertices
+  // have kDraw (bit 2); empty: no such condition.
+  std::span<const std::uint8_t> need = {};
 
   std::uint32_t count() const {
     return 2u * static_cast<std::uint32_t>(layout.width - 1) *
@@ -47,7 +50,8 @@ struct GridTriangles {
     v[0] = a;
     v[1] = (t & 1) ? c : b;
     v[2] = (t & 1) ? d : c;
-    return valid[a] && valid[b] && valid[c] && valid[d];
+    return valid[a] && valid[b] && valid[c] && valid[d] &&
+           (need.empty() || (need[v[0]] & need[v[1]] & need[v[2]] & 2u) != 0);
   }
 };
 

@@ -150,7 +150,18 @@ TEST_CASE("renderReturnsOnlyTheSrgbImageWhenNoOutputIsAskedFor", "[api]") {
   CHECK(std::any_of(image.srgb.begin(), image.srgb.end(),
                     [&](std::uint8_t v) { return v != image.srgb[0]; }));
   const api::Statistics& stats = frame->statistics;
-  CHECK_FALSE(stats.stage_ms.empty());
+  REQUIRE_FALSE(stats.stages.empty());
+  // The work counters reach the caller: every pixel is shaded once, as terrain or background.
+  std::uint64_t shaded = 0;
+  for (const api::StageReport& stage : stats.stages) {
+    CHECK(stage.ms >= 0);
+    for (const auto& [name, value] : stage.counters) {
+      if (name == "pixels shaded as terrain" || name == "pixels shaded as background") {
+        shaded += value;
+      }
+    }
+  }
+  CHECK(shaded == 64u * 48u);
   CHECK(stats.total_ms > 0);
   CHECK(stats.setup_ms >= 0);
   CHECK(stats.triangles_submitted == 2u * 31u * 31u);

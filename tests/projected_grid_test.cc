@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include "core/frame_plan.h"
+#include "core/height_bound_pyramid.h"
 #include "core/lattice.h"
 #include "core/projected_domain.h"
 #include "core/stage_params.h"
@@ -44,9 +45,10 @@ Scene scene_for(const CameraCase& c) {
   return scene;
 }
 
-// Is the camera-relative base point (x, z) inside the quad spanned by the footprints of the
-// grid vertices around it? Located through the projector image (which the grid is regular
-// in), then tested against the real stage-2 footprints of the cell's four corners.
+// Is the camera-relative base point (x, z) inside the footprint of one of the grid's cells?
+// Located through the projector image (rows are regular in image y, each row regular in x
+// over its own span, screen_grid.h), then tested against the real stage-2 footprints of the
+// corners of the cells around that image point.
 bool covered_by_grid(const FramePlan& plan, const GridBuffers<double>& b, double x, double z) {
   const Projector& p = plan.projector;
   const glm::dvec3 foot(x, -p.height_above_plane, z);
@@ -54,49 +56,62 @@ bool covered_by_grid(const FramePlan& plan, const GridBuffers<double>& b, double
   if (!(depth > 0)) {
     return false;
   }
-  const double gi = (glm::dot(foot, p.right) / depth - plan.screen.x0) / plan.screen.step_x;
-  const double gj = (glm::dot(foot, p.up) / depth - plan.screen.y0) / plan.screen.step_y;
-  const int i = static_cast<int>(std::floor(gi));
-  const int j = static_cast<int>(std::floor(gj));
-  if (i < 0 || j < 0 || i + 1 >= b.layout.width || j + 1 >= b.layout.height) {
+  const double ix = glm::dot(foot, p.right) / depth;
+  const int j = static_cast<int>(
+      std::floor((glm::dot(foot, p.up) / depth - plan.screen.y0) / plan.screen.step_y));
+  if (j < 0 || j + 1 >= b.layout.height) {
     return false;
   }
-  const std::size_t corners[4] = {b.layout.index(i, j), b.layout.index(i + 1, j),
-                                  b.layout.index(i + 1, j + 1), b.layout.index(i, j + 1)};
-  for (std::size_t k : corners) {
-    if (!b.valid[k]) {
-      return false;
+  // The point's column in the two rows around it; the cell lies between them.
+  const double g0 = (ix - plan.screen.row_origin(j)) / plan.screen.row_step(j);
+  const double g1 = (ix - plan.screen.row_origin(j + 1)) / plan.screen.row_step(j + 1);
+  const int first = static_cast<int>(std::floor(std::min(g0, g1))) - 1;
+  const int last = static_cast<int>(std::floor(std::max(g0, g1))) + 1;
+  for (int i = std::max(first, 0); i <= last && i + 1 < b.layout.width; ++i) {
+    const std::size_t corners[4] = {b.layout.index(i, j), b.layout.index(i + 1, j),
+                                    b.layout.index(i + 1, j + 1), b.layout.index(i, j + 1)};
+    if (!(b.valid[corners[0]] && b.valid[corners[1]] && b.valid[corners[2]] &&
+          b.valid[corners[3]])) {
+      continue;
+    }
+    // Point in convex quad (footprints of a projective map of a convex quad are convex): the
+    // signs of the cross products must agree, within a relative tolerance for points on an
+    // edge.
+    int positive = 0, negative = 0;
+    for (int e = 0; e < 4; ++e) {
+      const std::size_t a = corners[e], c = corners[(e + 1) % 4];
+      const double ex = b.dx[c] - b.dx[a], ez = b.dz[c] - b.dz[a];
+      const double cross = ex * (z - b.dz[a]) - ez * (x - b.dx[a]);
+      const double scale = std::hypot(ex, ez) * (std::hypot(x - b.dx[a], z - b.dz[a]) + 1e-9);
+      positive += cross > 1e-9 * scale;
+      negative += cross < -1e-9 * scale;
+    }
+    if (positive == 0 || negative == 0) {
+      return true;
     }
   }
-  // Point in convex quad (footprints of a projective map of a square are convex): the sign
-  // of the cross products must agree, within a relative tolerance for points on an edge.
-  int positive = 0, negative = 0;
-  for (int e = 0; e < 4; ++e) {
-    const std::size_t a = corners[e], c = corners[(e + 1) % 4];
-    const double ex = b.dx[c] - b.dx[a], ez = b.dz[c] - b.dz[a];
-    const double cross = ex * (z - b.dz[a]) - ez * (x - b.dx[a]);
-    const double scale = std::hypot(ex, ez) * (std::hypot(x - b.dx[a], z - b.dz[a]) + 1e-9);
-    positive += cross > 1e-9 * scale;
-    negative += cross < -1e-9 * scale;
-  }
-  return positive == 0 || negative == 0;
+  return false;
 }
 
+// Figure 5's requirement: every point of the view frustum where the terrain can be (a height
+// within the regional bound at its base point, height_bound_pyramid.h) is over the grid. The
+// points of the global slab that the regional bound rules out need not be: that is the
+// projector's refinement (projector.h).
 TEST_CASE("projectedGridCoversEveryBasePointVisibleInTheViewport", "[projected_grid]") {
   const NoiseLattice lattice = make_noise_lattice(1, 256);
+  const LatticeRangePyramid pyramid = make_lattice_range_pyramid(lattice);
   for (const CameraCase& c : camera_cases()) {
     const Scene scene = scene_for(c);
     const FramePlan plan = make_frame_plan(scene, lattice);
     INFO("camera: " << c.name);
     REQUIRE(plan.projector.terrain_visible);
+    const RegionalHeightBound regional(plan.terrain, pyramid);
     GridBuffers<double> b(plan.layout);
-    project_domain<double>(make_terrain_params<double>(plan).domain,
-                           make_row_descents<double>(plan), RowRange{0, plan.layout.height},
-                           b.domain());
+    project_domain<double>(make_terrain_params<double>(plan).domain, make_domain_rows<double>(plan),
+                           RowRange{0, plan.layout.height}, b.domain());
     const CameraFrame& cam = plan.camera;
-    const double y_lo = plan.bounds.world_min - cam.position.y;
-    const double y_hi = plan.bounds.world_max - cam.position.y;
     int tested = 0;
+    const ValueRange slab = regional.global();
     // Rays through a 41 x 41 lattice of viewport points, corners and edges included; on each,
     // points spread over the part of the ray inside the height slab, up to the far plane.
     for (int sy = 0; sy <= 40; ++sy) {
@@ -104,10 +119,19 @@ TEST_CASE("projectedGridCoversEveryBasePointVisibleInTheViewport", "[projected_g
         const double ndc_x = -1.0 + sx / 20.0, ndc_y = -1.0 + sy / 20.0;
         const glm::dvec3 dir = cam.forward + ndc_x * cam.tan_half_fov_x * cam.right +
                                ndc_y * cam.tan_half_fov_y * cam.up;  // depth 1 along forward
-        for (int s = 0; s <= 60; ++s) {
-          const double depth = cam.near * std::pow(cam.far / cam.near, s / 60.0);
+        // The depths where the ray is inside the slab (y = depth dir.y, linear in depth).
+        double d0 = cam.near, d1 = cam.far;
+        if (dir.y != 0.0) {
+          const double at_lo = slab.lo / dir.y, at_hi = slab.hi / dir.y;
+          d0 = std::max(d0, std::min(at_lo, at_hi));
+          d1 = std::min(d1, std::max(at_lo, at_hi));
+        }
+        for (int s = 0; s <= 60 && d0 < d1; ++s) {
+          const double depth = d0 * std::pow(d1 / d0, s / 60.0);
           const glm::dvec3 p = depth * dir;
-          if (p.y < y_lo || p.y > y_hi) {
+          const double r = 1e-6 * (std::abs(p.x) + std::abs(p.z)) + 1e-9;
+          const ValueRange h = regional.bound(p.x - r, p.x + r, p.z - r, p.z + r);
+          if (p.y < h.lo || p.y > h.hi) {
             continue;
           }
           ++tested;
@@ -129,9 +153,8 @@ TEST_CASE("projectedGridSpacingGrowsAndOctavesFallWithDistance", "[projected_gri
     const Scene scene = scene_for(c);
     const FramePlan plan = make_frame_plan(scene, lattice);
     GridBuffers<double> b(plan.layout);
-    project_domain<double>(make_terrain_params<double>(plan).domain,
-                           make_row_descents<double>(plan), RowRange{0, plan.layout.height},
-                           b.domain());
+    project_domain<double>(make_terrain_params<double>(plan).domain, make_domain_rows<double>(plan),
+                           RowRange{0, plan.layout.height}, b.domain());
     INFO("camera: " << c.name);
     // Along the centre column, the valid vertices of the covered region (the margin rows may
     // reach behind the camera), in order of their distance ahead of it.

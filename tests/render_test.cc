@@ -2,6 +2,7 @@
 // viewport borders and no cracks, for a set of cameras.
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <tbb/global_control.h>
@@ -34,12 +35,28 @@ TEST_CASE("terrainImageHasNoHolesAtTheBordersAndNoCracks", "[render]") {
       {"grazing", {"camera.pitch_deg=0", "camera.position=[0, 900, 0]"}},
       {"high", {"camera.pitch_deg=-25", "camera.position=[5000, 9000, 0]", "camera.yaw_deg=-120"}},
       {"lava", {"terrain.warp.enabled=true"}},
+      // The projector's refinement by the regional height bound (core/projector.h): high
+      // above looking down, just above the terrain, far from the origin, and the presets.
+      {"high, pitch -60", {"camera.pitch_deg=-60", "camera.position=[0, 12000, 0]"}},
+      {"high, pitch -90", {"camera.pitch_deg=-90", "camera.position=[0, 12000, 0]"}},
+      {"just above the terrain", {"camera.pitch_deg=-5", "camera.position=[0, 120, 0]"}},
+      {"1e6 from the origin", {"camera.position=[600000, 700, -800000]"}},
+      {"1e6 high",
+       {"camera.pitch_deg=-90", "camera.position=[0, 1000000, 0]", "camera.far=1000000000"}},
   };
+  const std::vector<std::string> presets = {"lava", "dunes", "lake", "plain"};
+  std::vector<std::pair<std::string, CameraCase>> runs;
   for (const CameraCase& c : cases) {
+    runs.emplace_back("default", c);
+  }
+  for (const std::string& preset : presets) {
+    runs.emplace_back(preset, CameraCase{preset, {}});
+  }
+  for (const auto& [preset, c] : runs) {
     std::vector<std::string> overrides = {"viewport.width=320", "viewport.height=256",
                                           "grid.width=160", "grid.height=160"};
     overrides.insert(overrides.end(), c.overrides.begin(), c.overrides.end());
-    const Scene scene = resolve_scene("default", overrides);
+    const Scene scene = resolve_scene(preset, overrides);
     const NoiseLattice lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
     const TerrainFrame frame = rasterize_terrain(scene, lattice);
     // The property needs the camera above the ground beneath it.

@@ -38,7 +38,9 @@ TEST_CASE("surfacePassRecoversTheGradientOfAPlane", "[surface]") {
   scene.terrain.lattice_size = 4096;
   scene.terrain.horizontal_scale = 4.0;
   scene.terrain.amplitude = 100.0;
-  scene.camera.position = {0, 300, 0};
+  // Above the plane (heights 100 .. 1300 over the lattice): the projector covers only ground
+  // whose terrain the camera can see (core/projector.h).
+  scene.camera.position = {0, 1500, 0};
   scene.camera.pitch_deg = -40;
   scene.camera.far = 2000;
   const FramePlan plan = make_frame_plan(scene, lattice);

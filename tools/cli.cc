@@ -205,6 +205,11 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   add_threads(render_cmd, threads);
   add_max_memory(render_cmd, max_memory);
   add_backend(render_cmd, backend);
+  render_cmd->add_flag("--stats", render.stats,
+                       "Print per stage whether it ran or was skipped, its median time and its "
+                       "work counters (vertices evaluated, triangles set up, texture fetches...)");
+  const CLI::Option* render_stats_json = render_cmd->add_option(
+      "--stats-json", render.stats_json, "Also write the --stats report as a JSON file, for CI");
 
   RasterOptions raster_options;
   CLI::App* raster_cmd = app.add_subcommand(
@@ -265,6 +270,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       {stages_out, stages.out_dir},
       {render_out, render.output},
       {render_float, render.float_output},
+      {render_stats_json, render.stats_json},
       {raster_out, raster_options.prefix}};
   for (std::size_t k = 0; k < extra_options.size(); ++k) {
     named.emplace_back(extra_options[k], *std::get<1>(extra_outputs[k]));

@@ -32,6 +32,8 @@ struct RenderOptions {
   int repeat = 1;
   Backend backend = Backend::kReference;
   MemoryBudget budget;
+  bool stats = false;      // per stage: ran or skipped, time, work counters
+  std::string stats_json;  // the same as a JSON file (empty: none)
 };
 
 // `relief render`: the whole frame to an sRGB PNG, with the stage times.

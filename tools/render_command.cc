@@ -7,10 +7,10 @@
 #include "pipeline/frame.h"
 #include "pipeline/image_io.h"
 #include "pipeline/job_memory.h"
-#include "pipeline/statistics.h"
 #include "tools/atomic_file.h"
 #include "tools/cli.h"
 #include "tools/commands.h"
+#include "tools/render_report.h"
 
 namespace relief {
 
@@ -18,19 +18,6 @@ namespace {
 
 std::span<const unsigned char> bytes_of(const std::vector<std::uint32_t>& values) {
   return {reinterpret_cast<const unsigned char*>(values.data()), values.size() * 4};
-}
-
-// Prints one line per stage: the median over the runs of each named time.
-void print_medians(std::ostream& out, const std::vector<std::vector<StageTime>>& runs,
-                   const char* indent) {
-  for (std::size_t s = 0; s < runs.front().size(); ++s) {
-    std::vector<double> values;
-    for (const std::vector<StageTime>& run : runs) {
-      values.push_back(run[s].ms);
-    }
-    out << indent << std::left << std::setw(40) << runs.front()[s].name << std::right
-        << std::setw(10) << median(values) << " ms\n";
-  }
 }
 
 }  // namespace
@@ -58,13 +45,11 @@ int run_render_command(const Scene& scene, const RenderOptions& options, std::os
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - setup_start)
           .count();
   Frame frame;
-  std::vector<std::vector<StageTime>> stages, parts;
-  std::vector<double> totals;
+  RenderRuns runs;
+  runs.setup_ms = setup_ms;
   for (int run = 0; run < options.repeat; ++run) {
     frame = render_frame(scene, resources, request);
-    stages.push_back(frame.stats.stages);
-    parts.push_back(frame.stats.tile_parts);
-    totals.push_back(frame.stats.total_ms);
+    runs.add(frame.stats);
   }
 
   const FrameImage& image = frame.image;
@@ -91,16 +76,23 @@ int run_render_command(const Scene& scene, const RenderOptions& options, std::os
   if (request.outputs.octaves) {
     files.add(options.octaves_output, encode_pfm(image.width, image.height, 1, image.octaves, row));
   }
+  std::string stats_text;
+  if (!options.stats_json.empty()) {
+    stats_text = stage_stats_json(scene, request.backend, runs).dump(2) + "\n";
+    files.add(options.stats_json,
+              std::span<const unsigned char>(
+                  reinterpret_cast<const unsigned char*>(stats_text.data()), stats_text.size()));
+  }
   files.commit();
 
   out << std::fixed << std::setprecision(3) << image.width << "x" << image.height << " image, "
       << scene.grid.width << "x" << scene.grid.height << " grid, backend "
       << backend_name(request.backend) << ", median of " << options.repeat << " run(s):\n";
-  print_medians(out, stages, "  ");
-  out << "    of which, CPU time summed over the threads:\n";
-  print_medians(out, parts, "    ");
-  out << "  " << std::left << std::setw(40) << "frame" << std::right << std::setw(10)
-      << median(totals) << " ms\n";
+  if (options.stats) {
+    print_stage_stats(out, runs);
+  } else {
+    print_stage_times(out, runs);
+  }
   const raster::RasterStats& s = frame.stats.raster;
   out << "  scene set-up (lattice, textures, mip chains) " << setup_ms << " ms, once\n"
       << "  triangles submitted " << s.triangles << ", set up " << s.setup << "\n"

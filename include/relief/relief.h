@@ -229,12 +229,22 @@ struct Image {
   std::vector<float> octaves;            // the interpolated octave count ν of stage 2
 };
 
-// Wall times of a render, in milliseconds.
+// One stage of a render (or one group of fused stages): its wall time, whether it ran (false:
+// the frame had nothing for it to do) and the work it did, by name: "vertices evaluated",
+// "point-octaves summed", "triangles set up", "texture fetches", ... (README.md, "Skipped
+// work"). The names and their order depend on the backend; the counts are the same on every
+// run and for every thread count.
+struct StageReport {
+  std::string name;
+  double ms = 0;
+  bool ran = true;
+  std::vector<std::pair<std::string, std::uint64_t>> counters;
+};
+
+// Wall times (milliseconds) and work of a render.
 struct Statistics {
-  // Each stage (or group of fused stages) of the backend, in the order they ran; the names
-  // ("fractal", "rasterisation", ...) depend on the backend.
-  std::vector<std::pair<std::string, double>> stage_ms;
-  double total_ms = 0;  // the frame, start to end
+  std::vector<StageReport> stages;  // in the order they ran
+  double total_ms = 0;              // the frame, start to end
   double setup_ms = 0;  // the scene's resources before the frame: lattice, textures, mipmaps
   std::uint64_t triangles_submitted = 0;  // triangles of the projected grid sent to stage 6
   std::uint64_t triangles_set_up = 0;     // pieces left after culling and clipping

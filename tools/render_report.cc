@@ -1,0 +1,96 @@
+#include "tools/render_report.h"
+
+#include <iomanip>
+
+#include "pipeline/statistics.h"
+
+namespace relief {
+
+namespace {
+
+// The median over the runs of stage `s`'s time.
+double median_ms(const std::vector<std::vector<StageTime>>& runs, std::size_t s) {
+  std::vector<double> values;
+  for (const std::vector<StageTime>& run : runs) {
+    values.push_back(run[s].ms);
+  }
+  return median(values);
+}
+
+void print_medians(std::ostream& out, const std::vector<std::vector<StageTime>>& runs,
+                   const char* indent) {
+  for (std::size_t s = 0; s < runs.front().size(); ++s) {
+    out << indent << std::left << std::setw(40) << runs.front()[s].name << std::right
+        << std::setw(10) << median_ms(runs, s) << " ms\n";
+  }
+}
+
+}  // namespace
+
+void RenderRuns::add(const FrameStats& stats) {
+  stages.push_back(stats.stages);
+  parts.push_back(stats.tile_parts);
+  totals.push_back(stats.total_ms);
+  last = stats;
+}
+
+void print_stage_times(std::ostream& out, const RenderRuns& runs) {
+  print_medians(out, runs.stages, "  ");
+  out << "    of which, CPU time summed over the threads:\n";
+  print_medians(out, runs.parts, "    ");
+  out << "  " << std::left << std::setw(40) << "frame" << std::right << std::setw(10)
+      << median(runs.totals) << " ms\n";
+}
+
+void print_stage_stats(std::ostream& out, const RenderRuns& runs) {
+  out << "  " << std::left << std::setw(40) << "stage" << std::setw(9) << "ran" << std::right
+      << std::setw(10) << "ms"
+      << "\n";
+  for (std::size_t s = 0; s < runs.last.stages.size(); ++s) {
+    const StageTime& stage = runs.last.stages[s];
+    out << "  " << std::left << std::setw(40) << stage.name << std::setw(9)
+        << (stage.ran ? "ran" : "skipped") << std::right << std::setw(10)
+        << median_ms(runs.stages, s) << "\n";
+    for (const WorkCounter& counter : stage.counters) {
+      out << "      " << std::left << std::setw(43) << counter.name << std::right << std::setw(14)
+          << counter.value << "\n";
+    }
+  }
+  out << "  " << std::left << std::setw(49) << "frame" << std::right << std::setw(10)
+      << median(runs.totals) << "\n";
+}
+
+nlohmann::json stage_stats_json(const Scene& scene, Backend backend, const RenderRuns& runs) {
+  nlohmann::json stages = nlohmann::json::array();
+  for (std::size_t s = 0; s < runs.last.stages.size(); ++s) {
+    const StageTime& stage = runs.last.stages[s];
+    nlohmann::json counters = nlohmann::json::object();
+    for (const WorkCounter& counter : stage.counters) {
+      counters[counter.name] = counter.value;
+    }
+    stages.push_back({{"name", stage.name},
+                      {"ran", stage.ran},
+                      {"ms", median_ms(runs.stages, s)},
+                      {"counters", std::move(counters)}});
+  }
+  nlohmann::json parts = nlohmann::json::array();
+  for (std::size_t s = 0; s < runs.last.tile_parts.size(); ++s) {
+    parts.push_back({{"name", runs.last.tile_parts[s].name}, {"ms", median_ms(runs.parts, s)}});
+  }
+  const raster::RasterStats& r = runs.last.raster;
+  return {{"image", {{"width", scene.viewport.width}, {"height", scene.viewport.height}}},
+          {"grid", {{"width", scene.grid.width}, {"height", scene.grid.height}}},
+          {"backend", std::string(backend_name(backend))},
+          {"runs", runs.totals.size()},
+          {"frame_ms", median(runs.totals)},
+          {"setup_ms", runs.setup_ms},
+          {"stages", std::move(stages)},
+          {"tile_parts", std::move(parts)},
+          {"raster",
+           {{"triangles", r.triangles},
+            {"set_up", r.setup},
+            {"bin_entries", r.bin_entries},
+            {"bin_bytes", r.bin_bytes}}}};
+}
+
+}  // namespace relief
