@@ -1,6 +1,8 @@
 // The second round of hostile input (a tester with fresh eyes): corrupt images, invalid UTF-8,
 // names that are empty, long or end in a directory, outputs that cannot all be written, and
 // messages that must stay readable. Each case was reproduced on the code before its fix.
+#include <sys/stat.h>
+
 #include <string>
 #include <vector>
 
@@ -181,6 +183,37 @@ TEST_CASE("aCommandsOutputsAppearTogetherOrNotAtAll", "[hostile]") {
   CHECK(s.code == kExitOutputError);
   CHECK(std::distance(std::filesystem::directory_iterator(dir.path() / "st"),
                       std::filesystem::directory_iterator()) == 1);
+}
+
+TEST_CASE("anOutputNamingASpecialFileIsRefusedAndTheFileKept", "[hostile]") {
+  // Outputs are renamed into place; as root, a rename over /dev/null or a FIFO replaces the
+  // special file. A FIFO in a temporary directory stands for them.
+  test::TempDir dir("special-outputs");
+  const std::filesystem::path image = dir.path() / "a.png";
+  const std::filesystem::path fifo_json = dir.path() / "pipe.json";
+  const std::filesystem::path fifo_png = dir.path() / "pipe.png";
+  const std::filesystem::path fifo_pfm = dir.path() / "pipe.pfm";
+  for (const std::filesystem::path& fifo : {fifo_json, fifo_png, fifo_pfm}) {
+    REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  }
+  const std::vector<std::vector<std::string>> outputs = {
+      {"-o", image.string(), "--stats-json", fifo_json.string()},
+      {"-o", fifo_png.string()},
+      {"-o", image.string(), "--depth", fifo_pfm.string()}};
+  for (const std::vector<std::string>& output : outputs) {
+    std::vector<std::string> args = {
+        "render",       "--set", "viewport.width=16", "--set", "viewport.height=16", "--set",
+        "grid.width=8", "--set", "grid.height=8"};
+    args.insert(args.end(), output.begin(), output.end());
+    const test::CliResult r = run(args);
+    INFO(output.back() << ": " << r.err);
+    CHECK(r.code == kExitOutputError);
+    CHECK_THAT(r.err, Contains("not a regular file"));
+    for (const std::filesystem::path& fifo : {fifo_json, fifo_png, fifo_pfm}) {
+      CHECK(std::filesystem::is_fifo(fifo));
+    }
+    CHECK_FALSE(std::filesystem::exists(image));
+  }
 }
 
 TEST_CASE("soupsAcceptByteOrderMarksAndCrlfAndNameOutOfRangeNumbers", "[hostile]") {

@@ -77,9 +77,17 @@ void OutputSet::discard() {
 
 void OutputSet::add(const std::filesystem::path& path, std::span<const unsigned char> bytes) {
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (std::filesystem::is_directory(status)) {
     discard();
     throw OutputError("cannot write " + quoted(path) + ": it is a directory");
+  }
+  // The file is renamed into place: over a device, FIFO or socket (/dev/null, /dev/stdout, a
+  // pipe) that would replace the special file itself, which root may do. Refused instead.
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    discard();
+    throw OutputError("cannot write " + quoted(path) +
+                      ": it is not a regular file (a device, FIFO or socket); give a file name");
   }
   const std::filesystem::path temporary = temporary_for(path);
   try {
