@@ -18,7 +18,7 @@ PREFIX       ?= /usr/local
 # What the relief binary and the library need; the tests, benchmarks and the OpenGL side add
 # the rest.
 RENDER_PACKAGES := cmake make g++ pkg-config \
-                   libtbb-dev libglm-dev libstb-dev nlohmann-json3-dev libcli11-dev
+                   libtbb-dev libglm-dev libstb-dev nlohmann-json3-dev libcli11-dev libhwy-dev
 PACKAGES := $(RENDER_PACKAGES) catch2 libbenchmark-dev \
             libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri
 

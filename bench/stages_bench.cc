@@ -19,7 +19,14 @@ struct DefaultFrame {
   FramePlan plan = make_frame_plan(scene, lattice);
   TerrainParams<float> params = make_terrain_params<float>(plan);
   GridBuffers<float> buffers{plan.layout};
-  DefaultFrame() { run_terrain_stages(plan, buffers); }
+  DefaultFrame() {
+    run_terrain_stages(plan, buffers);
+    choose_coordinate_forms(plan.terrain, reach(buffers), params.fbm);
+  }
+
+  static OctaveReach reach(const GridBuffers<float>& b) {
+    return octave_reach<float>(IndexRange{0, b.layout.size()}, b.dx, b.dz, b.nu, b.valid);
+  }
 };
 
 DefaultFrame& frame() {
@@ -66,9 +73,10 @@ void BM_Stage3_Fractal(benchmark::State& state) {
 void BM_Stage3_FractalWarped(benchmark::State& state) {
   Scene scene = resolve_scene("lava", {});
   const FramePlan plan = make_frame_plan(scene, frame().lattice);
-  const TerrainParams<float> params = make_terrain_params<float>(plan);
+  TerrainParams<float> params = make_terrain_params<float>(plan);
   GridBuffers<float> b(plan.layout);
   project_domain<float>(params.domain, params.domain_rows, all_rows(), b.domain());
+  choose_coordinate_forms(plan.terrain, DefaultFrame::reach(b), params.fbm);
   for (auto _ : state) {
     evaluate_fbm_rows<float>(params.fbm, frame().lattice, all_rows(), b);
     benchmark::ClobberMemory();

@@ -4,6 +4,7 @@
 
 #include "core/interpolant.h"
 #include "core/limits.h"
+#include "core/octave_coordinates.h"
 
 namespace relief {
 
@@ -14,6 +15,21 @@ Real fbm_point(const FbmParams<Real>& c, const NoiseLattice& lattice, Real dx, R
                std::uint64_t& octaves_summed) {
   const Real ux = dx * c.inv_scale;
   const Real uz = dz * c.inv_scale;
+  // Octave n's coordinate g_n d, without offset and warp: exact modulo P or direct
+  // (octave_coordinates.h, as the frame chose).
+  const auto scaled = [&](int n, Real d, Real u) {
+    if (!c.exact_coordinates[n]) {
+      return c.frequency[n] * u;
+    }
+    Real d_hi, d_lo, piece[kScalePieces<Real>], hi[kScalePieces<Real>], lo[kScalePieces<Real>];
+    split_halves(d, d_hi, d_lo);
+    for (int q = 0; q < kScalePieces<Real>; ++q) {
+      piece[q] = c.scale_piece[q][n];
+      hi[q] = c.scale_piece_hi[q][n];
+      lo[q] = c.scale_piece_lo[q][n];
+    }
+    return exact_scaled_mod(piece, hi, lo, d, d_hi, d_lo, c.period, c.inv_period);
+  };
   const Real whole = std::floor(nu);
   const int full_octaves = whole < Real(c.count) ? static_cast<int>(whole) : c.count;
   const Real fraction = nu - whole;
@@ -27,8 +43,8 @@ Real fbm_point(const FbmParams<Real>& c, const NoiseLattice& lattice, Real dx, R
       break;
     }
     // Eq. 1: S(r^k x), camera-relative, displaced by the warp.
-    const Real px = c.offset_x[n] + c.frequency[n] * ux + wx;
-    const Real pz = c.offset_z[n] + c.frequency[n] * uz + wz;
+    const Real px = c.offset_x[n] + scaled(n, dx, ux) + wx;
+    const Real pz = c.offset_z[n] + scaled(n, dz, uz) + wz;
     h = h + (weight * c.amplitude[n]) * sample_lattice<kKind>(lattice, px, pz);
     ++octaves_summed;
     if (!c.warp || n == full_octaves || n + 1 == c.count) {
@@ -95,9 +111,17 @@ FbmWork evaluate_fbm(const FbmParams<Real>& params, const NoiseLattice& lattice,
 template <class Real>
 Real fbm_height(const TerrainPlan& plan, Real dx, Real dz, Real nu) {
   Real height = 0;
-  evaluate_fbm<Real>(make_fbm_params<Real>(plan), *plan.lattice, IndexRange{0, 1},
-                     std::span<const Real>(&dx, 1), std::span<const Real>(&dz, 1),
-                     std::span<const Real>(&nu, 1), {}, std::span<Real>(&height, 1));
+  FbmParams<Real> params = make_fbm_params<Real>(plan);
+  const std::uint8_t valid = 1;
+  choose_coordinate_forms(
+      plan,
+      octave_reach<Real>(IndexRange{0, 1}, std::span<const Real>(&dx, 1),
+                         std::span<const Real>(&dz, 1), std::span<const Real>(&nu, 1),
+                         std::span<const std::uint8_t>(&valid, 1)),
+      params);
+  evaluate_fbm<Real>(params, *plan.lattice, IndexRange{0, 1}, std::span<const Real>(&dx, 1),
+                     std::span<const Real>(&dz, 1), std::span<const Real>(&nu, 1), {},
+                     std::span<Real>(&height, 1));
   return height;
 }
 

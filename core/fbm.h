@@ -21,6 +21,9 @@
 // origin), why the translation is in the current octave's cells (any coarser unit lets fine
 // octaves feed back into the warp with a gain that grows like r^(n(1-H)): chaotic terrain),
 // and the guard eps = kRoughnessGuard.
+// The product f_n u is formed per octave either directly or exactly modulo P
+// (octave_coordinates.h), as the frame chose in FbmParams::exact_coordinates; the full
+// specification, with worked numbers, is docs/terrain-spec.md.
 #pragma once
 
 #include <cstdint>

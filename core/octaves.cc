@@ -59,6 +59,7 @@ OctaveTable make_octave_table(const TerrainSettings& terrain, int lattice_size,
     }
     table.frequency[n] = frequency;
     table.amplitude[n] = std::pow(terrain.r, -k * terrain.H);
+    table.scale[n] = frequency / terrain.horizontal_scale;  // > 0: validate_scene
     table.periodic = table.periodic && frequency == std::floor(frequency) && frequency < 0x1p53;
   }
   double camera_x = camera_position[0];

@@ -24,6 +24,9 @@ struct OctaveTable {
   std::array<double, limits::kMaxOctaves> amplitude{};  // r^(-kH), Eq. 1
   std::array<double, limits::kMaxOctaves> offset_x{};   // offset_k above, in [0, P)
   std::array<double, limits::kMaxOctaves> offset_z{};
+  // g_n = r^k / horizontal_scale, correctly rounded: world units to octave n's lattice cells
+  // (octave_coordinates.h forms g_n d exactly modulo P).
+  std::array<double, limits::kMaxOctaves> scale{};
   // True when every r^k is an integer: the terrain then repeats every P * horizontal_scale
   // world units, and the camera position is reduced by that period before anything else, so
   // that moving the camera by whole periods reproduces every buffer bit for bit.

@@ -51,6 +51,37 @@ inline const std::array<std::uint8_t, 0x3f81>& bucket_codes() {
   return codes;
 }
 
+// The same search without a loop, for vector kernels: per bucket, its first code widened to 32
+// bits and the least float at which the code rises by one (a bucket spans at most two codes:
+// tests/shading_test.cc checks every bucket), or 2 where it does not rise inside the bucket.
+// A float x is >= the double t_k exactly when it is >= the least float >= t_k.
+struct BucketSteps {
+  std::array<std::int32_t, 0x3f81> code{};
+  std::array<float, 0x3f81> next_at{};
+};
+
+inline const BucketSteps& bucket_steps() {
+  static const BucketSteps steps = [] {
+    BucketSteps s;
+    const auto& points = decision_points();
+    const auto& codes = bucket_codes();
+    for (std::size_t bucket = 0; bucket < codes.size(); ++bucket) {
+      s.code[bucket] = codes[bucket];
+      s.next_at[bucket] = 2.0f;
+      if (codes[bucket] < 255) {
+        const double t = points[codes[bucket]];
+        float f = static_cast<float>(t);
+        if (double(f) < t) {
+          f = std::nextafter(f, 2.0f);
+        }
+        s.next_at[bucket] = f;
+      }
+    }
+    return s;
+  }();
+  return steps;
+}
+
 }  // namespace srgb_detail
 
 // The 8-bit code of a linear value: the number of decision points t_k at or below it, i.e.

@@ -1,5 +1,7 @@
 #include "core/stage_params.h"
 
+#include "core/octave_coordinates.h"
+
 namespace relief {
 
 namespace {
@@ -43,7 +45,16 @@ FbmParams<Real> make_fbm_params(const TerrainPlan& plan) {
     p.amplitude[n] = Real(o.amplitude[n]);
     p.offset_x[n] = Real(o.offset_x[n]);
     p.offset_z[n] = Real(o.offset_z[n]);
+    p.exact_coordinates[n] = 1;
+    const ScalePieces<Real> pieces = split_scale<Real>(o.scale[n]);
+    for (int q = 0; q < 3; ++q) {
+      p.scale_piece[q][n] = pieces.piece[q];
+      p.scale_piece_hi[q][n] = pieces.hi[q];
+      p.scale_piece_lo[q][n] = pieces.lo[q];
+    }
   }
+  p.period = Real(plan.lattice->size);
+  p.inv_period = Real(1) / p.period;
   p.inv_scale = Real(plan.inv_horizontal_scale);
   p.relative_base_height = Real(plan.relative_base_height);
   p.height_scale = Real(plan.amplitude);

@@ -57,9 +57,18 @@ struct FbmParams {
   Real amplitude[limits::kMaxOctaves] = {};
   Real offset_x[limits::kMaxOctaves] = {};
   Real offset_z[limits::kMaxOctaves] = {};
-  Real inv_scale = 1;             // world units to octave-0 lattice cells
-  Real relative_base_height = 0;  // base_height - camera y
-  Real height_scale = 1;          // amplitude
+  // Per octave, how its coordinate is formed (octave_coordinates.h): 1 exactly modulo P from
+  // the pieces of g_n and their halves (largest piece first; double uses piece 0 only), 0
+  // directly from inv_scale and frequency. make_fbm_params sets every octave exact; the frame
+  // relaxes them (choose_coordinate_forms).
+  std::int32_t exact_coordinates[limits::kMaxOctaves] = {};
+  Real scale_piece[3][limits::kMaxOctaves] = {};
+  Real scale_piece_hi[3][limits::kMaxOctaves] = {};
+  Real scale_piece_lo[3][limits::kMaxOctaves] = {};
+  Real period = 1, inv_period = 1;  // P and 1 / P, exact (P a power of two)
+  Real inv_scale = 1;               // world units to octave-0 lattice cells
+  Real relative_base_height = 0;    // base_height - camera y
+  Real height_scale = 1;            // amplitude
   Real c1x = 0, c1z = 0, c2x = 0, c2z = 0, c3x = 0, c3z = 0;
   Real r0x = 1, r0z = 0, t0x = 0, t0z = 0;
   Real roughness0 = 1, guard_sq = 0, min_rotation_sq = 0, lacunarity = 2;

@@ -7,6 +7,7 @@
 #include "core/fbm.h"
 #include "core/frame_plan.h"
 #include "core/grid_buffers.h"
+#include "core/octave_coordinates.h"
 #include "core/projected_domain.h"
 #include "core/stage_params.h"
 #include "core/surface.h"
@@ -32,9 +33,13 @@ FbmWork evaluate_fbm_rows(const FbmParams<Real>& params, const NoiseLattice& lat
 // every valid vertex, none culled (heights of invalid vertices 0, as the frame leaves them).
 template <class Real>
 void run_terrain_stages(const FramePlan& plan, GridBuffers<Real>& buffers) {
-  const TerrainParams<Real> params = make_terrain_params<Real>(plan);
+  TerrainParams<Real> params = make_terrain_params<Real>(plan);
   const RowRange all{0, buffers.layout.height};
   project_domain<Real>(params.domain, params.domain_rows, all, buffers.domain());
+  choose_coordinate_forms(plan.terrain,
+                          octave_reach<Real>(IndexRange{0, buffers.layout.size()}, buffers.dx,
+                                             buffers.dz, buffers.nu, buffers.valid),
+                          params.fbm);
   evaluate_fbm_rows<Real>(params.fbm, *plan.terrain.lattice, all, buffers, buffers.valid);
   surface_pass<Real>(params.surface, all, surface_inputs(buffers), buffers.surface());
 }

@@ -62,11 +62,19 @@ Frame render_with(const Scene& scene, const SceneResources& resources,
 }  // namespace
 
 std::string_view backend_name(Backend backend) {
-  return backend == Backend::kReference ? "reference" : "reference-double";
+  switch (backend) {
+    case Backend::kReference:
+      return "reference";
+    case Backend::kReferenceDouble:
+      return "reference-double";
+    case Backend::kSimd:
+      return "simd";
+  }
+  return "reference";
 }
 
 std::optional<Backend> backend_from_name(std::string_view name) {
-  for (Backend b : {Backend::kReference, Backend::kReferenceDouble}) {
+  for (Backend b : {Backend::kReference, Backend::kReferenceDouble, Backend::kSimd}) {
     if (backend_name(b) == name) {
       return b;
     }
@@ -75,20 +83,23 @@ std::optional<Backend> backend_from_name(std::string_view name) {
 }
 
 std::vector<std::string_view> backend_names() {
-  return {backend_name(Backend::kReference), backend_name(Backend::kReferenceDouble)};
+  return {backend_name(Backend::kReference), backend_name(Backend::kReferenceDouble),
+          backend_name(Backend::kSimd)};
 }
 
 Frame render_frame(const Scene& scene, const SceneResources& resources,
                    const FrameRequest& request) {
-  return request.backend == Backend::kReference ? render_with<float>(scene, resources, request)
-                                                : render_with<double>(scene, resources, request);
+  return request.backend == Backend::kReferenceDouble
+             ? render_with<double>(scene, resources, request)
+             : render_with<float>(scene, resources, request);
 }
 
 template <class Real>
-TerrainRun<Real> run_terrain_stages(const Scene& scene, const NoiseLattice& lattice) {
+TerrainRun<Real> run_terrain_stages(const Scene& scene, const NoiseLattice& lattice, Backend kind) {
   const Clock::time_point start = Clock::now();
   // The whole grid, seen or not: relief stages writes every vertex.
   FrameRequest request;
+  request.backend = kind;
   request.skips.unseen_vertices = false;
   ReferenceBackend<Real> backend(scene, lattice, {}, request);
   std::vector<StageTime> times{{"frame plan", milliseconds_since(start), true, {}}};
@@ -96,7 +107,7 @@ TerrainRun<Real> run_terrain_stages(const Scene& scene, const NoiseLattice& latt
   return {backend.plan(), backend.take_grid(), std::move(times)};
 }
 
-template TerrainRun<float> run_terrain_stages<float>(const Scene&, const NoiseLattice&);
-template TerrainRun<double> run_terrain_stages<double>(const Scene&, const NoiseLattice&);
+template TerrainRun<float> run_terrain_stages<float>(const Scene&, const NoiseLattice&, Backend);
+template TerrainRun<double> run_terrain_stages<double>(const Scene&, const NoiseLattice&, Backend);
 
 }  // namespace relief

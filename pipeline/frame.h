@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "core/frame_plan.h"
@@ -24,9 +25,10 @@ namespace relief {
 enum class Backend {
   kReference,        // the scalar reference stages in float: the product's images
   kReferenceDouble,  // the same stages in double, for accuracy comparisons
+  kSimd,             // the float stages with Highway kernels: bit-identical to kReference
 };
 
-// "reference", "reference-double".
+// "reference", "reference-double", "simd".
 std::string_view backend_name(Backend backend);
 std::optional<Backend> backend_from_name(std::string_view name);
 std::vector<std::string_view> backend_names();
@@ -97,8 +99,8 @@ struct Frame {
 Frame render_frame(const Scene& scene, const SceneResources& resources,
                    const FrameRequest& request);
 
-// Stages 1-4 alone (relief stages), by the reference backend in Real: the frame's plan, the
-// grid buffers and the time of each stage.
+// Stages 1-4 alone (relief stages), by `backend` (reference or simd in float, reference-double
+// in double): the frame's plan, the grid buffers and the time of each stage.
 template <class Real>
 struct TerrainRun {
   FramePlan plan;
@@ -107,6 +109,9 @@ struct TerrainRun {
 };
 
 template <class Real>
-TerrainRun<Real> run_terrain_stages(const Scene& scene, const NoiseLattice& lattice);
+TerrainRun<Real> run_terrain_stages(const Scene& scene, const NoiseLattice& lattice,
+                                    Backend backend = std::is_same_v<Real, float>
+                                                          ? Backend::kReference
+                                                          : Backend::kReferenceDouble);
 
 }  // namespace relief

@@ -89,8 +89,9 @@ MemoryEstimate estimate_render_memory(const Scene& scene, Backend backend,
   const std::uintmax_t vertices = grid_vertices(scene);
   const std::uintmax_t triangles =
       2 * std::uintmax_t(scene.grid.width - 1) * std::uintmax_t(scene.grid.height - 1);
-  const std::uintmax_t vertex_bytes =
-      backend == Backend::kReference ? kGridVertexBytes + kClipVertexBytes : kDoubleVertexBytes;
+  const std::uintmax_t vertex_bytes = backend != Backend::kReferenceDouble
+                                          ? kGridVertexBytes + kClipVertexBytes
+                                          : kDoubleVertexBytes;
   estimate.add("grid " + size_text(scene.grid.width, scene.grid.height),
                vertices * vertex_bytes + triangles * kSetupTriangleBytes);
   const std::uintmax_t pixels = std::uintmax_t(scene.viewport.width) * scene.viewport.height;
@@ -106,7 +107,8 @@ MemoryEstimate estimate_stages_memory(const Scene& scene, Backend backend) {
   MemoryEstimate estimate;
   const std::uintmax_t lattice = std::uintmax_t(scene.terrain.lattice_size);
   estimate.add("noise lattice", lattice * lattice * sizeof(float));
-  const std::uintmax_t grid_bytes = backend == Backend::kReference ? kGridVertexBytes : 10 * 8 + 1;
+  const std::uintmax_t grid_bytes =
+      backend != Backend::kReferenceDouble ? kGridVertexBytes : 10 * 8 + 1;
   estimate.add("grid " + size_text(scene.grid.width, scene.grid.height),
                grid_vertices(scene) * (grid_bytes + kStagesVertexBytes));
   return estimate;

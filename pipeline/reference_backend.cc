@@ -5,11 +5,13 @@
 
 #include "core/fbm.h"
 #include "core/input_file.h"
+#include "core/octave_coordinates.h"
 #include "core/projected_domain.h"
 #include "core/surface.h"
 #include "core/terrain_stages.h"
 #include "core/vertex_transform.h"
 #include "pipeline/memory_budget.h"
+#include "simd/fbm.h"
 
 namespace relief {
 
@@ -100,6 +102,15 @@ void ReferenceBackend<Real>::run(StageId id, std::size_t begin, std::size_t end)
       return;
     }
     case StageId::kFractal:
+      if constexpr (std::is_same_v<Real, float>) {
+        if (request_.backend == Backend::kSimd) {
+          const IndexRange range{plan_.layout.index(0, rows.begin),
+                                 plan_.layout.index(0, rows.end)};
+          tally_fbm(simd::evaluate_fbm(params_.fbm, lattice_, range, grid_.dx, grid_.dz, grid_.nu,
+                                       need_, grid_.height));
+          return;
+        }
+      }
       tally_fbm(evaluate_fbm_rows<Real>(params_.fbm, lattice_, rows, grid_, need_));
       return;
     case StageId::kSurface:
@@ -187,9 +198,9 @@ void ReferenceBackend<Real>::prepare(StageId id) {
       const VertexStreams<Real> streams{clip_x_,  clip_y_,      clip_w_,           grid_.dx,
                                         grid_.dz, grid_.height, grid_.nx,          grid_.ny,
                                         grid_.nz, grid_.slope,  grid_.water_depth, grid_.nu};
-      tile_pass_ = std::make_unique<TilePass<Real>>(state_, triangles(), streams, shade_,
-                                                    ShadeResources{&lattice_, textures_}, o,
-                                                    plan_.camera.position.y, image_);
+      tile_pass_ = std::make_unique<TilePass<Real>>(
+          state_, triangles(), streams, shade_, ShadeResources{&lattice_, textures_}, o,
+          plan_.camera.position.y, image_, request_.backend == Backend::kSimd);
       return;
     }
     default:
@@ -207,11 +218,17 @@ void ReferenceBackend<Real>::tally_rows(RowRange rows, const NeedCount& count) {
       max_nu = std::max(max_nu, double(grid_.nu[k]));
     }
   }
+  // How far each octave reaches over the valid vertices, skipped or not: the octaves'
+  // coordinate forms must not depend on the skips (octave_coordinates.h).
+  const OctaveReach reach = octave_reach<Real>(
+      IndexRange{plan_.layout.index(0, rows.begin), plan_.layout.index(0, rows.end)}, grid_.dx,
+      grid_.dz, grid_.nu, grid_.valid);
   const std::lock_guard<std::mutex> lock(work_mutex_);
   needs_.evaluate += count.evaluate;
   needs_.draw += count.draw;
   needs_.valid_draw += count.valid_draw;
   max_nu_ = std::max(max_nu_, max_nu);
+  reach_.merge(reach);
 }
 
 template <class Real>
@@ -261,6 +278,7 @@ void ReferenceBackend<Real>::after(StageId id) {
         params_.fbm.count = static_cast<std::int32_t>(
             std::min(double(scene_octaves_), std::ceil(max_nu_)));  // in [0, scene's count]
       }
+      choose_coordinate_forms(plan_.terrain, reach_, params_.fbm);
       return;
     case StageId::kDrawNeeds:
       params_.surface.water_enabled = water_in_view() ? 1 : 0;
@@ -309,6 +327,9 @@ void ReferenceBackend<Real>::describe(StageId id, StageTime& time) const {
       count("vertices evaluated", fbm_work_.points);
       count("point-octaves summed", fbm_work_.octaves);
       count("octaves in the table", std::uint64_t(params_.fbm.count));
+      count("octaves with exact coordinates",
+            std::uint64_t(std::count(params_.fbm.exact_coordinates,
+                                     params_.fbm.exact_coordinates + params_.fbm.count, 1)));
       return;
     case StageId::kSurface:
       count("normals computed", draws_.valid_draw);

@@ -17,6 +17,7 @@
 #include "core/fbm.h"
 #include "core/frame_plan.h"
 #include "core/grid_buffers.h"
+#include "core/octave_coordinates.h"
 #include "core/shading_plan.h"
 #include "core/stage_params.h"
 #include "core/vertex_culling.h"
@@ -69,6 +70,7 @@ class ReferenceBackend final : public FrameBackend {
   NeedCount needs_;                     // before stage 3, by the height bounds
   NeedCount draws_;                     // after it, by the heights
   double max_nu_ = 0;                   // largest nu of a vertex evaluated
+  OctaveReach reach_;                   // how far each octave reaches (valid vertices)
   double min_drawn_height_ = HUGE_VAL;  // lowest height of a drawn vertex
   FbmWork fbm_work_;
   std::uint64_t transformed_ = 0;

@@ -1,10 +1,14 @@
 #include "pipeline/tile_pass.h"
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
+#include <type_traits>
 
 #include "core/srgb.h"
 #include "raster/resolve.h"
+#include "simd/resolve.h"
+#include "simd/srgb.h"
 
 namespace relief {
 
@@ -25,13 +29,22 @@ struct TileScratch {
   Real rgb[3 * raster::kTileSize * raster::kTileSize];
 };
 
+// The simd resolve's triangle slots (simd/resolve.h): one per run of pixels a triangle wins,
+// at most one per pixel.
+struct ResolveScratch {
+  static constexpr int kPixels = raster::kTileSize * raster::kTileSize;
+  std::int32_t slot[kPixels];
+  double k[3][kPixels], ku[3][kPixels], kv[3][kPixels];
+  std::int32_t vertex[3][kPixels];
+};
+
 }  // namespace
 
 template <class Real>
 TilePass<Real>::TilePass(const raster::RasterState& state, const raster::GridTriangles& triangles,
                          VertexStreams<Real> streams, const ShadeParams<Real>& shade,
                          const ShadeResources& resources, const FrameOutputs& outputs,
-                         double camera_y, FrameImage& image)
+                         double camera_y, FrameImage& image, bool simd)
     : state_(state),
       triangles_(triangles),
       streams_(streams),
@@ -40,6 +53,7 @@ TilePass<Real>::TilePass(const raster::RasterState& state, const raster::GridTri
       outputs_(outputs),
       camera_y_(camera_y),
       image_(image),
+      simd_(simd && std::is_same_v<Real, float>),
       scale_x_(state.viewport.width * 0.5),
       scale_y_(state.viewport.height * 0.5),
       translate_x_(state.viewport.x + state.viewport.width * 0.5),
@@ -111,6 +125,71 @@ void TilePass<Real>::resolve(const raster::TileVisibility& visibility, TileAttri
   }
 }
 
+// Stage 7 with the simd kernel (simd/resolve.h): the triangles' planes set up here per run of
+// pixels, exactly as resolve() sets them up, then every pixel in double lanes.
+template <class Real>
+void TilePass<Real>::resolve_simd(const raster::TileVisibility& visibility,
+                                  TileAttributes<Real>& out, TileWork& work) const {
+  if constexpr (std::is_same_v<Real, float>) {
+    const std::unique_ptr<ResolveScratch> scratch(new ResolveScratch);
+    std::fill(std::begin(scratch->slot), std::end(scratch->slot), -1);
+    std::uint32_t cached = raster::kNoPrimitive;
+    int slots = 0;
+    for (int py = visibility.y0; py < visibility.y0 + visibility.height; ++py) {
+      for (int px = visibility.x0; px < visibility.x0 + visibility.width; ++px) {
+        const std::size_t k = visibility.index(px, py);
+        const std::uint32_t primitive = visibility.primitive[k];
+        if (primitive == raster::kNoPrimitive) {
+          continue;
+        }
+        ++work.covered_pixels;
+        if (primitive != cached) {
+          cached = primitive;
+          std::uint32_t v[3];
+          triangles_.vertices(primitive, v);
+          double x[3], y[3], w[3];
+          for (int i = 0; i < 3; ++i) {
+            position(v[i], x[i], y[i], w[i]);
+          }
+          const raster::PerspectivePlane plane(x, y, w);
+          for (int i = 0; i < 3; ++i) {
+            scratch->k[i][slots] = plane.k[i];
+            scratch->ku[i][slots] = plane.ku[i];
+            scratch->kv[i][slots] = plane.kv[i];
+            scratch->vertex[i][slots] = static_cast<std::int32_t>(v[i]);
+          }
+          ++slots;
+        }
+        scratch->slot[k] = slots - 1;
+      }
+    }
+    if (slots == 0) {
+      return;
+    }
+    const VertexStreams<Real>& s = streams_;
+    const bool with_nu = outputs_.octaves && !s.nu.empty();
+    const simd::ResolveSlots table{{scratch->k[0], scratch->k[1], scratch->k[2]},
+                                   {scratch->ku[0], scratch->ku[1], scratch->ku[2]},
+                                   {scratch->kv[0], scratch->kv[1], scratch->kv[2]},
+                                   {scratch->vertex[0], scratch->vertex[1], scratch->vertex[2]}};
+    const simd::ResolveStreams streams{s.dx.data(),
+                                       s.dz.data(),
+                                       s.height.data(),
+                                       s.nx.data(),
+                                       s.ny.data(),
+                                       s.nz.data(),
+                                       s.slope.data(),
+                                       shade_.terrain_water != 0 ? s.water_depth.data() : nullptr,
+                                       with_nu ? s.nu.data() : nullptr};
+    const simd::ResolveTargets targets{out.dx,         out.dz,          out.height, out.dx_ddx,
+                                       out.dx_ddy,     out.dz_ddx,      out.dz_ddy, out.height_ddx,
+                                       out.height_ddy, out.nx,          out.ny,     out.nz,
+                                       out.slope,      out.water_depth, out.nu};
+    simd::resolve_rect(table, streams, scratch->slot, visibility.x0, visibility.y0,
+                       visibility.width, visibility.height, raster::kTileSize, targets);
+  }
+}
+
 template <class Real>
 void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raster::TileGrid& tiles,
                          int tile, TileTimes& times, bool skip_empty) const {
@@ -128,7 +207,11 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
   }
   const Clock::time_point rasterised = Clock::now();
   if (drawn) {
-    resolve(vis, scratch->attributes, work);
+    if (simd_) {
+      resolve_simd(vis, scratch->attributes, work);
+    } else {
+      resolve(vis, scratch->attributes, work);
+    }
     ++work.tiles_drawn;
     work.tile_triangles += entries;
   }
@@ -153,14 +236,30 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
   // Stage 9: finished pixels only, into the frame's image and the requested outputs.
   const int width = image_.width;
   for (int py = vis.y0; py < vis.y0 + vis.height; ++py) {
+    const std::size_t first = vis.index(vis.x0, py);
+    const std::size_t pixel = static_cast<std::size_t>(py) * width + vis.x0;
+    const std::size_t values = 3 * static_cast<std::size_t>(vis.width);
+    if constexpr (std::is_same_v<Real, float>) {
+      if (simd_) {
+        simd::encode_srgb(std::span<const float>(scratch->rgb + 3 * first, values),
+                          std::span<std::uint8_t>(image_.srgb.data() + 3 * pixel, values));
+        continue;
+      }
+    }
+    for (std::size_t c = 0; c < values; ++c) {
+      image_.srgb[3 * pixel + c] = srgb_byte(static_cast<float>(scratch->rgb[3 * first + c]));
+    }
+  }
+  const FrameOutputs& o = outputs_;
+  const bool any_output =
+      o.linear || o.depth || o.primitive || o.normal || o.world_height || o.octaves;
+  for (int py = vis.y0; any_output && py < vis.y0 + vis.height; ++py) {
     for (int px = vis.x0; px < vis.x0 + vis.width; ++px) {
       const std::size_t k = vis.index(px, py);
       const std::size_t pixel = static_cast<std::size_t>(py) * width + px;
-      for (int c = 0; c < 3; ++c) {
-        const float linear = static_cast<float>(scratch->rgb[3 * k + c]);
-        image_.srgb[3 * pixel + c] = srgb_byte(linear);
-        if (outputs_.linear) {
-          image_.linear[3 * pixel + c] = linear;
+      if (outputs_.linear) {
+        for (int c = 0; c < 3; ++c) {
+          image_.linear[3 * pixel + c] = static_cast<float>(scratch->rgb[3 * k + c]);
         }
       }
       const bool covered = vis.primitive[k] != raster::kNoPrimitive;

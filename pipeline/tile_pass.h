@@ -83,10 +83,11 @@ template <class Real>
 class TilePass {
  public:
   // `image` must be sized (width, height, srgb, and each requested output) before run().
+  // `simd`: the Highway kernels (simd/) where there is one, float only; the same bytes.
   TilePass(const raster::RasterState& state, const raster::GridTriangles& triangles,
            VertexStreams<Real> streams, const ShadeParams<Real>& shade,
            const ShadeResources& resources, const FrameOutputs& outputs, double camera_y,
-           FrameImage& image);
+           FrameImage& image, bool simd = false);
 
   // Renders tile `tile`; tiles may run concurrently (each writes only its own pixels). With
   // `skip_empty`, a tile no triangle is binned to is not rasterised or resolved.
@@ -96,6 +97,8 @@ class TilePass {
  private:
   void resolve(const raster::TileVisibility& visibility, TileAttributes<Real>& out,
                TileWork& work) const;
+  void resolve_simd(const raster::TileVisibility& visibility, TileAttributes<Real>& out,
+                    TileWork& work) const;
   void position(std::uint32_t vertex, double& x, double& y, double& w) const;
 
   const raster::RasterState& state_;
@@ -106,6 +109,7 @@ class TilePass {
   FrameOutputs outputs_;
   double camera_y_;
   FrameImage& image_;
+  bool simd_;
   double scale_x_, scale_y_, translate_x_, translate_y_;  // viewport, as VertexPositions
 };
 

@@ -148,16 +148,18 @@ TEST_CASE("renderCommandWritesAnSrgbPngOfTheViewportSize", "[cli]") {
 TEST_CASE("renderRejectsBadInputWithoutWritingAFile", "[cli]") {
   test::TempDir dir("render-bad");
   const std::string png = (dir.path() / "x.png").string();
-  for (const auto& args :
-       std::vector<std::vector<std::string>>{{"render", "-o", (dir.path() / "x.jpg").string()},
-                                             {"render", "--set", "camera.fov_y_deg=0", "-o", png},
-                                             {"render", "--set", "grid.margin=99", "-o", png},
-                                             {"render", "--repeat", "0", "-o", png},
-                                             {"render", "--backend", "simd", "-o", png},
-                                             {"stages", "--backend", "", "--out", png},
-                                             {"render", "--depth", png, "-o", png},
-                                             {"render", "--primitive", png, "-o", png},
-                                             {"render", "--normal", "", "-o", png}}) {
+  for (const auto& args : std::vector<std::vector<std::string>>{
+           {"render", "-o", (dir.path() / "x.jpg").string()},
+           {"render", "--set", "camera.fov_y_deg=0", "-o", png},
+           {"render", "--set", "grid.margin=99", "-o", png},
+           {"render", "--repeat", "0", "-o", png},
+           {"render", "--backend", "gl", "-o", png},
+           {"render", "--simd", "avx9", "-o", png},
+           {"render", "--simd", "sse4", "--backend", "reference", "-o", png},
+           {"stages", "--backend", "", "--out", png},
+           {"render", "--depth", png, "-o", png},
+           {"render", "--primitive", png, "-o", png},
+           {"render", "--normal", "", "-o", png}}) {
     const CliResult r = run(args);
     INFO(r.err);
     CHECK(r.code == kExitBadInput);
@@ -321,6 +323,35 @@ TEST_CASE("rasterRejectsMalformedSoupsNamingTheLine", "[cli]") {
   for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
     CHECK(entry.path().filename().string().rfind("soup", 0) == 0);  // only the inputs
   }
+}
+
+TEST_CASE("infoListsTheBuildAndTheSimdTargets", "[cli]") {
+  const CliResult r = run({"info"});
+  CHECK(r.code == kExitOk);
+  CHECK_THAT(r.out, Contains("relief "));
+  CHECK_THAT(r.out, Contains("flags: -ffp-contract=off"));
+  CHECK_THAT(r.out, Contains("Highway 1."));
+  CHECK_THAT(r.out, Contains("SCALAR"));
+  CHECK_THAT(r.out, Contains("simd backend target: "));
+}
+
+TEST_CASE("renderOnAForcedSimdTargetWritesTheReferencesBytes", "[cli]") {
+  test::TempDir dir("render-simd");
+  const std::vector<std::string> small = {
+      "--set", "viewport.width=96", "--set", "viewport.height=64",
+      "--set", "grid.width=40",     "--set", "grid.height=40"};
+  const auto render = [&](std::vector<std::string> args, const std::string& name) {
+    args.insert(args.begin(), {"render", "lava", "-o", (dir.path() / name).string()});
+    args.insert(args.end(), small.begin(), small.end());
+    const CliResult r = run(args);
+    INFO(r.err);
+    REQUIRE(r.code == kExitOk);
+    return test::read_bytes(dir.path() / name);
+  };
+  const auto reference = render({"--backend", "reference"}, "reference.png");
+  CHECK(render({"--simd", "scalar"}, "scalar.png") == reference);
+  CHECK(render({"--backend", "simd"}, "best.png") == reference);
+  CHECK(render({"--simd", "best", "--backend", "simd"}, "best2.png") == reference);
 }
 
 }  // namespace

@@ -232,7 +232,7 @@ double plain_float_error_bound(const TerrainPlan& plan, const NoiseLattice& l, d
 TEST_CASE("fbmFloatErrorStaysWithinItsDerivedBound", "[fbm]") {
   const NoiseLattice lattice = make_noise_lattice(1, 256);
   for (Interpolant kind : {Interpolant::kLinear, Interpolant::kCubic, Interpolant::kQuintic}) {
-    TerrainSettings t;  // the default terrain: 15 octaves, amplitude 260
+    TerrainSettings t;  // the default terrain: 15 octaves, amplitude 360
     t.interpolant = kind;
     const TerrainPlan plan = make_terrain_plan(t, lattice, {3.0e6, 0.0, -7.0e8});
     test::TestRandom random(3);

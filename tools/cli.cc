@@ -18,6 +18,7 @@
 
 #include "core/scene/json_input.h"
 #include "core/scene/scene_json.h"
+#include "pipeline/build_info.h"
 #include "pipeline/frame.h"
 #include "pipeline/memory_budget.h"
 #include "tools/atomic_file.h"
@@ -104,16 +105,22 @@ bool given_empty(const CLI::Option* option, const std::string& value) {
   return option->count() > 0 && value.empty();
 }
 
-// --backend NAME (pipeline/frame.h): which implementation runs the frame's stages.
-void add_backend(CLI::App* command, std::string& backend) {
+// --backend NAME (pipeline/frame.h): which implementation runs the frame's stages; --simd
+// TARGET forces one Highway target (implies --backend simd).
+void add_backend(CLI::App* command, std::string& backend, std::string& simd_target) {
+  command->add_option("--simd", simd_target,
+                      "Run the simd backend on this Highway target (AVX3, AVX2, SSE4, SSSE3, "
+                      "SCALAR: relief info lists those compiled in and those this CPU runs); "
+                      "every target gives the same bytes");
   std::string names;
   for (std::string_view name : backend_names()) {
     names += (names.empty() ? "" : ", ") + std::string(name);
   }
   command
       ->add_option("--backend", backend,
-                   "Implementation of the stages: reference (float, the default) or "
-                   "reference-double (every stage in double, for accuracy comparisons)")
+                   "Implementation of the stages: reference (float, the default), simd "
+                   "(Highway kernels, bit-identical to reference) or reference-double (every "
+                   "stage in double, for accuracy comparisons)")
       ->check(CLI::Validator(
           [names](std::string& text) -> std::string {
             return backend_from_name(text) ? "" : "unknown backend; allowed: " + names;
@@ -169,7 +176,8 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   std::string max_memory;
   add_max_memory(stages_cmd, max_memory);
   std::string backend = "reference";
-  add_backend(stages_cmd, backend);
+  std::string simd_target;
+  add_backend(stages_cmd, backend, simd_target);
 
   RenderOptions render;
   CLI::App* render_cmd =
@@ -204,7 +212,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       ->check(CLI::Range(1, 1000));
   add_threads(render_cmd, threads);
   add_max_memory(render_cmd, max_memory);
-  add_backend(render_cmd, backend);
+  add_backend(render_cmd, backend, simd_target);
   render_cmd->add_flag("--stats", render.stats,
                        "Print per stage whether it ran or was skipped, its median time and its "
                        "work counters (vertices evaluated, triangles set up, texture fetches...)");
@@ -243,12 +251,18 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   add_threads(raster_cmd, threads);
   add_max_memory(raster_cmd, max_memory);
 
+  CLI::App* info_cmd = app.add_subcommand(
+      "info",
+      "Print the version, how this build was compiled and its SIMD targets: those "
+      "compiled in, those this CPU runs, and the one the simd backend uses.");
+
   // CLI11 answers an unknown command with "A subcommand is required"; say what is wrong.
-  const std::vector<std::string> commands = {"scene", "stages", "render", "raster"};
+  const std::vector<std::string> commands = {"scene", "stages", "render", "raster", "info"};
   if (args.size() > 1 && !args[1].empty() && args[1][0] != '-' &&
       std::find(commands.begin(), commands.end(), args[1]) == commands.end()) {
     err << "relief: error: unknown command '" << brief_text(args[1])
-        << "'; commands: scene, stages, render, raster\nRun 'relief --help' for usage.\n";
+        << "'; commands: scene, stages, render, raster, info\nRun 'relief --help' for "
+           "usage.\n";
     return kExitBadInput;
   }
   std::vector<const char*> argv;
@@ -304,6 +318,34 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   }
   const MemoryBudget budget = memory_budget(parse_memory_size(max_memory), max_memory);
   stages.budget = render.budget = raster_options.budget = budget;
+  if (info_cmd->parsed()) {
+    return run_info_command(out);
+  }
+  // The forced target is the process's: undone when this command returns, so that a caller
+  // running several commands in one process (the tests) gets the best target afterwards.
+  bool simd_forced = false;
+  const auto unforce = [](bool* forced) {
+    if (*forced) {
+      force_simd_target("best");
+    }
+  };
+  const std::unique_ptr<bool, decltype(unforce)> restore_target(&simd_forced, unforce);
+  if (!simd_target.empty()) {
+    CLI::App* command = stages_cmd->parsed() ? stages_cmd : render_cmd;
+    if (command->get_option("--backend")->count() > 0 && backend != "simd") {
+      err << "relief: error: --simd " << brief_text(simd_target) << " runs the simd backend, "
+          << "not --backend " << backend << "; leave --backend out or give --backend simd\n";
+      return kExitBadInput;
+    }
+    backend = "simd";
+    try {
+      force_simd_target(simd_target);
+      simd_forced = true;
+    } catch (const SimdTargetError& e) {
+      err << "relief: error: --simd: " << brief_text(e.what(), 3 * kBriefChars) << "\n";
+      return kExitBadInput;
+    }
+  }
   stages.backend = render.backend = *backend_from_name(backend);
 
   std::unique_ptr<tbb::global_control> thread_limit;

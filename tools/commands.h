@@ -53,4 +53,7 @@ struct RasterOptions {
 // Throws SoupError for a bad soup (soup.h).
 int run_raster_command(const RasterOptions& options, std::ostream& out);
 
+// `relief info`: the version, the build and the SIMD targets (pipeline/build_info.h).
+int run_info_command(std::ostream& out);
+
 }  // namespace relief

@@ -40,10 +40,10 @@ GridBuffers<float> rounded(const GridBuffers<double>& d) {
 // Runs stages 1-4 `repeat` times; returns the plan and the last run's buffers in float.
 template <class Real>
 std::pair<FramePlan, GridBuffers<float>> run(const Scene& scene, const NoiseLattice& lattice,
-                                             int repeat,
+                                             Backend backend, int repeat,
                                              std::vector<std::vector<StageTime>>& times) {
   for (int k = 0;; ++k) {
-    TerrainRun<Real> terrain = run_terrain_stages<Real>(scene, lattice);
+    TerrainRun<Real> terrain = run_terrain_stages<Real>(scene, lattice, backend);
     times.push_back(std::move(terrain.stages));
     if (k + 1 == repeat) {
       if constexpr (std::is_same_v<Real, float>) {
@@ -62,9 +62,10 @@ int run_stages_command(const Scene& scene, const StagesOptions& options, std::os
                "Lower grid.width/height");
   const NoiseLattice lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
   std::vector<std::vector<StageTime>> times;
-  const auto [plan, buffers] = options.backend == Backend::kReference
-                                   ? run<float>(scene, lattice, options.repeat, times)
-                                   : run<double>(scene, lattice, options.repeat, times);
+  const Backend backend = options.backend;
+  const auto [plan, buffers] = backend == Backend::kReferenceDouble
+                                   ? run<double>(scene, lattice, backend, options.repeat, times)
+                                   : run<float>(scene, lattice, backend, options.repeat, times);
   const std::string dir = options.out_dir.empty() ? scene.output.stages_dir : options.out_dir;
   write_stage_outputs(dir, scene, plan, buffers);
   out << std::fixed << std::setprecision(3) << "grid " << plan.layout.width << "x"

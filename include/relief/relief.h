@@ -184,8 +184,9 @@ class Scene {
 
 struct RenderOptions {
   // The backend that runs the stages: one of backends(). "reference" is the scalar
-  // reference in float, the product's images; "reference-double" the same stages in double,
-  // for accuracy comparisons.
+  // reference in float, the product's images; "simd" the same stages with Highway kernels,
+  // the same bytes on every SIMD target (faster); "reference-double" the same stages in
+  // double, for accuracy comparisons.
   std::string backend = "reference";
   // Worker threads for this call: 0 uses the calling thread's oneTBB arena (all cores unless
   // the application limited it); 1 to 1024 runs the call in an arena of that many threads (at

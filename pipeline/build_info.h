@@ -1,0 +1,39 @@
+// What this build of Relief is, for relief info: the version, the compiler and its flags, and
+// the SIMD targets its kernels were compiled for (simd/targets.h) with those this CPU runs.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace relief {
+
+struct SimdTargetInfo {
+  std::string name;
+  bool supported = false;  // this CPU runs it
+};
+
+struct BuildInfo {
+  std::string version;
+  std::string compiler;
+  std::string build_type;
+  std::string flags;  // the compile options every file of the library gets
+  std::string highway_version;
+  std::vector<SimdTargetInfo> simd_targets;  // compiled in, best first
+  std::string simd_target;                   // the one the simd backend uses now
+};
+
+BuildInfo build_info();
+
+class SimdTargetError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+// Makes the simd backend use target `name` (case-insensitive; "best" undoes it) from now on.
+// Throws SimdTargetError naming the targets compiled in when `name` is not one of them or
+// this CPU cannot run it.
+void force_simd_target(std::string_view name);
+
+}  // namespace relief

@@ -1,0 +1,147 @@
+// Per-target body of simd/resolve.h: raster::PerspectivePlane::barycentrics, quad_weights and
+// QuadWeights::at per lane, each lane a pixel of a row, its triangle's coefficients and vertex
+// values gathered by its slot.
+#if defined(RELIEF_SIMD_RESOLVE_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef RELIEF_SIMD_RESOLVE_INL_H_
+#undef RELIEF_SIMD_RESOLVE_INL_H_
+#else
+#define RELIEF_SIMD_RESOLVE_INL_H_
+#endif
+
+#include <cstdint>
+
+#include <hwy/highway.h>
+
+#include "simd/resolve.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace relief::simd {
+namespace HWY_NAMESPACE {
+
+namespace hn = hwy::HWY_NAMESPACE;
+
+template <class D>
+struct LaneTriangle {
+  hn::Vec<D> k[3], ku[3], kv[3];
+};
+
+// raster::PerspectivePlane::barycentrics at (u, v): false lanes where undefined.
+template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
+HWY_INLINE M Barycentrics(D d, const LaneTriangle<D>& t, V u, V v, V b[3]) {
+  V l[3];
+  for (int i = 0; i < 3; ++i) {
+    l[i] = hn::Add(hn::Add(t.k[i], hn::Mul(t.ku[i], u)), hn::Mul(t.kv[i], v));
+  }
+  const V sum = hn::Add(hn::Add(l[0], l[1]), l[2]);
+  const V huge = hn::Set(d, 1.7976931348623157e308);
+  // |sum| > 0 and finite: 0 < |sum| <= DBL_MAX (NaN fails both compares).
+  const V magnitude = hn::Abs(sum);
+  M ok = hn::And(hn::Gt(magnitude, hn::Zero(d)), hn::Le(magnitude, huge));
+  const V inv_sum = hn::Div(hn::Set(d, 1.0), sum);
+  for (int i = 0; i < 3; ++i) {
+    b[i] = hn::Mul(l[i], inv_sum);
+    ok = hn::And(ok, hn::Le(hn::Abs(b[i]), huge));
+  }
+  return ok;
+}
+
+// QuadWeights::at: b0 a0 + b1 a1 + b2 a2, in double.
+template <class V>
+HWY_INLINE V At(const V b[3], const V a[3]) {
+  return hn::Add(hn::Add(hn::Mul(b[0], a[0]), hn::Mul(b[1], a[1])), hn::Mul(b[2], a[2]));
+}
+
+void ResolveRect(const ResolveSlots& slots, const ResolveStreams& streams,
+                 const std::int32_t* HWY_RESTRICT slot, int x0, int y0, int width, int height,
+                 int stride, const ResolveTargets& out) {
+  const hn::ScalableTag<double> d;
+  const hn::Rebind<float, decltype(d)> df;
+  const hn::Rebind<std::int32_t, decltype(d)> di;
+  using V = hn::Vec<decltype(d)>;
+  const int lanes = static_cast<int>(hn::Lanes(d));
+  const V half = hn::Set(d, 0.5);
+  const V third = hn::Set(d, 1.0 / 3.0);
+  for (int j = 0; j < height; ++j) {
+    const int py = y0 + j;
+    const V v_here = hn::Set(d, double(py) + 0.5);
+    const V v_partner = hn::Set(d, double(py ^ 1) + 0.5);
+    const V sign_y = hn::Set(d, (py & 1) ? -1.0 : 1.0);
+    for (int i = 0; i < width; i += lanes) {
+      const int count = width - i < lanes ? width - i : lanes;
+      const std::size_t at = static_cast<std::size_t>(j) * stride + i;
+      const auto in_rect = hn::FirstN(di, static_cast<std::size_t>(count));
+      // Lanes past the rectangle read slot -1 (not covered).
+      const auto slot_index = hn::IfThenElse(in_rect, hn::LoadU(di, slot + at), hn::Set(di, -1));
+      const auto covered_i = hn::Gt(slot_index, hn::Set(di, -1));
+      if (hn::AllFalse(di, covered_i)) {
+        continue;
+      }
+      const auto index = hn::IfThenElseZero(covered_i, slot_index);
+      const auto covered = hn::RebindMask(df, covered_i);
+      const auto wide_index = hn::PromoteTo(hn::Rebind<std::int64_t, decltype(d)>(), index);
+      LaneTriangle<hn::ScalableTag<double>> t;
+      hn::Vec<decltype(di)> vertex[3];
+      for (int c = 0; c < 3; ++c) {
+        t.k[c] = hn::GatherIndex(d, slots.k[c], wide_index);
+        t.ku[c] = hn::GatherIndex(d, slots.ku[c], wide_index);
+        t.kv[c] = hn::GatherIndex(d, slots.kv[c], wide_index);
+        vertex[c] = hn::GatherIndex(di, slots.vertex[c], index);
+      }
+      // Pixel centres of the lanes, and their quad partners in x (px ^ 1).
+      const auto px = hn::Iota(di, x0 + i);
+      const V u_here = hn::Add(hn::PromoteTo(d, px), half);
+      const V u_partner = hn::Add(hn::PromoteTo(d, hn::Xor(px, hn::Set(di, 1))), half);
+      const auto odd = hn::Eq(hn::And(px, hn::Set(di, 1)), hn::Set(di, 1));
+      const V sign_x = hn::PromoteTo(d, hn::IfThenElse(odd, hn::Set(di, -1), hn::Set(di, 1)));
+      V b[3], bx[3], by[3];
+      const auto defined = Barycentrics(d, t, u_here, v_here, b);
+      for (int c = 0; c < 3; ++c) {
+        b[c] = hn::IfThenElse(defined, b[c], third);
+      }
+      const auto has_x = Barycentrics(d, t, u_partner, v_here, bx);
+      const auto has_y = Barycentrics(d, t, u_here, v_partner, by);
+      const auto values = [&](const float* stream, V a[3]) {
+        for (int c = 0; c < 3; ++c) {
+          a[c] = hn::PromoteTo(d, hn::GatherIndex(df, stream, vertex[c]));
+        }
+      };
+      const auto store = [&](float* target, V value) {
+        hn::BlendedStore(hn::DemoteTo(df, value), covered, df, target + at);
+      };
+      const auto with_derivatives = [&](const float* stream, float* value, float* ddx, float* ddy) {
+        V a[3];
+        values(stream, a);
+        const V centre = At(b, a);
+        store(value, centre);
+        store(ddx, hn::IfThenElseZero(has_x, hn::Mul(sign_x, hn::Sub(At(bx, a), centre))));
+        store(ddy, hn::IfThenElseZero(has_y, hn::Mul(sign_y, hn::Sub(At(by, a), centre))));
+      };
+      const auto plain = [&](const float* stream, float* value) {
+        V a[3];
+        values(stream, a);
+        store(value, At(b, a));
+      };
+      with_derivatives(streams.dx, out.dx, out.dx_ddx, out.dx_ddy);
+      with_derivatives(streams.dz, out.dz, out.dz_ddx, out.dz_ddy);
+      with_derivatives(streams.height, out.height, out.height_ddx, out.height_ddy);
+      plain(streams.nx, out.nx);
+      plain(streams.ny, out.ny);
+      plain(streams.nz, out.nz);
+      plain(streams.slope, out.slope);
+      if (streams.water_depth != nullptr) {
+        plain(streams.water_depth, out.water_depth);
+      } else {
+        store(out.water_depth, hn::Zero(d));
+      }
+      if (streams.nu != nullptr) {
+        plain(streams.nu, out.nu);
+      }
+    }
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace relief::simd
+HWY_AFTER_NAMESPACE();
+
+#endif  // include guard

@@ -1,0 +1,23 @@
+// Highway's per-target compilation of simd/resolve-inl.h and its dynamic dispatch.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "simd/resolve.cc"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#include "simd/resolve-inl.h"
+
+#if HWY_ONCE
+#include "simd/resolve.h"
+
+namespace relief::simd {
+
+HWY_EXPORT(ResolveRect);
+
+void resolve_rect(const ResolveSlots& slots, const ResolveStreams& streams,
+                  const std::int32_t* slot, int x0, int y0, int width, int height, int stride,
+                  const ResolveTargets& out) {
+  HWY_DYNAMIC_DISPATCH(ResolveRect)(slots, streams, slot, x0, y0, width, height, stride, out);
+}
+
+}  // namespace relief::simd
+#endif  // HWY_ONCE

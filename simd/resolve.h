@@ -1,0 +1,42 @@
+// Stage 7, the attribute resolve of a tile (pipeline/tile_pass.h), as a Highway kernel in
+// double lanes: for every covered pixel, the perspective-correct barycentrics at the pixel and
+// at its two quad partners (raster::quad_weights), and the attributes and their derivatives
+// interpolated from the winning triangle's vertices, with raster::resolve's operations in its
+// order, rounded once to float. Bit-identical to the scalar resolve on every target.
+#pragma once
+
+#include <cstdint>
+
+namespace relief::simd {
+
+// The triangles of a tile, one slot per run of pixels a triangle wins (set up by the caller,
+// as the scalar resolve sets a plane up per run): raster::PerspectivePlane's coefficients
+// k[i], ku[i], kv[i] and the triangle's three vertices.
+struct ResolveSlots {
+  const double* k[3];
+  const double* ku[3];
+  const double* kv[3];
+  const std::int32_t* vertex[3];
+};
+
+// Per grid vertex, the streams the resolve interpolates (stage 2-4 buffers, float). nu may be
+// null (not resolved); water_depth null resolves zero depths.
+struct ResolveStreams {
+  const float *dx, *dz, *height, *nx, *ny, *nz, *slope, *water_depth, *nu;
+};
+
+// The resolved fields (pipeline/tile_pass.h's TileAttributes<float>), written at covered
+// pixels only; nu only when streams.nu is not null.
+struct ResolveTargets {
+  float *dx, *dz, *height, *dx_ddx, *dx_ddy, *dz_ddx, *dz_ddy, *height_ddx, *height_ddy;
+  float *nx, *ny, *nz, *slope, *water_depth, *nu;
+};
+
+// Pixel (x0 + i, y0 + j) of the rectangle has index j * stride + i in `slot` (the slot of the
+// triangle that covers it, -1 where none does) and in the targets. `stride` is a multiple of
+// 16 and at least the width: whole vectors of a row are read.
+void resolve_rect(const ResolveSlots& slots, const ResolveStreams& streams,
+                  const std::int32_t* slot, int x0, int y0, int width, int height, int stride,
+                  const ResolveTargets& out);
+
+}  // namespace relief::simd

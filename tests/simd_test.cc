@@ -1,0 +1,271 @@
+// The Highway kernels (simd/) against the scalar reference, on every target compiled in that
+// this CPU can run, each forced in turn: every buffer and every image bit-identical, and the
+// work counters equal. Targets this CPU cannot run are named (WARN), so a run on a machine
+// without AVX-512 says that AVX3 was not checked there.
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <tbb/global_control.h>
+#include <catch2/catch.hpp>
+
+#include "core/frame_plan.h"
+#include "core/lattice.h"
+#include "core/octave_coordinates.h"
+#include "core/scene/scene_json.h"
+#include "core/srgb.h"
+#include "core/terrain_stages.h"
+#include "pipeline/frame.h"
+#include "pipeline/scene_resources.h"
+#include "simd/fbm.h"
+#include "simd/srgb.h"
+#include "simd/targets.h"
+#include "test_support.h"
+
+namespace relief {
+namespace {
+
+// The targets to check here; restores the best target when it goes out of scope.
+class EachTarget {
+ public:
+  EachTarget() {
+    for (const simd::Target& t : simd::compiled_targets()) {
+      if (t.supported) {
+        runnable_.push_back(t.name);
+      } else {
+        skipped_ += (skipped_.empty() ? "" : ", ") + t.name;
+      }
+    }
+  }
+  ~EachTarget() { simd::force_target("best"); }
+  EachTarget(const EachTarget&) = delete;
+  EachTarget& operator=(const EachTarget&) = delete;
+
+  const std::vector<std::string>& runnable() const { return runnable_; }
+  const std::string& skipped() const { return skipped_; }
+
+ private:
+  std::vector<std::string> runnable_;
+  std::string skipped_;
+};
+
+bool same_bits(std::span<const float> a, std::span<const float> b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+TEST_CASE("theTargetsCompiledInAreListedAndThoseThisCpuCannotRunAreNamed", "[simd]") {
+  const EachTarget targets;
+  const std::vector<simd::Target> compiled = simd::compiled_targets();
+  REQUIRE_FALSE(compiled.empty());
+  // A scalar fallback is always compiled in and always runs.
+  CHECK(compiled.back().name == "SCALAR");
+  CHECK(compiled.back().supported);
+  if (!targets.skipped().empty()) {
+    WARN("SIMD targets compiled in but not run on this CPU: " << targets.skipped());
+  }
+  // Highway 1.0.3 marks EMU128 broken on GCC before 12.3; SCALAR stands in for it.
+  for (const simd::Target& t : compiled) {
+    INFO(t.name);
+    CHECK(t.name != "Unknown");
+  }
+}
+
+TEST_CASE("forcingATargetThatIsUnknownOrThatThisCpuCannotRunIsRefused", "[simd]") {
+  const EachTarget targets;
+  CHECK_THROWS_WITH(simd::force_target("AVX9"),
+                    Catch::Contains("unknown SIMD target \"AVX9\"; compiled in: "));
+  for (const simd::Target& t : simd::compiled_targets()) {
+    if (!t.supported) {
+      CHECK_THROWS_WITH(simd::force_target(t.name), Catch::Contains("this CPU cannot run"));
+    }
+  }
+  simd::force_target("scalar");  // names are case-insensitive
+  CHECK(simd::current_target() == "SCALAR");
+  simd::force_target("best");
+  const simd::Target best = simd::compiled_targets().front();
+  CHECK((simd::current_target() == best.name || !best.supported));
+}
+
+// Stage 3 of a frame's grid, scalar and SIMD, over an awkward range (not a multiple of any
+// vector length) with the frame's mask, with no mask and with a random mask.
+void check_fbm(const std::vector<std::string>& overrides, const EachTarget& targets) {
+  const Scene scene = resolve_scene("default", overrides);
+  const NoiseLattice lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
+  const FramePlan plan = make_frame_plan(scene, lattice);
+  GridBuffers<float> grid(plan.layout);
+  run_terrain_stages(plan, grid);
+  TerrainParams<float> params = make_terrain_params<float>(plan);
+  choose_coordinate_forms(
+      plan.terrain,
+      octave_reach<float>(IndexRange{0, grid.layout.size()}, grid.dx, grid.dz, grid.nu, grid.valid),
+      params.fbm);
+  std::vector<std::uint8_t> random_mask(grid.layout.size());
+  test::TestRandom random(5);
+  for (std::uint8_t& m : random_mask) {
+    m = random.uniform(0, 1) < 0.7 ? 1 : 0;
+  }
+  const IndexRange range{3, grid.layout.size() - 5};
+  for (const std::span<const std::uint8_t> mask :
+       {std::span<const std::uint8_t>(grid.valid), std::span<const std::uint8_t>(),
+        std::span<const std::uint8_t>(random_mask)}) {
+    std::vector<float> expected(grid.layout.size(), -1.0f);
+    const FbmWork expected_work =
+        evaluate_fbm<float>(params.fbm, lattice, range, grid.dx, grid.dz, grid.nu, mask, expected);
+    for (const std::string& target : targets.runnable()) {
+      simd::force_target(target);
+      std::vector<float> got(grid.layout.size(), -1.0f);
+      const FbmWork work =
+          simd::evaluate_fbm(params.fbm, lattice, range, grid.dx, grid.dz, grid.nu, mask, got);
+      INFO("target " << target << ", mask of " << mask.size());
+      CHECK(same_bits(got, expected));
+      CHECK(work.points == expected_work.points);
+      CHECK(work.octaves == expected_work.octaves);
+    }
+  }
+}
+
+TEST_CASE("simdFbmIsBitIdenticalToTheReferenceOnEveryTarget", "[simd]") {
+  const EachTarget targets;
+  const std::vector<std::string> small = {"grid.width=100", "grid.height=61"};
+  for (const std::vector<std::string>& extra : std::vector<std::vector<std::string>>{
+           {},
+           {"terrain.warp.enabled=true"},
+           {"terrain.interpolant=linear", "terrain.r=2.17"},
+           {"terrain.interpolant=cubic", "terrain.lattice_size=4096"},
+           // Fine octaves in the exact coordinate form (core/octave_coordinates.h).
+           {"terrain.H=0.05", "terrain.last_octave=23"},
+           {"terrain.H=0.05", "terrain.last_octave=23", "terrain.warp.enabled=true"},
+           {"camera.position=[1e9, 700, -3e8]"}}) {
+    std::vector<std::string> overrides = small;
+    overrides.insert(overrides.end(), extra.begin(), extra.end());
+    INFO("overrides: " << (extra.empty() ? std::string("none") : extra.front()));
+    check_fbm(overrides, targets);
+  }
+}
+
+// srgb_byte's own search (core/srgb.h), as the scalar frame runs it: the specification.
+TEST_CASE("everySrgbBucketSpansAtMostTwoCodesSoOneStepFindsTheCode", "[simd]") {
+  const auto& points = srgb_detail::decision_points();
+  const auto& steps = srgb_detail::bucket_steps();
+  for (std::uint32_t bucket = 0; bucket < 0x3f80; ++bucket) {
+    // The bucket's largest float is below the decision point after the next one.
+    const float largest = std::bit_cast<float>((bucket << 16) | 0xffffu);
+    const int code = steps.code[bucket];
+    INFO("bucket " << bucket);
+    if (code + 1 < 255) {
+      REQUIRE(double(largest) < points[code + 1]);
+    }
+    if (code < 255) {
+      REQUIRE(double(steps.next_at[bucket]) >= points[code]);
+      REQUIRE(double(std::nextafter(steps.next_at[bucket], 0.0f)) < points[code]);
+    }
+  }
+}
+
+TEST_CASE("simdSrgbEncodingIsSrgbByteOnEveryTarget", "[simd]") {
+  const EachTarget targets;
+  std::vector<float> values = {0.0f,
+                               -0.0f,
+                               1.0f,
+                               -1.0f,
+                               0.5f,
+                               1e-45f,
+                               1e-38f,
+                               3e38f,
+                               std::numeric_limits<float>::infinity(),
+                               -std::numeric_limits<float>::infinity(),
+                               std::nanf(""),
+                               std::nextafter(1.0f, 0.0f),
+                               std::nextafter(0.0f, 1.0f)};
+  // Every decision point and its neighbours, every bucket's edges, and random values.
+  for (const double t : srgb_detail::decision_points()) {
+    const float f = float(t);
+    for (float v = std::nextafter(std::nextafter(f, 0.0f), 0.0f),
+               end = std::nextafter(std::nextafter(f, 2.0f), 2.0f);
+         v <= end; v = std::nextafter(v, 2.0f)) {
+      values.push_back(v);
+    }
+  }
+  for (std::uint32_t bucket = 0; bucket < 0x3f81; ++bucket) {
+    values.push_back(std::bit_cast<float>(bucket << 16));
+    values.push_back(std::bit_cast<float>((bucket << 16) | 0xffffu));
+  }
+  test::TestRandom random(9);
+  for (int k = 0; k < 100000; ++k) {
+    values.push_back(float(random.uniform(-0.1, 1.1)));
+  }
+  std::vector<std::uint8_t> expected(values.size());
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    expected[k] = srgb_byte(values[k]);
+  }
+  for (const std::string& target : targets.runnable()) {
+    simd::force_target(target);
+    // Awkward lengths and offsets: the tail of a vector, an unaligned start.
+    for (const std::size_t offset : {std::size_t(0), std::size_t(3)}) {
+      std::vector<std::uint8_t> got(values.size() - offset, 7);
+      simd::encode_srgb(std::span<const float>(values).subspan(offset), got);
+      INFO("target " << target << ", offset " << offset);
+      CHECK(std::equal(got.begin(), got.end(), expected.begin() + std::ptrdiff_t(offset)));
+    }
+  }
+}
+
+FrameRequest all_outputs(Backend backend) {
+  FrameRequest request;
+  request.backend = backend;
+  request.outputs = {true, true, true, true, true, true};
+  return request;
+}
+
+void require_same_frames(const Frame& a, const Frame& b) {
+  REQUIRE(a.image.srgb == b.image.srgb);
+  REQUIRE(same_bits(a.image.linear, b.image.linear));
+  REQUIRE(same_bits(a.image.depth, b.image.depth));
+  REQUIRE(a.image.primitive == b.image.primitive);
+  REQUIRE(same_bits(a.image.normal, b.image.normal));
+  REQUIRE(same_bits(a.image.world_height, b.image.world_height));
+  REQUIRE(same_bits(a.image.octaves, b.image.octaves));
+  // The same work, stage by stage (the times differ, the counters must not).
+  REQUIRE(a.stats.stages.size() == b.stats.stages.size());
+  for (std::size_t s = 0; s < a.stats.stages.size(); ++s) {
+    INFO(a.stats.stages[s].name);
+    REQUIRE(a.stats.stages[s].counters.size() == b.stats.stages[s].counters.size());
+    for (std::size_t c = 0; c < a.stats.stages[s].counters.size(); ++c) {
+      CHECK(a.stats.stages[s].counters[c].value == b.stats.stages[s].counters[c].value);
+    }
+  }
+}
+
+TEST_CASE("everyPresetRendersBitIdenticallyWithTheSimdBackendOnEveryTarget", "[simd]") {
+  const EachTarget targets;
+  for (const char* preset : {"default", "alpine", "dunes", "lake", "lava", "plain"}) {
+    const Scene scene = resolve_scene(
+        preset, {"viewport.width=203", "viewport.height=131", "grid.width=90", "grid.height=77"});
+    const SceneResources resources = load_scene_resources(scene);
+    const Frame reference = render_frame(scene, resources, all_outputs(Backend::kReference));
+    for (const std::string& target : targets.runnable()) {
+      simd::force_target(target);
+      INFO(preset << " on " << target);
+      require_same_frames(render_frame(scene, resources, all_outputs(Backend::kSimd)), reference);
+    }
+  }
+}
+
+TEST_CASE("simdFramesAreBitIdenticalForOneTwoAndEightThreads", "[simd]") {
+  const Scene scene = resolve_scene(
+      "lava", {"viewport.width=256", "viewport.height=192", "grid.width=128", "grid.height=128"});
+  const SceneResources resources = load_scene_resources(scene);
+  std::vector<Frame> frames;
+  for (const std::size_t threads : {1, 2, 8}) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    frames.push_back(render_frame(scene, resources, all_outputs(Backend::kSimd)));
+  }
+  require_same_frames(frames[1], frames[0]);
+  require_same_frames(frames[2], frames[0]);
+}
+
+}  // namespace
+}  // namespace relief

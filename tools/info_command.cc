@@ -1,0 +1,23 @@
+#include <ostream>
+
+#include "pipeline/build_info.h"
+#include "tools/cli.h"
+#include "tools/commands.h"
+
+namespace relief {
+
+int run_info_command(std::ostream& out) {
+  const BuildInfo info = build_info();
+  out << "relief " << info.version << "\n"
+      << "compiler: " << info.compiler << ", " << info.build_type << " build\n"
+      << "flags: " << info.flags << "\n"
+      << "Highway " << info.highway_version << ", SIMD targets compiled in (best first):\n";
+  for (const SimdTargetInfo& t : info.simd_targets) {
+    out << "  " << t.name << (t.supported ? "" : "  (this CPU cannot run it)") << "\n";
+  }
+  out << "simd backend target: " << info.simd_target << "\n";
+  out.flush();
+  return out ? kExitOk : kExitOutputError;
+}
+
+}  // namespace relief
