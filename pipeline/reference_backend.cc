@@ -12,6 +12,8 @@
 #include "core/vertex_transform.h"
 #include "pipeline/memory_budget.h"
 #include "simd/fbm.h"
+#include "simd/surface.h"
+#include "simd/vertex_transform.h"
 
 namespace relief {
 
@@ -114,12 +116,28 @@ void ReferenceBackend<Real>::run(StageId id, std::size_t begin, std::size_t end)
       tally_fbm(evaluate_fbm_rows<Real>(params_.fbm, lattice_, rows, grid_, need_));
       return;
     case StageId::kSurface:
+      if constexpr (std::is_same_v<Real, float>) {
+        if (request_.backend == Backend::kSimd) {
+          simd::surface_pass(params_.surface, rows, surface_inputs(grid_, need_), grid_.surface());
+          return;
+        }
+      }
       surface_pass<Real>(params_.surface, rows, surface_inputs(grid_, need_), grid_.surface());
       return;
     case StageId::kVertexTransform: {
-      transform_vertices<Real>(params_.transform, IndexRange{begin, end}, grid_.dx, grid_.dz,
-                               grid_.height, need_,
-                               ClipSpans<Real>{clip_x_, clip_y_, clip_z_, clip_w_});
+      const ClipSpans<Real> clip{clip_x_, clip_y_, clip_z_, clip_w_};
+      if constexpr (std::is_same_v<Real, float>) {
+        if (request_.backend == Backend::kSimd) {
+          simd::transform_vertices(params_.transform, IndexRange{begin, end}, grid_.dx, grid_.dz,
+                                   grid_.height, need_, clip);
+        } else {
+          transform_vertices<Real>(params_.transform, IndexRange{begin, end}, grid_.dx, grid_.dz,
+                                   grid_.height, need_, clip);
+        }
+      } else {
+        transform_vertices<Real>(params_.transform, IndexRange{begin, end}, grid_.dx, grid_.dz,
+                                 grid_.height, need_, clip);
+      }
       std::uint64_t transformed = 0;
       for (std::size_t k = begin; k < end; ++k) {
         transformed += (need_[k] & kDraw) != 0;

@@ -8,6 +8,7 @@
 #include "core/srgb.h"
 #include "raster/resolve.h"
 #include "simd/resolve.h"
+#include "simd/shade.h"
 #include "simd/srgb.h"
 
 namespace relief {
@@ -219,7 +220,21 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
 
   // Stage 8: every pixel of the tile, radiance times the exposure; pixels no triangle covers
   // get the background and no terrain shading.
-  for (int py = vis.y0; py < vis.y0 + vis.height; ++py) {
+  bool shaded_simd = false;
+  if constexpr (std::is_same_v<Real, float>) {
+    if (simd_) {
+      const TileAttributes<float>& a = scratch->attributes;
+      constexpr std::size_t n = TileAttributes<float>::kPixels;
+      const ShadingInputs in{
+          {vis.primitive, n}, {a.dx, n},     {a.dz, n},     {a.height, n},     {a.dx_ddx, n},
+          {a.dx_ddy, n},      {a.dz_ddx, n}, {a.dz_ddy, n}, {a.height_ddx, n}, {a.height_ddy, n},
+          {a.nx, n},          {a.ny, n},     {a.nz, n},     {a.slope, n},      {a.water_depth, n}};
+      simd::shade_rect(shade_, resources_, in, vis.x0, vis.y0, vis.width, vis.height,
+                       raster::kTileSize, std::span<float>(scratch->rgb), work.shade);
+      shaded_simd = true;
+    }
+  }
+  for (int py = vis.y0; !shaded_simd && py < vis.y0 + vis.height; ++py) {
     for (int px = vis.x0; px < vis.x0 + vis.width; ++px) {
       const std::size_t k = vis.index(px, py);
       const Vec3<Real> radiance =

@@ -117,7 +117,7 @@ HWY_INLINE V FbmVector(D d, const FbmParams<float>& c, const LatticeView& lattic
   for (; n < c.count; ++n) {
     const V octave = hn::Set(d, float(n));
     const M below = hn::Lt(octave, full);  // weight 1
-    const M active = hn::Or(below, hn::And(hn::Eq(octave, full), hn::Ne(fraction, zero)));
+    const M active = hn::Or(below, hn::And(hn::Eq(octave, full), hn::Not(hn::Eq(fraction, zero))));
     const M summed = hn::And(active, need);
     if (hn::AllFalse(d, summed)) {
       break;  // the scalar loop has stopped for every needed point

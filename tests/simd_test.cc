@@ -18,11 +18,14 @@
 #include "core/scene/scene_json.h"
 #include "core/srgb.h"
 #include "core/terrain_stages.h"
+#include "core/vertex_transform.h"
 #include "pipeline/frame.h"
 #include "pipeline/scene_resources.h"
 #include "simd/fbm.h"
 #include "simd/srgb.h"
+#include "simd/surface.h"
 #include "simd/targets.h"
+#include "simd/vertex_transform.h"
 #include "test_support.h"
 
 namespace relief {
@@ -146,6 +149,85 @@ TEST_CASE("simdFbmIsBitIdenticalToTheReferenceOnEveryTarget", "[simd]") {
   }
 }
 
+TEST_CASE("simdVertexTransformIsBitIdenticalToTheReferenceOnEveryTarget", "[simd]") {
+  const EachTarget targets;
+  TransformParams<float> t;
+  test::TestRandom random(4);
+  for (int c = 0; c < 3; ++c) {
+    t.row_x[c] = float(random.uniform(-2, 2));
+    t.row_y[c] = float(random.uniform(-2, 2));
+    t.row_w[c] = float(random.uniform(-1, 1));
+  }
+  t.z_clip = 0.5f;
+  const std::size_t count = 1000;
+  std::vector<float> dx(count), dz(count), height(count);
+  std::vector<std::uint8_t> need(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    dx[k] = float(random.uniform(-1e4, 1e4));
+    dz[k] = float(random.uniform(-1e4, 1e4));
+    height[k] = float(random.uniform(-500, 500));
+    need[k] = static_cast<std::uint8_t>(random.uniform(0, 4));  // kEvaluate | kDraw bits
+  }
+  const IndexRange range{5, count - 3};
+  for (const std::span<const std::uint8_t> mask :
+       {std::span<const std::uint8_t>(need), std::span<const std::uint8_t>()}) {
+    std::vector<float> e[4], g[4];
+    for (auto& v : e) {
+      v.assign(count, -7.0f);
+    }
+    transform_vertices<float>(t, range, dx, dz, height, mask, {e[0], e[1], e[2], e[3]});
+    for (const std::string& target : targets.runnable()) {
+      simd::force_target(target);
+      for (auto& v : g) {
+        v.assign(count, -7.0f);
+      }
+      simd::transform_vertices(t, range, dx, dz, height, mask, {g[0], g[1], g[2], g[3]});
+      INFO(target << ", mask of " << mask.size());
+      for (int c = 0; c < 4; ++c) {
+        CHECK(same_bits(g[c], e[c]));
+      }
+    }
+  }
+}
+
+TEST_CASE("simdSurfacePassIsBitIdenticalToTheReferenceOnEveryTarget", "[simd]") {
+  const EachTarget targets;
+  const Scene scene = resolve_scene("lake", {"grid.width=37", "grid.height=29"});
+  const NoiseLattice lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
+  const FramePlan plan = make_frame_plan(scene, lattice);
+  GridBuffers<float> grid(plan.layout);
+  run_terrain_stages(plan, grid);
+  const TerrainParams<float> params = make_terrain_params<float>(plan);
+  // Holes in the grid and a random need mask: every neighbour case of core/surface.cc.
+  test::TestRandom random(8);
+  std::vector<std::uint8_t> valid(grid.valid.begin(), grid.valid.end());
+  std::vector<std::uint8_t> need(valid.size());
+  for (std::size_t k = 0; k < valid.size(); ++k) {
+    valid[k] = valid[k] && random.uniform(0, 1) < 0.8 ? 1 : 0;
+    need[k] = static_cast<std::uint8_t>(random.uniform(0, 4));
+  }
+  for (const bool with_need : {true, false}) {
+    for (const RowRange rows : {RowRange{0, plan.layout.height}, RowRange{3, 11}}) {
+      const SurfaceInputs<float> in{
+          grid.dx, grid.dz, grid.height, valid,
+          with_need ? std::span<const std::uint8_t>(need) : std::span<const std::uint8_t>()};
+      GridBuffers<float> expected(plan.layout);
+      surface_pass<float>(params.surface, rows, in, expected.surface());
+      for (const std::string& target : targets.runnable()) {
+        simd::force_target(target);
+        GridBuffers<float> got(plan.layout);
+        simd::surface_pass(params.surface, rows, in, got.surface());
+        INFO(target << ", rows " << rows.begin << ".." << rows.end << ", need " << with_need);
+        CHECK(same_bits(got.nx, expected.nx));
+        CHECK(same_bits(got.ny, expected.ny));
+        CHECK(same_bits(got.nz, expected.nz));
+        CHECK(same_bits(got.slope, expected.slope));
+        CHECK(same_bits(got.water_depth, expected.water_depth));
+      }
+    }
+  }
+}
+
 // srgb_byte's own search (core/srgb.h), as the scalar frame runs it: the specification.
 TEST_CASE("everySrgbBucketSpansAtMostTwoCodesSoOneStepFindsTheCode", "[simd]") {
   const auto& points = srgb_detail::decision_points();
@@ -250,6 +332,36 @@ TEST_CASE("everyPresetRendersBitIdenticallyWithTheSimdBackendOnEveryTarget", "[s
       simd::force_target(target);
       INFO(preset << " on " << target);
       require_same_frames(render_frame(scene, resources, all_outputs(Backend::kSimd)), reference);
+    }
+  }
+}
+
+TEST_CASE("simdFramesMatchTheReferenceWithEverySkipOffAndAtOddSizes", "[simd]") {
+  const EachTarget targets;
+  FrameSkips none;
+  none.invalid_vertices = none.unseen_vertices = none.unused_octaves = none.empty_tiles = false;
+  none.water = none.fog = none.dither = none.specular = none.zero_weights = false;
+  for (const auto& [preset, overrides] :
+       std::vector<std::pair<const char*, std::vector<std::string>>>{
+           {"alpine", {"shading.triplanar=false", "viewport.width=131", "viewport.height=67"}},
+           {"lake", {"camera.pitch_deg=-35", "viewport.width=100", "viewport.height=71"}},
+           {"default", {"camera.pitch_deg=12", "viewport.width=97", "viewport.height=65"}}}) {
+    std::vector<std::string> all = {"grid.width=61", "grid.height=53"};
+    all.insert(all.end(), overrides.begin(), overrides.end());
+    const Scene scene = resolve_scene(preset, all);
+    const SceneResources resources = load_scene_resources(scene);
+    for (const bool skips : {true, false}) {
+      FrameRequest reference_request = all_outputs(Backend::kReference);
+      FrameRequest simd_request = all_outputs(Backend::kSimd);
+      if (!skips) {
+        reference_request.skips = simd_request.skips = none;
+      }
+      const Frame reference = render_frame(scene, resources, reference_request);
+      for (const std::string& target : targets.runnable()) {
+        simd::force_target(target);
+        INFO(preset << " on " << target << (skips ? "" : ", every skip off"));
+        require_same_frames(render_frame(scene, resources, simd_request), reference);
+      }
     }
   }
 }

@@ -1,0 +1,82 @@
+// Per-target sky and distance fog of core/sky.cc for float, one direction per lane:
+// sky_radiance, fog_color and apply_fog with the scalar code's operations in its order; the
+// scalar branches (above the horizon, no fog) become masks.
+// Included by a kernel's -inl.h inside its per-target section (Highway's re-inclusion guard).
+#if defined(RELIEF_SIMD_SKY_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef RELIEF_SIMD_SKY_INL_H_
+#undef RELIEF_SIMD_SKY_INL_H_
+#else
+#define RELIEF_SIMD_SKY_INL_H_
+#endif
+
+#include <hwy/highway.h>
+
+#include "core/stage_params.h"
+#include "simd/det_math-inl.h"
+#include "simd/shade_vec3-inl.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace relief::simd {
+namespace HWY_NAMESPACE {
+
+namespace hn = hwy::HWY_NAMESPACE;
+
+// power_of_half_cosine (sky.cc): clamp01((1 + c) 0.5) squared `squarings` times.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE V PowerOfHalfCosine(D d, V c, int squarings) {
+  V x = Clamp01(d, hn::Mul(hn::Add(hn::Set(d, 1.0f), c), hn::Set(d, 0.5f)));
+  for (int k = 0; k < squarings; ++k) {
+    x = hn::Mul(x, x);
+  }
+  return x;
+}
+
+// sky_radiance (sky.cc) of unit directions `dir`.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE V3<V> SkyRadiance(D d, const ShadeParams<float>& p, const V3<V>& dir) {
+  const V3<V> horizon = Set3(d, p.horizon);
+  V3<V> color = horizon;
+  const auto above = hn::Gt(dir.y, hn::Zero(d));
+  if (!hn::AllFalse(d, above)) {
+    // sqrt's domain is the lanes above the horizon; the others' result is discarded.
+    color = Select3(above, Mix3(horizon, Set3(d, p.zenith), hn::Sqrt(dir.y)), horizon);
+  }
+  const V c = Dot3(dir, Set3(d, p.sun_direction));
+  const float inner = p.sun_cos_inner, outer = p.sun_cos_outer;
+  V disc;
+  if (inner > outer) {
+    disc = Smooth01(d, hn::Div(hn::Sub(c, hn::Set(d, outer)), hn::Set(d, inner - outer)));
+  } else {
+    disc = hn::IfThenElseZero(hn::Ge(c, hn::Set(d, inner)), hn::Set(d, 1.0f));
+  }
+  const V halo = hn::Mul(hn::Set(d, float(0.06)), PowerOfHalfCosine(d, c, 5));
+  const V k = hn::Add(hn::Mul(hn::Set(d, 20.0f), disc), halo);
+  return Add3(color, Scale3(Set3(d, p.sun), k));
+}
+
+// fog_color (sky.cc): the horizon plus the sun's glow.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE V3<V> FogColor(D d, const ShadeParams<float>& p, const V3<V>& dir) {
+  const V c = Dot3(dir, Set3(d, p.sun_direction));
+  return Add3(Set3(d, p.horizon),
+              Scale3(Set3(d, p.sun), hn::Mul(hn::Set(d, float(0.05)), PowerOfHalfCosine(d, c, 3))));
+}
+
+// apply_fog (sky.cc): clear = exp2_det(-density distance); the radiance itself where clear is
+// not below 1, else mix(fog colour, radiance, clear).
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE V3<V> ApplyFog(D d, const ShadeParams<float>& p, const V3<V>& radiance, const V3<V>& dir,
+                          V distance) {
+  const V clear = Exp2Det(d, hn::Mul(hn::Set(d, -p.fog_density_log2), distance));
+  const auto fogged = hn::Lt(clear, hn::Set(d, 1.0f));
+  if (hn::AllFalse(d, fogged)) {
+    return radiance;
+  }
+  return Select3(fogged, Mix3(FogColor(d, p, dir), radiance, clear), radiance);
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace relief::simd
+HWY_AFTER_NAMESPACE();
+
+#endif  // include guard
