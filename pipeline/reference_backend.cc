@@ -12,6 +12,7 @@
 #include "core/vertex_transform.h"
 #include "pipeline/memory_budget.h"
 #include "simd/fbm.h"
+#include "simd/projected_domain.h"
 #include "simd/surface.h"
 #include "simd/vertex_transform.h"
 
@@ -82,6 +83,12 @@ void ReferenceBackend<Real>::run(StageId id, std::size_t begin, std::size_t end)
   const RowRange rows{static_cast<int>(begin), static_cast<int>(end)};
   switch (id) {
     case StageId::kProjectedDomain:
+      if constexpr (std::is_same_v<Real, float>) {
+        if (request_.backend == Backend::kSimd) {
+          simd::project_domain(params_.domain, params_.domain_rows, rows, grid_.domain());
+          return;
+        }
+      }
       project_domain<Real>(params_.domain, params_.domain_rows, rows, grid_.domain());
       return;
     case StageId::kOutcodes:

@@ -15,6 +15,7 @@
 #include "core/frame_plan.h"
 #include "core/lattice.h"
 #include "core/octave_coordinates.h"
+#include "core/projected_domain.h"
 #include "core/scene/scene_json.h"
 #include "core/srgb.h"
 #include "core/terrain_stages.h"
@@ -22,6 +23,7 @@
 #include "pipeline/frame.h"
 #include "pipeline/scene_resources.h"
 #include "simd/fbm.h"
+#include "simd/projected_domain.h"
 #include "simd/srgb.h"
 #include "simd/surface.h"
 #include "simd/targets.h"
@@ -224,6 +226,39 @@ TEST_CASE("simdSurfacePassIsBitIdenticalToTheReferenceOnEveryTarget", "[simd]") 
         CHECK(same_bits(got.slope, expected.slope));
         CHECK(same_bits(got.water_depth, expected.water_depth));
       }
+    }
+  }
+}
+
+TEST_CASE("simdProjectedDomainIsBitIdenticalToTheReferenceOnEveryTarget", "[simd]") {
+  const EachTarget targets;
+  for (const std::vector<std::string>& overrides : std::vector<std::vector<std::string>>{
+           {},
+           {"camera.pitch_deg=-90"},
+           {"camera.pitch_deg=25"},
+           {"camera.pitch_deg=-0.5", "camera.fov_y_deg=120"},
+           {"camera.position=[0, 20000, 0]", "camera.pitch_deg=-30"},
+           {"camera.position=[5e8, 2, -3e8]", "camera.far=1e6"},
+           {"terrain.lod.criterion=nyquist", "terrain.lod.bias=3"}}) {
+    std::vector<std::string> all = {"grid.width=83", "grid.height=47"};
+    all.insert(all.end(), overrides.begin(), overrides.end());
+    const Scene scene = resolve_scene("default", all);
+    const NoiseLattice lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
+    const FramePlan plan = make_frame_plan(scene, lattice);
+    const TerrainParams<float> params = make_terrain_params<float>(plan);
+    const RowRange rows{0, plan.layout.height};
+    GridBuffers<float> expected(plan.layout);
+    project_domain<float>(params.domain, params.domain_rows, rows, expected.domain());
+    for (const std::string& target : targets.runnable()) {
+      simd::force_target(target);
+      GridBuffers<float> got(plan.layout);
+      simd::project_domain(params.domain, params.domain_rows, rows, got.domain());
+      INFO(target << ", " << (overrides.empty() ? std::string("default") : overrides.front()));
+      CHECK(same_bits(got.dx, expected.dx));
+      CHECK(same_bits(got.dz, expected.dz));
+      CHECK(same_bits(got.sigma, expected.sigma));
+      CHECK(same_bits(got.nu, expected.nu));
+      CHECK(std::equal(got.valid.begin(), got.valid.end(), expected.valid.begin()));
     }
   }
 }
