@@ -6,12 +6,20 @@
 // point-octaves per second (items_per_second). Relief's fBm also forms each octave's lattice
 // coordinate camera-relative with the octave's offset, applies the LOD weight, and reads its
 // lattice from memory (four gathers per point-octave) where FastNoise2 hashes.
+//
+// BM_FrameStages/<backend>/<threads>: the default frame (1280 x 1024, 512 x 512 grid) by the
+// reference backend and by the simd backend (best target), one after the other in one run; a
+// counter per stage of the table holds its mean wall time in ms, and one per part of the fused
+// tile stage its CPU time summed over the threads ("cpu: ..."). The ratio per stage is the
+// reference's counter over the simd one.
 // Run: build/bench/relief_bench_simd --benchmark_repetitions=5
 //      --benchmark_report_aggregates_only=true
+#include <map>
 #include <string>
 #include <vector>
 
 #include <benchmark/benchmark.h>
+#include <tbb/global_control.h>
 
 #include "core/fbm.h"
 #include "core/frame_plan.h"
@@ -19,6 +27,8 @@
 #include "core/octave_coordinates.h"
 #include "core/scene/scene_json.h"
 #include "pipeline/build_info.h"
+#include "pipeline/frame.h"
+#include "pipeline/scene_resources.h"
 #include "simd/fbm.h"
 
 namespace relief {
@@ -82,7 +92,46 @@ void BM_Fbm_Simd(benchmark::State& state, std::string target) {
   force_simd_target("best");
 }
 
+struct DefaultScene {
+  Scene scene = resolve_scene("default", {});
+  SceneResources resources = load_scene_resources(scene);
+};
+
+DefaultScene& default_scene() {
+  static DefaultScene d;
+  return d;
+}
+
+void BM_FrameStages(benchmark::State& state, Backend backend) {
+  const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                  static_cast<std::size_t>(state.range(0)));
+  FrameRequest request;
+  request.backend = backend;
+  std::map<std::string, double> sums;
+  for (auto _ : state) {
+    const Frame frame = render_frame(default_scene().scene, default_scene().resources, request);
+    for (const StageTime& stage : frame.stats.stages) {
+      sums[stage.name] += stage.ms;
+    }
+    for (const StageTime& part : frame.stats.tile_parts) {
+      sums["cpu: " + part.name] += part.ms;
+    }
+    sums["frame"] += frame.stats.total_ms;
+  }
+  for (const auto& [name, ms] : sums) {
+    state.counters[name] = benchmark::Counter(ms / double(state.iterations()));
+  }
+}
+
 void register_benchmarks() {
+  for (const Backend backend : {Backend::kReference, Backend::kSimd}) {
+    benchmark::RegisterBenchmark(("BM_FrameStages/" + std::string(backend_name(backend))).c_str(),
+                                 BM_FrameStages, backend)
+        ->Arg(1)
+        ->Arg(2)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+  }
   benchmark::RegisterBenchmark("BM_Fbm_Scalar", BM_Fbm_Scalar)->Unit(benchmark::kMillisecond);
   for (const SimdTargetInfo& t : build_info().simd_targets) {
     if (t.supported) {

@@ -18,6 +18,14 @@ BuildInfo build_info() {
   return info;
 }
 
+std::string backend_label(Backend backend) {
+  std::string label(backend_name(backend));
+  if (backend == Backend::kSimd) {
+    label += " (" + simd::current_target() + ")";
+  }
+  return label;
+}
+
 void force_simd_target(std::string_view name) {
   try {
     simd::force_target(name);

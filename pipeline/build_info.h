@@ -7,6 +7,8 @@
 #include <string_view>
 #include <vector>
 
+#include "pipeline/frame.h"
+
 namespace relief {
 
 struct SimdTargetInfo {
@@ -25,6 +27,9 @@ struct BuildInfo {
 };
 
 BuildInfo build_info();
+
+// The backend's name as reports print it: "simd (AVX3)" names the target it runs on.
+std::string backend_label(Backend backend);
 
 class SimdTargetError : public std::invalid_argument {
  public:

@@ -118,9 +118,9 @@ void add_backend(CLI::App* command, std::string& backend, std::string& simd_targ
   }
   command
       ->add_option("--backend", backend,
-                   "Implementation of the stages: reference (float, the default), simd "
-                   "(Highway kernels, bit-identical to reference) or reference-double (every "
-                   "stage in double, for accuracy comparisons)")
+                   "Implementation of the stages: simd (the default: Highway kernels), "
+                   "reference (the scalar float stages; simd gives their bytes exactly) or "
+                   "reference-double (every stage in double, for accuracy comparisons)")
       ->check(CLI::Validator(
           [names](std::string& text) -> std::string {
             return backend_from_name(text) ? "" : "unknown backend; allowed: " + names;
@@ -175,7 +175,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   add_threads(stages_cmd, threads);
   std::string max_memory;
   add_max_memory(stages_cmd, max_memory);
-  std::string backend = "reference";
+  std::string backend = "simd";
   std::string simd_target;
   add_backend(stages_cmd, backend, simd_target);
 

@@ -14,7 +14,7 @@ namespace relief {
 struct StagesOptions {
   std::string out_dir;  // empty: scene.output.stages_dir
   int repeat = 1;
-  Backend backend = Backend::kReference;
+  Backend backend = Backend::kSimd;
   MemoryBudget budget;
 };
 
@@ -30,7 +30,7 @@ struct RenderOptions {
   // Extra per-pixel outputs (pipeline/frame.h), each written only when named.
   std::string depth_output, primitive_output, normal_output, height_output, octaves_output;
   int repeat = 1;
-  Backend backend = Backend::kReference;
+  Backend backend = Backend::kSimd;
   MemoryBudget budget;
   bool stats = false;      // per stage: ran or skipped, time, work counters
   std::string stats_json;  // the same as a JSON file (empty: none)

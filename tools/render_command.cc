@@ -4,6 +4,7 @@
 #include <ostream>
 #include <vector>
 
+#include "pipeline/build_info.h"
 #include "pipeline/frame.h"
 #include "pipeline/image_io.h"
 #include "pipeline/job_memory.h"
@@ -87,7 +88,7 @@ int run_render_command(const Scene& scene, const RenderOptions& options, std::os
 
   out << std::fixed << std::setprecision(3) << image.width << "x" << image.height << " image, "
       << scene.grid.width << "x" << scene.grid.height << " grid, backend "
-      << backend_name(request.backend) << ", median of " << options.repeat << " run(s):\n";
+      << backend_label(request.backend) << ", median of " << options.repeat << " run(s):\n";
   if (options.stats) {
     print_stage_stats(out, runs);
   } else {

@@ -2,6 +2,7 @@
 
 #include <iomanip>
 
+#include "pipeline/build_info.h"
 #include "pipeline/statistics.h"
 
 namespace relief {
@@ -81,6 +82,7 @@ nlohmann::json stage_stats_json(const Scene& scene, Backend backend, const Rende
   return {{"image", {{"width", scene.viewport.width}, {"height", scene.viewport.height}}},
           {"grid", {{"width", scene.grid.width}, {"height", scene.grid.height}}},
           {"backend", std::string(backend_name(backend))},
+          {"simd_target", backend == Backend::kSimd ? build_info().simd_target : std::string()},
           {"runs", runs.totals.size()},
           {"frame_ms", median(runs.totals)},
           {"setup_ms", runs.setup_ms},

@@ -5,6 +5,7 @@
 
 #include "core/frame_plan.h"
 #include "core/lattice.h"
+#include "pipeline/build_info.h"
 #include "pipeline/frame.h"
 #include "pipeline/job_memory.h"
 #include "pipeline/statistics.h"
@@ -70,7 +71,7 @@ int run_stages_command(const Scene& scene, const StagesOptions& options, std::os
   write_stage_outputs(dir, scene, plan, buffers);
   out << std::fixed << std::setprecision(3) << "grid " << plan.layout.width << "x"
       << plan.layout.height << ", " << plan.terrain.octaves.count << " octaves, backend "
-      << backend_name(options.backend) << ", median of " << options.repeat << " run(s):\n";
+      << backend_label(options.backend) << ", median of " << options.repeat << " run(s):\n";
   for (std::size_t s = 0; s < times.front().size(); ++s) {
     std::vector<double> values;
     for (const std::vector<StageTime>& run_times : times) {
