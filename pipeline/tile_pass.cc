@@ -4,9 +4,11 @@
 #include <chrono>
 #include <memory>
 #include <type_traits>
+#include <vector>
 
 #include "core/srgb.h"
 #include "raster/resolve.h"
+#include "simd/raster_tile.h"
 #include "simd/resolve.h"
 #include "simd/shade.h"
 #include "simd/srgb.h"
@@ -40,6 +42,33 @@ struct ResolveScratch {
 };
 
 }  // namespace
+
+void rasterize_tile_simd(std::span<const raster::SetupChunk> chunks, const raster::TileGrid& tiles,
+                         int tile, const raster::RasterState& state, raster::TileVisibility& out) {
+  static_assert(int(raster::DepthTest::kGreater) == int(simd::DepthCompare::kGreater) &&
+                int(raster::DepthTest::kGreaterEqual) == int(simd::DepthCompare::kGreaterEqual) &&
+                int(raster::DepthTest::kLess) == int(simd::DepthCompare::kLess) &&
+                int(raster::DepthTest::kLessEqual) == int(simd::DepthCompare::kLessEqual) &&
+                int(raster::DepthTest::kEqual) == int(simd::DepthCompare::kEqual) &&
+                int(raster::DepthTest::kAlways) == int(simd::DepthCompare::kAlways) &&
+                int(raster::DepthTest::kNever) == int(simd::DepthCompare::kNever));
+  raster::clear_tile(tiles, tile, state, out);
+  const int tx = tile % tiles.columns * raster::kTileSize;
+  const int ty = tile / tiles.columns * raster::kTileSize;
+  std::vector<simd::EdgeTriangle> list;
+  list.reserve(raster::tile_entry_count(chunks, tile));
+  for (const raster::SetupChunk& chunk : chunks) {
+    for (std::uint32_t e = chunk.tile_start[tile]; e < chunk.tile_start[tile + 1]; ++e) {
+      // Clipped to the tile as raster's draw_in_tile clips it.
+      const raster::RasterTriangle& t = chunk.triangles[chunk.entries[e]];
+      list.push_back({t.c, t.a, t.b, std::max(t.x0, tx), std::min(t.x1, tx + raster::kTileSize - 1),
+                      std::max(t.y0, ty), std::min(t.y1, ty + raster::kTileSize - 1), t.z0, t.dzdx,
+                      t.dzdy, t.primitive});
+    }
+  }
+  simd::draw_triangles(list.data(), list.size(), simd::DepthCompare(int(state.depth_test)),
+                       {out.x0, out.y0, out.depth, out.primitive});
+}
 
 template <class Real>
 TilePass<Real>::TilePass(const raster::RasterState& state, const raster::GridTriangles& triangles,
@@ -201,7 +230,9 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
   const Clock::time_point start = Clock::now();
   const std::uint64_t entries = raster::tile_entry_count(chunks, tile);
   const bool drawn = entries > 0 || !skip_empty;
-  if (drawn) {
+  if (drawn && simd_) {
+    rasterize_tile_simd(chunks, tiles, tile, state_, vis);
+  } else if (drawn) {
     raster::rasterize_tile(chunks, tiles, tile, state_, vis);
   } else {
     raster::clear_tile(tiles, tile, state_, vis);  // nothing binned: nothing covered

@@ -79,6 +79,11 @@ struct TileTimes {
   }
 };
 
+// raster::rasterize_tile with the simd kernel of its inner loop (simd/raster_tile.h): the
+// same visibility, bit for bit.
+void rasterize_tile_simd(std::span<const raster::SetupChunk> chunks, const raster::TileGrid& tiles,
+                         int tile, const raster::RasterState& state, raster::TileVisibility& out);
+
 template <class Real>
 class TilePass {
  public:

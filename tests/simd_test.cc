@@ -22,6 +22,9 @@
 #include "core/vertex_transform.h"
 #include "pipeline/frame.h"
 #include "pipeline/scene_resources.h"
+#include "pipeline/tile_pass.h"
+#include "raster/bins.h"
+#include "raster/topology.h"
 #include "simd/fbm.h"
 #include "simd/projected_domain.h"
 #include "simd/srgb.h"
@@ -259,6 +262,57 @@ TEST_CASE("simdProjectedDomainIsBitIdenticalToTheReferenceOnEveryTarget", "[simd
       CHECK(same_bits(got.sigma, expected.sigma));
       CHECK(same_bits(got.nu, expected.nu));
       CHECK(std::equal(got.valid.begin(), got.valid.end(), expected.valid.begin()));
+    }
+  }
+}
+
+TEST_CASE("simdRasterInnerLoopIsBitIdenticalForEveryDepthTestOnEveryTarget", "[simd]") {
+  const EachTarget targets;
+  // A soup of overlapping triangles in front of the camera, with shared depths for the ties.
+  test::TestRandom random(12);
+  const std::size_t count = 3000;
+  std::vector<float> x, y, z, w;
+  std::vector<std::uint32_t> indices;
+  for (std::size_t t = 0; t < count; ++t) {
+    const double cx = random.uniform(-1.2, 1.2), cy = random.uniform(-1.2, 1.2);
+    const double size = random.uniform(0.002, 0.3);
+    const float depth = float(int(random.uniform(0, 8)) / 8.0);
+    for (int v = 0; v < 3; ++v) {
+      const float vw = float(random.uniform(1, 3));
+      x.push_back(float((cx + random.uniform(-size, size)) * vw));
+      y.push_back(float((cy + random.uniform(-size, size)) * vw));
+      z.push_back(random.uniform(0, 1) < 0.5 ? depth * vw : float(random.uniform(0, 1)) * vw);
+      w.push_back(vw);
+      indices.push_back(static_cast<std::uint32_t>(indices.size()));
+    }
+  }
+  for (const raster::DepthTest test :
+       {raster::DepthTest::kGreater, raster::DepthTest::kGreaterEqual, raster::DepthTest::kLess,
+        raster::DepthTest::kLessEqual, raster::DepthTest::kEqual, raster::DepthTest::kAlways,
+        raster::DepthTest::kNever}) {
+    raster::RasterState state;
+    state.width = 203;
+    state.height = 131;
+    state.viewport = {0.0, 0.0, 203.0, 131.0};
+    state.cull = raster::CullMode::kNone;
+    state.depth_test = test;
+    state.depth_clear = test == raster::DepthTest::kGreater ? 0.0f : 0.5f;
+    const raster::TriangleSetup setup(state);
+    const raster::TileGrid tiles = raster::make_tile_grid(state);
+    std::vector<raster::SetupChunk> chunks(1);
+    raster::setup_chunk(setup, raster::ClipVertices{x, y, z, w}, raster::IndexedTriangles{indices},
+                        0, chunks[0]);
+    raster::bin_chunk(chunks[0], tiles);
+    for (int tile = 0; tile < tiles.count(); ++tile) {
+      raster::TileVisibility expected, got;
+      raster::rasterize_tile(chunks, tiles, tile, state, expected);
+      for (const std::string& target : targets.runnable()) {
+        simd::force_target(target);
+        rasterize_tile_simd(chunks, tiles, tile, state, got);
+        INFO(target << ", depth test " << int(test) << ", tile " << tile);
+        REQUIRE(std::memcmp(got.depth, expected.depth, sizeof(got.depth)) == 0);
+        REQUIRE(std::memcmp(got.primitive, expected.primitive, sizeof(got.primitive)) == 0);
+      }
     }
   }
 }
