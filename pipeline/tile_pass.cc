@@ -155,8 +155,8 @@ void TilePass<Real>::resolve(const raster::TileVisibility& visibility, TileAttri
   }
 }
 
-// Stage 7 with the simd kernel (simd/resolve.h): the triangles' planes set up here per run of
-// pixels, exactly as resolve() sets them up, then every pixel in double lanes.
+// Stage 7 with the simd kernels (simd/resolve.h): a slot per run of pixels a triangle wins, as
+// resolve() sets a plane up per run; the slots' planes, then every pixel, in double lanes.
 template <class Real>
 void TilePass<Real>::resolve_simd(const raster::TileVisibility& visibility,
                                   TileAttributes<Real>& out, TileWork& work) const {
@@ -177,15 +177,7 @@ void TilePass<Real>::resolve_simd(const raster::TileVisibility& visibility,
           cached = primitive;
           std::uint32_t v[3];
           triangles_.vertices(primitive, v);
-          double x[3], y[3], w[3];
           for (int i = 0; i < 3; ++i) {
-            position(v[i], x[i], y[i], w[i]);
-          }
-          const raster::PerspectivePlane plane(x, y, w);
-          for (int i = 0; i < 3; ++i) {
-            scratch->k[i][slots] = plane.k[i];
-            scratch->ku[i][slots] = plane.ku[i];
-            scratch->kv[i][slots] = plane.kv[i];
             scratch->vertex[i][slots] = static_cast<std::int32_t>(v[i]);
           }
           ++slots;
@@ -196,6 +188,15 @@ void TilePass<Real>::resolve_simd(const raster::TileVisibility& visibility,
     if (slots == 0) {
       return;
     }
+    // The slots' planes (raster::PerspectivePlane from VertexPositions), in double lanes.
+    const std::int32_t* const vertex[3] = {scratch->vertex[0], scratch->vertex[1],
+                                           scratch->vertex[2]};
+    double* const k[3] = {scratch->k[0], scratch->k[1], scratch->k[2]};
+    double* const ku[3] = {scratch->ku[0], scratch->ku[1], scratch->ku[2]};
+    double* const kv[3] = {scratch->kv[0], scratch->kv[1], scratch->kv[2]};
+    simd::set_up_planes(streams_.clip_x.data(), streams_.clip_y.data(), streams_.clip_w.data(),
+                        {scale_x_, scale_y_, translate_x_, translate_y_}, vertex,
+                        static_cast<std::size_t>(slots), k, ku, kv);
     const VertexStreams<Real>& s = streams_;
     const bool with_nu = outputs_.octaves && !s.nu.empty();
     const simd::ResolveSlots table{{scratch->k[0], scratch->k[1], scratch->k[2]},

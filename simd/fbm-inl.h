@@ -15,6 +15,7 @@
 
 #include "core/fbm.h"
 #include "core/octave_coordinates.h"
+#include "simd/fbm_lattice-inl.h"
 #include "simd/lattice-inl.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -96,7 +97,7 @@ HWY_INLINE V FbmVector(D d, const FbmParams<float>& c, const LatticeView& lattic
         hn::Add(hn::Set(d, c.offset_x[n]), ScaledCoordinate(d, c, n, dx, ux, dx_hi, dx_lo)), wx);
     const V pz = hn::Add(
         hn::Add(hn::Set(d, c.offset_z[n]), ScaledCoordinate(d, c, n, dz, uz, dz_hi, dz_lo)), wz);
-    return SampleLattice<kKind>(d, lattice, period, inv_period, px, pz);
+    return SampleLatticeWindowed<kKind>(d, lattice, period, inv_period, px, pz);
   };
   // First the octaves every needed lane sums whole, without masks: weight 1, and (1 a_n) S is
   // a_n S exactly.

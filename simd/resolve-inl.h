@@ -51,6 +51,53 @@ HWY_INLINE V At(const V b[3], const V a[3]) {
   return hn::Add(hn::Add(hn::Mul(b[0], a[0]), hn::Mul(b[1], a[1])), hn::Mul(b[2], a[2]));
 }
 
+void SetUpPlanes(const float* HWY_RESTRICT clip_x, const float* HWY_RESTRICT clip_y,
+                 const float* HWY_RESTRICT clip_w, const WindowTransform& window,
+                 const std::int32_t* const vertex[3], std::size_t count, double* const k[3],
+                 double* const ku[3], double* const kv[3]) {
+  const hn::ScalableTag<double> d;
+  const hn::Rebind<float, decltype(d)> df;
+  const hn::Rebind<std::int32_t, decltype(d)> di;
+  using V = hn::Vec<decltype(d)>;
+  const std::size_t lanes = hn::Lanes(d);
+  const V scale_x = hn::Set(d, window.scale_x), scale_y = hn::Set(d, window.scale_y);
+  const V translate_x = hn::Set(d, window.translate_x);
+  const V translate_y = hn::Set(d, window.translate_y);
+  for (std::size_t s = 0; s < count; s += lanes) {
+    // Past the last slot, lanes use slot 0's vertices and are not stored.
+    HWY_ALIGN std::int32_t index[3][HWY_MAX_BYTES / sizeof(double)] = {};
+    for (int c = 0; c < 3; ++c) {
+      for (std::size_t l = 0; l < lanes; ++l) {
+        index[c][l] = s + l < count ? vertex[c][s + l] : vertex[c][0];
+      }
+    }
+    V x[3], y[3], w[3];
+    for (int c = 0; c < 3; ++c) {
+      const auto v = hn::Load(di, index[c]);
+      // VertexPositions::get: X = x s_x + W t_x, Y = y s_y + W t_y, in double.
+      w[c] = hn::PromoteTo(d, hn::GatherIndex(df, clip_w, v));
+      x[c] = hn::Add(hn::Mul(hn::PromoteTo(d, hn::GatherIndex(df, clip_x, v)), scale_x),
+                     hn::Mul(w[c], translate_x));
+      y[c] = hn::Add(hn::Mul(hn::PromoteTo(d, hn::GatherIndex(df, clip_y, v)), scale_y),
+                     hn::Mul(w[c], translate_y));
+    }
+    HWY_ALIGN double out[9][HWY_MAX_BYTES / sizeof(double)];
+    for (int i = 0; i < 3; ++i) {
+      const int a = (i + 1) % 3, b = (i + 2) % 3;
+      hn::Store(hn::Sub(hn::Mul(x[a], y[b]), hn::Mul(y[a], x[b])), d, out[i]);
+      hn::Store(hn::Sub(hn::Mul(y[a], w[b]), hn::Mul(w[a], y[b])), d, out[3 + i]);
+      hn::Store(hn::Sub(hn::Mul(w[a], x[b]), hn::Mul(x[a], w[b])), d, out[6 + i]);
+    }
+    for (std::size_t l = 0; l < lanes && s + l < count; ++l) {
+      for (int i = 0; i < 3; ++i) {
+        k[i][s + l] = out[i][l];
+        ku[i][s + l] = out[3 + i][l];
+        kv[i][s + l] = out[6 + i][l];
+      }
+    }
+  }
+}
+
 void ResolveRect(const ResolveSlots& slots, const ResolveStreams& streams,
                  const std::int32_t* HWY_RESTRICT slot, int x0, int y0, int width, int height,
                  int stride, const ResolveTargets& out) {

@@ -12,6 +12,14 @@
 namespace relief::simd {
 
 HWY_EXPORT(ResolveRect);
+HWY_EXPORT(SetUpPlanes);
+
+void set_up_planes(const float* clip_x, const float* clip_y, const float* clip_w,
+                   const WindowTransform& window, const std::int32_t* const vertex[3],
+                   std::size_t count, double* const k[3], double* const ku[3],
+                   double* const kv[3]) {
+  HWY_DYNAMIC_DISPATCH(SetUpPlanes)(clip_x, clip_y, clip_w, window, vertex, count, k, ku, kv);
+}
 
 void resolve_rect(const ResolveSlots& slots, const ResolveStreams& streams,
                   const std::int32_t* slot, int x0, int y0, int width, int height, int stride,

@@ -5,6 +5,7 @@
 // order, rounded once to float. Bit-identical to the scalar resolve on every target.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 namespace relief::simd {
@@ -31,6 +32,18 @@ struct ResolveTargets {
   float *dx, *dz, *height, *dx_ddx, *dx_ddy, *dz_ddx, *dz_ddy, *height_ddx, *height_ddy;
   float *nx, *ny, *nz, *slope, *water_depth, *nu;
 };
+
+// The window transform of the clip coordinates (raster::VertexPositions): X = x scale_x +
+// w translate_x, Y likewise, W = w, in double.
+struct WindowTransform {
+  double scale_x, scale_y, translate_x, translate_y;
+};
+
+// raster::PerspectivePlane of slots [0, count) from their vertices' clip coordinates (float,
+// per grid vertex): fills the k, ku, kv arrays that `slots` points to (writable here).
+void set_up_planes(const float* clip_x, const float* clip_y, const float* clip_w,
+                   const WindowTransform& window, const std::int32_t* const vertex[3],
+                   std::size_t count, double* const k[3], double* const ku[3], double* const kv[3]);
 
 // Pixel (x0 + i, y0 + j) of the rectangle has index j * stride + i in `slot` (the slot of the
 // triangle that covers it, -1 where none does) and in the targets. `stride` is a multiple of
