@@ -1,6 +1,7 @@
 #include "raster/bins.h"
 
 #include <algorithm>
+#include <type_traits>
 
 #include "raster/topology.h"
 
@@ -60,6 +61,23 @@ void for_each_triangle_of_chunk(const Source& source, std::size_t chunk, SetUpOn
   }
 }
 
+// A thread's buffer for one chunk's triangles, reused chunk after chunk (cleared here), so
+// that the chunk's own storage is allocated once, at its size.
+std::vector<RasterTriangle>& chunk_scratch() {
+  thread_local std::vector<RasterTriangle> pieces;
+  pieces.clear();
+  return pieces;
+}
+
+// The bin entries of a chunk's triangles, counted while they are in cache (bin_size).
+std::uint64_t count_bin_entries(const RasterTriangles& triangles) {
+  std::uint64_t entries = 0;
+  for (const RasterTriangle& t : triangles) {
+    entries += tiles_touched(t);
+  }
+  return entries;
+}
+
 }  // namespace
 
 template <class Source>
@@ -67,35 +85,51 @@ void setup_chunk(const TriangleSetup& setup, ClipVertices vertices, const Source
                  std::size_t chunk, SetupChunk& out) {
   out.triangles.clear();
   out.submitted = 0;
-  for_each_triangle_of_chunk(source, chunk, [&](std::uint32_t t, const std::uint32_t v[3]) {
-    ++out.submitted;
-    const ClipVertex clip[3] = {
-        {vertices.x[v[0]], vertices.y[v[0]], vertices.z[v[0]], vertices.w[v[0]]},
-        {vertices.x[v[1]], vertices.y[v[1]], vertices.z[v[1]], vertices.w[v[1]]},
-        {vertices.x[v[2]], vertices.y[v[2]], vertices.z[v[2]], vertices.w[v[2]]}};
-    setup.setup_clip(t, clip, out.triangles);
-  });
+  if constexpr (std::is_same_v<Source, GridTriangles>) {
+    // Each vertex of the chunk's triangles prepared once, then the triangles from those values.
+    const auto begin = static_cast<std::uint32_t>(chunk * kSetupChunk);
+    const std::uint32_t end = chunk_end(source, chunk);
+    if (begin < end) {
+      thread_local PreparedVertices prepared;  // scratch, filled before every use
+      const GridTriangles::VertexSpan span = source.vertex_span(begin, end);
+      setup.prepare_vertices(vertices, span.first, span.last, source.valid, source.need, prepared);
+      setup.setup_grid(vertices, source, begin, end, prepared, out.submitted, out.triangles);
+    }
+  } else {
+    std::vector<RasterTriangle>& pieces = chunk_scratch();
+    for_each_triangle_of_chunk(source, chunk, [&](std::uint32_t t, const std::uint32_t v[3]) {
+      ++out.submitted;
+      const ClipVertex clip[3] = {
+          {vertices.x[v[0]], vertices.y[v[0]], vertices.z[v[0]], vertices.w[v[0]]},
+          {vertices.x[v[1]], vertices.y[v[1]], vertices.z[v[1]], vertices.w[v[1]]},
+          {vertices.x[v[2]], vertices.y[v[2]], vertices.z[v[2]], vertices.w[v[2]]}};
+      setup.setup_clip(t, clip, pieces);
+    });
+    out.triangles.assign(pieces.begin(), pieces.end());
+  }
+  out.bin_entries = count_bin_entries(out.triangles);
 }
 
 void setup_window_chunk(const TriangleSetup& setup, WindowVertices vertices,
                         const IndexedTriangles& source, std::size_t chunk, SetupChunk& out) {
   out.triangles.clear();
   out.submitted = 0;
+  std::vector<RasterTriangle>& pieces = chunk_scratch();
   for_each_triangle_of_chunk(source, chunk, [&](std::uint32_t t, const std::uint32_t v[3]) {
     ++out.submitted;
     const float x[3] = {vertices.x[v[0]], vertices.x[v[1]], vertices.x[v[2]]};
     const float y[3] = {vertices.y[v[0]], vertices.y[v[1]], vertices.y[v[2]]};
     const float z[3] = {vertices.z[v[0]], vertices.z[v[1]], vertices.z[v[2]]};
-    setup.setup_window(t, x, y, z, out.triangles);
+    setup.setup_window(t, x, y, z, pieces);
   });
+  out.triangles.assign(pieces.begin(), pieces.end());
+  out.bin_entries = count_bin_entries(out.triangles);
 }
 
 BinSize bin_size(std::span<const SetupChunk> chunks, const TileGrid& tiles) {
   BinSize size;
   for (const SetupChunk& chunk : chunks) {
-    for (const RasterTriangle& t : chunk.triangles) {
-      size.entries += tiles_touched(t);
-    }
+    size.entries += chunk.bin_entries;
   }
   // Per chunk: the tile offsets and the fill cursors, (tiles + 1) + tiles entries.
   size.bytes = (chunks.size() * (2 * std::uint64_t(tiles.count()) + 1) + size.entries) *

@@ -21,7 +21,8 @@ namespace relief::raster {
 // entries[tile_start[k] .. tile_start[k + 1]), indices into triangles, in submission order.
 struct SetupChunk {
   std::uint32_t submitted = 0;  // triangles of the chunk its source draws (before culling)
-  std::vector<RasterTriangle> triangles;
+  RasterTriangles triangles;
+  std::uint64_t bin_entries = 0;  // tiles the triangles' bounding boxes touch, summed
   std::vector<std::uint32_t> tile_start;
   std::vector<std::uint32_t> entries;
 };
@@ -40,7 +41,8 @@ inline std::size_t setup_chunk_count(std::uint32_t triangle_count) {
 }
 
 // Sets up the triangles of chunk `chunk` (triangles chunk * kSetupChunk onwards) of `source`,
-// whose vertex positions are `vertices`, into out.triangles (cleared first).
+// whose vertex positions are `vertices`, into out.triangles (cleared first); sets
+// out.submitted and out.bin_entries.
 template <class Source>
 void setup_chunk(const TriangleSetup& setup, ClipVertices vertices, const Source& source,
                  std::size_t chunk, SetupChunk& out);
@@ -50,8 +52,8 @@ void setup_window_chunk(const TriangleSetup& setup, WindowVertices vertices,
                         const IndexedTriangles& source, std::size_t chunk, SetupChunk& out);
 
 // Memory the bins of `chunks` will take once binned (entries counted from the triangles'
-// bounding boxes, in O(triangles), plus each chunk's tile offsets and fill cursors), and the
-// entries alone.
+// bounding boxes, as setup_chunk and setup_window_chunk left them in bin_entries, plus each
+// chunk's tile offsets and fill cursors), and the entries alone.
 struct BinSize {
   std::uint64_t entries = 0;
   std::uint64_t bytes = 0;

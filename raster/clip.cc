@@ -1,7 +1,6 @@
 #include "raster/clip.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -16,25 +15,6 @@ enum Plane { kNear = 0, kFar = 1, kRight = 2, kLeft = 3, kTop = 4, kBottom = 5 }
 float flush_denormal(float c) {
   // c * 0 keeps the sign, as the x86 DAZ flag does.
   return std::abs(c) < std::numeric_limits<float>::min() ? c * 0.0f : c;
-}
-
-// Zero or a normal finite float: neither the all-ones exponent (infinity, NaN) nor a zero
-// exponent with a non-zero fraction (a denormal). The common case, tested on the bits.
-bool ordinary(float c) {
-  const std::uint32_t bits = std::bit_cast<std::uint32_t>(c);
-  const std::uint32_t exponent = (bits >> 23) & 0xffu;
-  return exponent != 0xffu && (exponent != 0u || (bits & 0x7fffffu) == 0u);
-}
-
-// Bit p set when vertex v is outside plane p: the signs of plane_distance, computed the same
-// way, for all six planes at once.
-unsigned outcode(const ClipVertex& v, double gx, double gy) {
-  const double x = v.x, y = v.y, z = v.z, w = v.w;
-  const double gxw = gx * w, gyw = gy * w;
-  // NaN distances count as outside: a vertex with a NaN coordinate is never drawn.
-  return unsigned(!(w - z >= 0.0)) << kNear | unsigned(!(z >= 0.0)) << kFar |
-         unsigned(!(gxw - x >= 0.0)) << kRight | unsigned(!(gxw + x >= 0.0)) << kLeft |
-         unsigned(!(gyw - y >= 0.0)) << kTop | unsigned(!(gyw + y >= 0.0)) << kBottom;
 }
 
 double plane_distance(const PolygonVertex& v, int plane, double gx, double gy) {
@@ -95,8 +75,9 @@ PolygonVertex intersect(const PolygonVertex& s, const PolygonVertex& e, double d
 bool prepare_clip_input(const ClipVertex in[3], ClipVertex out[3]) {
   bool all_ordinary = true;
   for (int k = 0; k < 3; ++k) {
-    all_ordinary = all_ordinary && ordinary(in[k].x) && ordinary(in[k].y) && ordinary(in[k].z) &&
-                   ordinary(in[k].w);
+    all_ordinary = all_ordinary && ordinary_clip_coordinate(in[k].x) &&
+                   ordinary_clip_coordinate(in[k].y) && ordinary_clip_coordinate(in[k].z) &&
+                   ordinary_clip_coordinate(in[k].w);
   }
   if (all_ordinary) {  // nothing to flush or reject but the origin
     for (int k = 0; k < 3; ++k) {
@@ -124,8 +105,8 @@ ClipOutcome clip_triangle(const ClipVertex in[3], const ClipPlanes& planes,
                           PolygonVertex out[kMaxClippedVertices], int& count) {
   const double gx = planes.guard_x;
   const double gy = planes.guard_y;
-  const unsigned c0 = outcode(in[0], gx, gy), c1 = outcode(in[1], gx, gy),
-                 c2 = outcode(in[2], gx, gy);
+  const unsigned c0 = clip_outcode(in[0], planes), c1 = clip_outcode(in[1], planes),
+                 c2 = clip_outcode(in[2], planes);
   if ((c0 & c1 & c2) != 0u) {  // all three outside one plane
     count = 0;
     return ClipOutcome::kOutside;

@@ -31,6 +31,9 @@
 // |y| <= g_y w up to a few ulps: finite window coordinates inside the guard band.
 #pragma once
 
+#include <bit>
+#include <cstdint>
+
 namespace relief::raster {
 
 struct ClipVertex {
@@ -66,6 +69,35 @@ struct PolygonVertex {
 };
 
 enum class ClipOutcome { kInside, kOutside, kClipped };
+
+// Zero or a normal finite float: neither the all-ones exponent (infinity, NaN) nor a zero
+// exponent with a non-zero fraction (a denormal). Tested on the bits.
+inline bool ordinary_clip_coordinate(float c) {
+  const std::uint32_t bits = std::bit_cast<std::uint32_t>(c);
+  const std::uint32_t exponent = (bits >> 23) & 0xffu;
+  return exponent != 0xffu && (exponent != 0u || (bits & 0x7fffffu) == 0u);
+}
+
+// A vertex that prepare_clip_input passes through unchanged whatever the other two are: four
+// ordinary coordinates, not all zero. A triangle of three such vertices is prepared as itself.
+inline bool plain_clip_vertex(const ClipVertex& v) {
+  return ordinary_clip_coordinate(v.x) && ordinary_clip_coordinate(v.y) &&
+         ordinary_clip_coordinate(v.z) && ordinary_clip_coordinate(v.w) &&
+         !(v.x == 0.0f && v.y == 0.0f && v.z == 0.0f && v.w == 0.0f);
+}
+
+// Bit p set when vertex v is outside plane p (0 near, 1 far, 2 right, 3 left, 4 top,
+// 5 bottom): what clip_triangle classifies a prepared triangle's vertices by (0 for all
+// three: kInside; a bit common to all three: kOutside). NaN distances count as outside.
+inline constexpr unsigned kClipOutcodeMask = 0x3fu;
+inline unsigned clip_outcode(const ClipVertex& v, const ClipPlanes& planes) {
+  const double gx = planes.guard_x, gy = planes.guard_y;
+  const double x = v.x, y = v.y, z = v.z, w = v.w;
+  const double gxw = gx * w, gyw = gy * w;
+  return unsigned(!(w - z >= 0.0)) << 0 | unsigned(!(z >= 0.0)) << 1 |
+         unsigned(!(gxw - x >= 0.0)) << 2 | unsigned(!(gxw + x >= 0.0)) << 3 |
+         unsigned(!(gyw - y >= 0.0)) << 4 | unsigned(!(gyw + y >= 0.0)) << 5;
+}
 
 // Classifies the triangle (precondition: prepared by prepare_clip_input; other input is safe
 // but NaN coordinates count as outside). kInside: count = 3, `out` unused. kOutside: count = 0.

@@ -4,6 +4,7 @@
 // glDrawElements(GL_TRIANGLES, ...).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 
@@ -52,6 +53,21 @@ struct GridTriangles {
     v[2] = (t & 1) ? d : c;
     return valid[a] && valid[b] && valid[c] && valid[d] &&
            (need.empty() || (need[v[0]] & need[v[1]] & need[v[2]] & 2u) != 0);
+  }
+  // Vertex indices [first, last) that hold every vertex of triangles [begin, end)
+  // (begin < end <= count()): from corner a of the first one's cell to corner c of the last
+  // one's (vertex indices grow with the cell).
+  struct VertexSpan {
+    std::size_t first, last;
+  };
+  VertexSpan vertex_span(std::uint32_t begin, std::uint32_t end) const {
+    const auto columns = static_cast<std::uint32_t>(layout.width - 1);
+    const std::uint32_t first_cell = begin >> 1, last_cell = (end - 1) >> 1;
+    return {layout.index(static_cast<int>(first_cell % columns),
+                         static_cast<int>(first_cell / columns)),
+            layout.index(static_cast<int>(last_cell % columns) + 1,
+                         static_cast<int>(last_cell / columns) + 1) +
+                1};
   }
 };
 

@@ -1,42 +1,18 @@
 #include "raster/triangle_setup.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstring>
+#include <limits>
+#include <memory>
 #include <utility>
+
+#include "raster/setup_internal.h"
 
 namespace relief::raster {
 
-namespace {
-
-// floor(a / 256) and ceil(a / 256) for any sign (C++ division truncates toward zero).
-std::int64_t floor_div(std::int64_t a) {
-  return a >= 0 ? a / kSubpixelScale : -((-a + kSubpixelScale - 1) / kSubpixelScale);
-}
-std::int64_t ceil_div(std::int64_t a) {
-  return -floor_div(-a);
-}
-
-// Round half to even, exactly, without a libm call: adding and removing 1.5 * 2^52 in double
-// leaves the nearest integer (ties to even) for |scaled| < 2^51; the guard band keeps |scaled|
-// below 2^30.
-std::int32_t round_half_even(double scaled) {
-  constexpr double kRoundingMagic = 6755399441055744.0;  // 1.5 * 2^52
-  return static_cast<std::int32_t>((scaled + kRoundingMagic) - kRoundingMagic);
-}
-
-// 3 x 3 determinant of the columns p, q, r (rows: the triangle's vertices).
-double det3(const double p[3], const double q[3], const double r[3]) {
-  return p[0] * (q[1] * r[2] - q[2] * r[1]) - p[1] * (q[0] * r[2] - q[2] * r[0]) +
-         p[2] * (q[0] * r[1] - q[1] * r[0]);
-}
-
-// Window coordinates of polygon vertices are checked against this before snapping: the
-// clipper keeps them within the guard band (2^21 px) up to a few ulps (float ones up to half
-// an ulp of 2^21 more), and the edge set-up needs snapped differences below 2^31. A vertex
-// beyond it would mean a broken invariant: the triangle is dropped rather than snapped.
-constexpr double kSnapLimitPixels = kGuardBandPixels + 1.0;
-
-}  // namespace
+using namespace setup_detail;
 
 std::int32_t snap_to_fixed(float window_coordinate) {
   const float scaled = (window_coordinate - 0.5f) * static_cast<float>(kSubpixelScale);
@@ -47,19 +23,27 @@ std::int32_t snap_double_to_fixed(double window_coordinate) {
   return round_half_even((window_coordinate - 0.5) * kSubpixelScale);
 }
 
-TriangleSetup::TriangleSetup(const RasterState& state) : state_(state) {
+TriangleSetup::TriangleSetup(const RasterState& state) {
   const Viewport& vp = state.viewport;
   scale_x_ = static_cast<float>(vp.width * 0.5);
   scale_y_ = static_cast<float>(vp.height * 0.5);
   translate_x_ = static_cast<float>(vp.x + vp.width * 0.5);
   translate_y_ = static_cast<float>(vp.y + vp.height * 0.5);
+  // GL's face culling: front faces are those of the front_face winding.
+  const bool ccw_front = state.front_face == FrontFace::kCounterClockwise;
+  edge_rules_.cull_counter_clockwise = (state.cull == CullMode::kBack && !ccw_front) ||
+                                       (state.cull == CullMode::kFront && ccw_front);
+  edge_rules_.cull_clockwise = (state.cull == CullMode::kBack && ccw_front) ||
+                               (state.cull == CullMode::kFront && !ccw_front);
   planes_.guard_x = static_cast<float>((kGuardBandPixels - std::abs(translate_x_)) / scale_x_);
   planes_.guard_y = static_cast<float>((kGuardBandPixels - std::abs(translate_y_)) / scale_y_);
   // Pixels whose centres lie inside both the viewport and the framebuffer.
-  region_x0_ = std::max(0, static_cast<int>(std::ceil(vp.x - 0.5)));
-  region_y0_ = std::max(0, static_cast<int>(std::ceil(vp.y - 0.5)));
-  region_x1_ = std::min(state.width, static_cast<int>(std::ceil(vp.x + vp.width - 0.5))) - 1;
-  region_y1_ = std::min(state.height, static_cast<int>(std::ceil(vp.y + vp.height - 0.5))) - 1;
+  edge_rules_.region_x0 = std::max(0, static_cast<int>(std::ceil(vp.x - 0.5)));
+  edge_rules_.region_y0 = std::max(0, static_cast<int>(std::ceil(vp.y - 0.5)));
+  edge_rules_.region_x1 =
+      std::min(state.width, static_cast<int>(std::ceil(vp.x + vp.width - 0.5))) - 1;
+  edge_rules_.region_y1 =
+      std::min(state.height, static_cast<int>(std::ceil(vp.y + vp.height - 0.5))) - 1;
 }
 
 void TriangleSetup::to_window(const ClipVertex& v, float& x, float& y, float& z) const {
@@ -138,17 +122,9 @@ void TriangleSetup::setup_polygon(std::uint32_t primitive, const ClipVertex v[3]
       continue;
     }
     if (!have_plane) {
-      // The depth plane of the whole triangle (once, for the first piece that covers a pixel),
-      // referred to a whole pixel at its first vertex so that its coefficients suffer no
-      // cancellation against a distant window origin.
+      // The depth plane of the whole triangle (once, for the first piece that covers a pixel).
       have_plane = true;
-      const double u0 = std::floor(first_x), v0 = std::floor(first_y);
-      double z_ref = first_z;
-      if (!depth_plane(v, u0, v0, z_ref, dzdx, dzdy)) {
-        z_ref = first_z;  // seen edge-on: any piece left by rounding gets a constant depth
-        dzdx = dzdy = 0.0;
-      }
-      z0 = z_ref + dzdx * (0.5 - u0) + dzdy * (0.5 - v0);
+      piece_depth(v, first_x, first_y, first_z, z0, dzdx, dzdy);
     }
     t.z0 = z0;
     t.dzdx = dzdx;
@@ -156,6 +132,19 @@ void TriangleSetup::setup_polygon(std::uint32_t primitive, const ClipVertex v[3]
     t.primitive = primitive;
     out.push_back(t);
   }
+}
+
+void TriangleSetup::piece_depth(const ClipVertex v[3], double first_x, double first_y,
+                                double first_z, double& z0, double& dzdx, double& dzdy) const {
+  // Referred to a whole pixel at the polygon's first vertex so that its coefficients suffer no
+  // cancellation against a distant window origin.
+  const double u0 = std::floor(first_x), v0 = std::floor(first_y);
+  double z_ref = first_z;
+  if (!depth_plane(v, u0, v0, z_ref, dzdx, dzdy)) {
+    z_ref = first_z;  // seen edge-on: any piece left by rounding gets a constant depth
+    dzdx = dzdy = 0.0;
+  }
+  z0 = z_ref + dzdx * (0.5 - u0) + dzdy * (0.5 - v0);
 }
 
 bool TriangleSetup::depth_plane(const ClipVertex v[3], double u0, double v0, double& z_ref,
@@ -229,43 +218,11 @@ void TriangleSetup::setup_window(std::uint32_t primitive, const float x_in[3], c
 
 bool TriangleSetup::set_up_edges(std::int32_t fx[3], std::int32_t fy[3], RasterTriangle& t,
                                  bool& swapped) const {
-  const std::int64_t area = static_cast<std::int64_t>(fx[1] - fx[0]) * (fy[2] - fy[0]) -
-                            static_cast<std::int64_t>(fx[2] - fx[0]) * (fy[1] - fy[0]);
-  if (area == 0) {
-    return false;  // zero-area triangles produce nothing
-  }
-  const bool counter_clockwise = area > 0;
-  const bool front = counter_clockwise == (state_.front_face == FrontFace::kCounterClockwise);
-  if ((state_.cull == CullMode::kBack && !front) || (state_.cull == CullMode::kFront && front)) {
+  std::int32_t box[4];
+  if (!edge_box(edge_rules_, fx, fy, box, swapped)) {
     return false;
   }
-  swapped = !counter_clockwise;
-  if (swapped) {
-    std::swap(fx[1], fx[2]);
-    std::swap(fy[1], fy[2]);
-  }
-  const std::int64_t min_x = std::min({fx[0], fx[1], fx[2]});
-  const std::int64_t max_x = std::max({fx[0], fx[1], fx[2]});
-  const std::int64_t min_y = std::min({fy[0], fy[1], fy[2]});
-  const std::int64_t max_y = std::max({fy[0], fy[1], fy[2]});
-  t.x0 = static_cast<std::int32_t>(std::max<std::int64_t>(ceil_div(min_x), region_x0_));
-  t.x1 = static_cast<std::int32_t>(std::min<std::int64_t>(floor_div(max_x), region_x1_));
-  t.y0 = static_cast<std::int32_t>(std::max<std::int64_t>(ceil_div(min_y), region_y0_));
-  t.y1 = static_cast<std::int32_t>(std::min<std::int64_t>(floor_div(max_y), region_y1_));
-  if (t.x0 > t.x1 || t.y0 > t.y1) {
-    return false;
-  }
-  for (int i = 0; i < 3; ++i) {
-    const int n = (i + 1) % 3;
-    const std::int32_t dx = fx[n] - fx[i];
-    const std::int32_t dy = fy[n] - fy[i];
-    t.a[i] = -dy;
-    t.b[i] = dx;
-    const bool left_or_bottom = dy < 0 || (dy == 0 && dx > 0);
-    t.c[i] =
-        -(static_cast<std::int64_t>(t.a[i]) * fx[i] + static_cast<std::int64_t>(t.b[i]) * fy[i]) +
-        (left_or_bottom ? 1 : 0);
-  }
+  write_edges(fx, fy, box, t);
   return true;
 }
 

@@ -11,11 +11,15 @@
 // every pixel of a closed mesh is covered exactly once.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "raster/clip.h"
 #include "raster/raster_types.h"
+#include "raster/topology.h"
+#include "raster/triangle_storage.h"
 
 namespace relief::raster {
 
@@ -46,6 +50,38 @@ struct RasterTriangle {
   }
 };
 
+// A chunk's set-up triangles (SetupChunk::triangles), in storage made for them.
+using RasterTriangles = std::vector<RasterTriangle, TriangleStorageAllocator<RasterTriangle>>;
+
+// What set-up computes for each vertex of a triangle that needs no clipping, computed once per
+// vertex for vertices [begin, begin + flags.size()) of a vertex buffer (SoA, element k - begin)
+// rather than once per triangle and vertex (TriangleSetup::prepare_vertices). The values are
+// exactly setup_clip's, so a triangle set up from them gives the same RasterTriangle.
+struct PreparedVertices {
+  enum : std::uint8_t {
+    kValid = 1,    // valid (GridTriangles::valid; no condition: 1)
+    kDrawn = 2,    // valid and flagged kDraw (GridTriangles::need; no condition: valid)
+    kPlain = 4,    // plain_clip_vertex: prepare_clip_input keeps it as it is
+    kSnapped = 8,  // kPlain, outcode 0, window x and y within the snap limit: floor_x, floor_y,
+                   // z, fx, fy are set (else they are unspecified)
+  };
+  std::size_t begin = 0;
+  std::vector<std::uint8_t> flags;
+  std::vector<std::uint8_t> outcode;  // clip_outcode (set when kPlain)
+  // From to_window's float window coordinates x, y, z: floor(x), floor(y) (floats: exact),
+  // z, and the snapped snap_to_fixed(x), snap_to_fixed(y).
+  std::vector<float> floor_x, floor_y, z;
+  std::vector<std::int32_t> fx, fy;
+
+  void resize(std::size_t n);
+};
+
+// The pixel region and face culling of a raster state, as the edge set-up applies them.
+struct EdgeRules {
+  int region_x0 = 0, region_y0 = 0, region_x1 = -1, region_y1 = -1;  // inclusive pixel region
+  bool cull_counter_clockwise = false, cull_clockwise = false;       // by the snapped area's sign
+};
+
 // Per-frame constants of setup, derived from the raster state.
 class TriangleSetup {
  public:
@@ -55,6 +91,22 @@ class TriangleSetup {
   // zero-area or outside the pixel region; several if clipping made a polygon).
   void setup_clip(std::uint32_t primitive, const ClipVertex v[3],
                   std::vector<RasterTriangle>& out) const;
+
+  // Prepares vertices [begin, end) of `vertices` into `out` (out.begin = begin), with their
+  // validity (valid empty: all valid) and draw flag (need empty: all drawn; else bit kDraw = 2
+  // of need[k]), as GridTriangles reads them.
+  void prepare_vertices(ClipVertices vertices, std::size_t begin, std::size_t end,
+                        std::span<const std::uint8_t> valid, std::span<const std::uint8_t> need,
+                        PreparedVertices& out) const;
+
+  // setup_chunk for the grid: the drawn triangles among [begin, end) of `source` set up in
+  // order, each exactly as setup_clip would set it up, appended to `out`; `submitted` counts
+  // the drawn ones. `prepared` covers the vertices of those triangles
+  // (GridTriangles::vertex_span), prepared from the same `vertices`, source.valid and
+  // source.need.
+  void setup_grid(ClipVertices vertices, const GridTriangles& source, std::uint32_t begin,
+                  std::uint32_t end, const PreparedVertices& prepared, std::uint32_t& submitted,
+                  RasterTriangles& out) const;
 
   // Appends one triangle given in window coordinates (precondition: within the guard band; a
   // triangle with a coordinate beyond it or NaN is dropped, never snapped).
@@ -81,15 +133,18 @@ class TriangleSetup {
   void setup_polygon(std::uint32_t primitive, const ClipVertex v[3],
                      const PolygonVertex polygon[kMaxClippedVertices], int count,
                      std::vector<RasterTriangle>& out) const;
+  // The depth plane of a piece, as setup_polygon gives it: from the original triangle `v` and
+  // the window coordinates of the polygon's first vertex.
+  void piece_depth(const ClipVertex v[3], double first_x, double first_y, double first_z,
+                   double& z0, double& dzdx, double& dzdy) const;
   // Depth plane of the original triangle: z = z_ref + dzdx (x - u0) + dzdy (y - v0) in window
   // coordinates; false where it is undefined (the triangle is seen edge-on).
   bool depth_plane(const ClipVertex v[3], double u0, double v0, double& z_ref, double& dzdx,
                    double& dzdy) const;
 
-  const RasterState& state_;
   ClipPlanes planes_;
   float scale_x_, scale_y_, translate_x_, translate_y_;
-  int region_x0_, region_y0_, region_x1_, region_y1_;  // inclusive pixel region
+  EdgeRules edge_rules_;
 };
 
 // Round-half-to-even of (coordinate - 0.5) * 256 in float: llvmpipe's snapping, exactly.

@@ -1,0 +1,129 @@
+#include "raster/triangle_storage.h"
+
+#include <new>
+
+// Slabs where the kernel can be asked for transparent huge pages, and the sanitizers do not
+// need to see every block.
+#if defined(__linux__) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+#define RELIEF_TRIANGLE_SLABS 1
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || \
+    __has_feature(memory_sanitizer)
+#undef RELIEF_TRIANGLE_SLABS
+#endif
+#endif
+#endif
+
+#ifdef RELIEF_TRIANGLE_SLABS
+#include <sys/mman.h>
+
+#include <cstdint>
+#include <mutex>
+#endif
+
+namespace relief::raster {
+
+#ifdef RELIEF_TRIANGLE_SLABS
+namespace {
+
+constexpr std::size_t kHugePage = std::size_t{2} << 20;
+constexpr std::size_t kSlabBytes = 4 * kHugePage;           // aligned to its size
+constexpr std::size_t kSmallBytes = std::size_t{64} << 10;  // below: operator new
+constexpr std::size_t kBlockAlign = 64;
+constexpr std::size_t kHeaderBytes = 64;  // a SlabHeader at the slab's start
+constexpr std::size_t kLargestSlabBlock = kSlabBytes - kHeaderBytes;  // above: its own mapping
+
+// Blocks are carved from the current slab in turn and never reused one by one; a slab is
+// unmapped when its last block is freed (a frame's chunks are freed together).
+struct SlabHeader {
+  std::size_t used;  // bytes carved, header included
+  std::size_t live;  // blocks not yet freed
+};
+
+struct Slabs {
+  std::mutex mutex;
+  SlabHeader* current = nullptr;
+};
+
+Slabs& slabs() {
+  static Slabs* const state = new Slabs;  // never destroyed: blocks may outlive statics
+  return *state;
+}
+
+std::size_t round_up(std::size_t n, std::size_t multiple) {
+  return (n + multiple - 1) / multiple * multiple;
+}
+
+// `bytes` (a multiple of kHugePage) of zeroed memory aligned to `align`, with huge pages
+// advised (advice only: without them it is ordinary memory).
+void* map_aligned(std::size_t bytes, std::size_t align) {
+  const std::size_t padded = bytes + align;
+  void* const mapped =
+      mmap(nullptr, padded, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (mapped == MAP_FAILED) {
+    throw std::bad_alloc();
+  }
+  const auto start = reinterpret_cast<std::uintptr_t>(mapped);
+  const std::uintptr_t aligned = (start + align - 1) & ~(std::uintptr_t{align} - 1);
+  const std::uintptr_t end = start + padded, aligned_end = aligned + bytes;
+  if (aligned > start) {
+    munmap(mapped, aligned - start);
+  }
+  if (end > aligned_end) {
+    munmap(reinterpret_cast<void*>(aligned_end), end - aligned_end);
+  }
+  madvise(reinterpret_cast<void*>(aligned), bytes, MADV_HUGEPAGE);
+  return reinterpret_cast<void*>(aligned);
+}
+
+}  // namespace
+#endif
+
+void* allocate_triangle_storage(std::size_t bytes) {
+#ifdef RELIEF_TRIANGLE_SLABS
+  if (bytes > kLargestSlabBlock) {
+    return map_aligned(round_up(bytes, kHugePage), kHugePage);
+  }
+  if (bytes >= kSmallBytes) {
+    const std::size_t size = round_up(bytes, kBlockAlign);
+    Slabs& s = slabs();
+    const std::lock_guard<std::mutex> lock(s.mutex);
+    if (s.current == nullptr || s.current->used + size > kSlabBytes) {
+      // The current slab (if any) stays mapped while it has live blocks.
+      s.current = static_cast<SlabHeader*>(map_aligned(kSlabBytes, kSlabBytes));
+      s.current->used = kHeaderBytes;
+      s.current->live = 0;
+    }
+    char* const block = reinterpret_cast<char*>(s.current) + s.current->used;
+    s.current->used += size;
+    ++s.current->live;
+    return block;
+  }
+#endif
+  return ::operator new(bytes);
+}
+
+void free_triangle_storage(void* block, [[maybe_unused]] std::size_t bytes) noexcept {
+#ifdef RELIEF_TRIANGLE_SLABS
+  if (bytes > kLargestSlabBlock) {
+    munmap(block, round_up(bytes, kHugePage));
+    return;
+  }
+  if (bytes >= kSmallBytes) {
+    auto* const slab = reinterpret_cast<SlabHeader*>(reinterpret_cast<std::uintptr_t>(block) &
+                                                     ~(std::uintptr_t{kSlabBytes} - 1));
+    Slabs& s = slabs();
+    const std::lock_guard<std::mutex> lock(s.mutex);
+    if (--slab->live == 0) {
+      if (slab == s.current) {
+        s.current = nullptr;
+      }
+      munmap(slab, kSlabBytes);
+    }
+    return;
+  }
+#endif
+  ::operator delete(block);
+}
+
+}  // namespace relief::raster
