@@ -14,7 +14,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 
 #include <hwy/highway.h>
 
@@ -388,7 +387,9 @@ void ShadeRect(const ShadeParams<float>& p, const ShadeResources& r, const Shadi
         hn::StoreInterleaved3(c.x, c.y, c.z, d, rgb + 3 * k);
       } else {
         hn::StoreInterleaved3(c.x, c.y, c.z, d, out);
-        std::memcpy(rgb + 3 * k, out, sizeof(float) * 3 * static_cast<std::size_t>(count));
+        for (int t = 0; t < 3 * count; ++t) {
+          rgb[3 * k + static_cast<std::size_t>(t)] = out[t];
+        }
       }
     }
   }
