@@ -1,7 +1,6 @@
 // The work a frame skips (pipeline/frame_skips.h): each skip, turned off, must leave every
 // output bit-identical while the counters that measure its work rise; and the counters must
 // add up (README.md, "Skipped work").
-#include <random>
 #include <string>
 #include <vector>
 
@@ -14,6 +13,7 @@
 #include "core/vertex_transform.h"
 #include "pipeline/frame.h"
 #include "pipeline/scene_resources.h"
+#include "test_support.h"
 
 namespace relief {
 namespace {
@@ -246,8 +246,7 @@ TEST_CASE("theCountersAreTheSameForEveryThreadCount", "[skip]") {
 // terrain can take there outside it (or the vertex's own height, after stage 3), in the clip
 // coordinates stage 5 computes in float.
 TEST_CASE("anOutcodeMarksAPlaneOnlyWhenEveryHeightThereIsOutsideIt", "[skip]") {
-  std::mt19937 random(7);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  test::TestRandom random(7);
   const NoiseLattice lattice = make_noise_lattice(1, 256);
   int marked_by_bounds = 0, marked_by_height = 0;
   for (const char* pitch : {"camera.pitch_deg=-8", "camera.pitch_deg=-90", "camera.pitch_deg=35",
@@ -265,15 +264,15 @@ TEST_CASE("anOutcodeMarksAPlaneOnlyWhenEveryHeightThereIsOutsideIt", "[skip]") {
       std::vector<float> dx(kPoints), dz(kPoints), h(kPoints);
       std::vector<std::uint8_t> valid(kPoints, 1), by_bounds(kPoints), by_height(kPoints);
       for (int k = 0; k < kPoints; ++k) {
-        const double radius = std::pow(10.0, 6.0 * unit(random) - 1.0);
-        const double angle = 2 * M_PI * unit(random);
+        const double radius = std::pow(10.0, 6.0 * random.uniform(0.0, 1.0) - 1.0);
+        const double angle = 2 * M_PI * random.uniform(0.0, 1.0);
         dx[k] = float(radius * std::cos(angle));
         dz[k] = float(radius * std::sin(angle));
       }
       vertex_outcodes<float>(cull, RowRange{0, 1}, dx, dz, {}, valid, by_bounds);
       for (int choice = 0; choice < 3; ++choice) {
         for (int k = 0; k < kPoints; ++k) {
-          const double t = choice == 0 ? 0.0 : choice == 1 ? 1.0 : unit(random);
+          const double t = choice == 0 ? 0.0 : choice == 1 ? 1.0 : random.uniform(0.0, 1.0);
           h[k] = float(cull.height_lo + t * (double(cull.height_hi) - cull.height_lo));
         }
         vertex_outcodes<float>(cull, RowRange{0, 1}, dx, dz, h, valid, by_height);
