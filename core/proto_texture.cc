@@ -24,8 +24,9 @@ float wrap(float x, float n) {
 }
 
 // The four texels around (u, v), bilinearly weighted, with repeat wrapping.
-Rgb sample_bilinear(const RgbImage& level, float u, float v) {
-  const int n = level.size;
+Rgb sample_bilinear(const ProtoTexture& texture, int level, float u, float v) {
+  const int n = texture.levels[level].size;
+  const float* rgb = texture.level_texels(level);
   const float s = wrap(u * float(n) - 0.5f, float(n));
   const float t = wrap(v * float(n) - 0.5f, float(n));
   const float fs = std::floor(s), ft = std::floor(t);
@@ -33,10 +34,10 @@ Rgb sample_bilinear(const RgbImage& level, float u, float v) {
   // -n <= fs, ft < n after the wrap; the mask wraps negatives (two's complement).
   const int i0 = static_cast<int>(fs) & (n - 1), j0 = static_cast<int>(ft) & (n - 1);
   const int i1 = (i0 + 1) & (n - 1), j1 = (j0 + 1) & (n - 1);
-  const float* p00 = &level.rgb[3 * (std::size_t(j0) * n + i0)];
-  const float* p10 = &level.rgb[3 * (std::size_t(j0) * n + i1)];
-  const float* p01 = &level.rgb[3 * (std::size_t(j1) * n + i0)];
-  const float* p11 = &level.rgb[3 * (std::size_t(j1) * n + i1)];
+  const float* p00 = &rgb[3 * (std::size_t(j0) * n + i0)];
+  const float* p10 = &rgb[3 * (std::size_t(j0) * n + i1)];
+  const float* p01 = &rgb[3 * (std::size_t(j1) * n + i0)];
+  const float* p11 = &rgb[3 * (std::size_t(j1) * n + i1)];
   Rgb out;
   for (int c = 0; c < 3; ++c) {
     const float bottom = p00[c] + a * (p10[c] - p00[c]);
@@ -61,26 +62,32 @@ ProtoTexture build_proto_texture(const RgbImage& image, double mip_blend) {
   for (int c = 0; c < 3; ++c) {
     texture.mean[c] = static_cast<float>(sum[c] / texels);
   }
-  texture.levels.push_back(image);
-  while (texture.levels.back().size > 1) {
-    const RgbImage& fine = texture.levels.back();
-    RgbImage coarse;
-    coarse.size = fine.size / 2;
-    coarse.rgb.resize(3 * std::size_t(coarse.size) * coarse.size);
-    for (int j = 0; j < coarse.size; ++j) {
-      for (int i = 0; i < coarse.size; ++i) {
+  // The chain's size: 3 n^2 floats per level of side n, halving down to 1.
+  std::size_t floats = 0;
+  for (int n = image.size; n >= 1; n /= 2) {
+    texture.levels.push_back({n, floats});
+    floats += 3 * std::size_t(n) * n;
+  }
+  texture.texels.resize(floats + ProtoTexture::kTexelPadding);
+  std::copy(image.rgb.begin(), image.rgb.end(), texture.texels.begin());
+  for (std::size_t k = 1; k < texture.levels.size(); ++k) {
+    const int fine_size = texture.levels[k - 1].size;
+    const float* fine = texture.level_texels(int(k) - 1);
+    const int size = texture.levels[k].size;
+    float* coarse = texture.texels.data() + texture.levels[k].offset;
+    for (int j = 0; j < size; ++j) {
+      for (int i = 0; i < size; ++i) {
         for (int c = 0; c < 3; ++c) {
           const auto at = [&](int x, int y) {
-            return double(fine.rgb[3 * (std::size_t(y) * fine.size + x) + c]);
+            return double(fine[3 * (std::size_t(y) * fine_size + x) + c]);
           };
           const double box = 0.25 * (at(2 * i, 2 * j) + at(2 * i + 1, 2 * j) +
                                      at(2 * i, 2 * j + 1) + at(2 * i + 1, 2 * j + 1));
-          coarse.rgb[3 * (std::size_t(j) * coarse.size + i) + c] =
+          coarse[3 * (std::size_t(j) * size + i) + c] =
               static_cast<float>((1.0 - mip_blend) * box + mip_blend * texture.mean[c]);
         }
       }
     }
-    texture.levels.push_back(std::move(coarse));
   }
   return texture;
 }
@@ -99,15 +106,15 @@ float texture_lod(int texture_size, float dudx, float dvdx, float dudy, float dv
 Rgb sample_trilinear(const ProtoTexture& texture, float u, float v, float lod) {
   const int last = static_cast<int>(texture.levels.size()) - 1;
   if (!(lod > 0.0f)) {
-    return sample_bilinear(texture.levels[0], u, v);  // magnification: GL_LINEAR on level 0
+    return sample_bilinear(texture, 0, u, v);  // magnification: GL_LINEAR on level 0
   }
   if (lod >= float(last)) {
-    return sample_bilinear(texture.levels[last], u, v);
+    return sample_bilinear(texture, last, u, v);
   }
   const int level = static_cast<int>(lod);
   const float fraction = lod - float(level);
-  const Rgb a = sample_bilinear(texture.levels[level], u, v);
-  const Rgb b = sample_bilinear(texture.levels[level + 1], u, v);
+  const Rgb a = sample_bilinear(texture, level, u, v);
+  const Rgb b = sample_bilinear(texture, level + 1, u, v);
   return {a[0] + fraction * (b[0] - a[0]), a[1] + fraction * (b[1] - a[1]),
           a[2] + fraction * (b[2] - a[2])};
 }

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <vector>
 
 namespace relief {
@@ -23,9 +24,24 @@ struct RgbImage {
   std::vector<float> rgb;
 };
 
+// One level of a mip chain: its side and where its texels start in the chain.
+struct MipLevel {
+  int size = 0;
+  std::size_t offset = 0;  // texel (i, j) at texels[offset + 3 (j size + i)]
+};
+
+// The mip chain in one array, level 0 first: the vector kernels address any level of it from
+// one base (simd/texture-inl.h), and a GPU uploads it level by level. Level k of a side-n
+// texture starts at 4 (n^2 - (n / 2^k)^2) floats (3 n^2 (1 + 1/4 + ...)). The array holds
+// kTexelPadding more floats (zero) after the chain, so that a vector kernel may load eight
+// floats from any texel.
 struct ProtoTexture {
-  std::vector<RgbImage> levels;  // level 0 is the full texture, the last is 1 x 1
+  static constexpr std::size_t kTexelPadding = 8;
+  std::vector<float> texels;
+  std::vector<MipLevel> levels;  // level 0 is the full texture, the last is 1 x 1
   Rgb mean{};                    // the global mean colour of level 0
+
+  const float* level_texels(int level) const { return texels.data() + levels[level].offset; }
 };
 
 // Precondition: image.size is a power of two >= 1; 0 <= mip_blend <= 1.

@@ -36,9 +36,15 @@ struct TileScratch {
 // at most one per pixel.
 struct ResolveScratch {
   static constexpr int kPixels = raster::kTileSize * raster::kTileSize;
+  // A direct-mapped cache from primitive to slot, so that a triangle's pixels on several rows
+  // share one slot (one plane and one record) where they are not separated by a collision.
+  static constexpr std::uint32_t kCacheEntries = 1024;
   std::int32_t slot[kPixels];
   double k[3][kPixels], ku[3][kPixels], kv[3][kPixels];
   std::int32_t vertex[3][kPixels];
+  float records[kPixels * simd::kSlotRecordFloats];
+  std::uint32_t cached_primitive[kCacheEntries];
+  std::int32_t cached_slot[kCacheEntries];
 };
 
 }  // namespace
@@ -163,7 +169,8 @@ void TilePass<Real>::resolve_simd(const raster::TileVisibility& visibility,
   if constexpr (std::is_same_v<Real, float>) {
     const std::unique_ptr<ResolveScratch> scratch(new ResolveScratch);
     std::fill(std::begin(scratch->slot), std::end(scratch->slot), -1);
-    std::uint32_t cached = raster::kNoPrimitive;
+    std::fill(std::begin(scratch->cached_primitive), std::end(scratch->cached_primitive),
+              raster::kNoPrimitive);
     int slots = 0;
     for (int py = visibility.y0; py < visibility.y0 + visibility.height; ++py) {
       for (int px = visibility.x0; px < visibility.x0 + visibility.width; ++px) {
@@ -173,8 +180,10 @@ void TilePass<Real>::resolve_simd(const raster::TileVisibility& visibility,
           continue;
         }
         ++work.covered_pixels;
-        if (primitive != cached) {
-          cached = primitive;
+        const std::uint32_t entry = primitive % ResolveScratch::kCacheEntries;
+        if (scratch->cached_primitive[entry] != primitive) {
+          scratch->cached_primitive[entry] = primitive;
+          scratch->cached_slot[entry] = slots;
           std::uint32_t v[3];
           triangles_.vertices(primitive, v);
           for (int i = 0; i < 3; ++i) {
@@ -182,7 +191,7 @@ void TilePass<Real>::resolve_simd(const raster::TileVisibility& visibility,
           }
           ++slots;
         }
-        scratch->slot[k] = slots - 1;
+        scratch->slot[k] = scratch->cached_slot[entry];
       }
     }
     if (slots == 0) {
@@ -199,10 +208,6 @@ void TilePass<Real>::resolve_simd(const raster::TileVisibility& visibility,
                         static_cast<std::size_t>(slots), k, ku, kv);
     const VertexStreams<Real>& s = streams_;
     const bool with_nu = outputs_.octaves && !s.nu.empty();
-    const simd::ResolveSlots table{{scratch->k[0], scratch->k[1], scratch->k[2]},
-                                   {scratch->ku[0], scratch->ku[1], scratch->ku[2]},
-                                   {scratch->kv[0], scratch->kv[1], scratch->kv[2]},
-                                   {scratch->vertex[0], scratch->vertex[1], scratch->vertex[2]}};
     const simd::ResolveStreams streams{s.dx.data(),
                                        s.dz.data(),
                                        s.height.data(),
@@ -212,6 +217,11 @@ void TilePass<Real>::resolve_simd(const raster::TileVisibility& visibility,
                                        s.slope.data(),
                                        shade_.terrain_water != 0 ? s.water_depth.data() : nullptr,
                                        with_nu ? s.nu.data() : nullptr};
+    simd::gather_slot_records(streams, vertex, static_cast<std::size_t>(slots), scratch->records);
+    const simd::ResolveSlots table{{scratch->k[0], scratch->k[1], scratch->k[2]},
+                                   {scratch->ku[0], scratch->ku[1], scratch->ku[2]},
+                                   {scratch->kv[0], scratch->kv[1], scratch->kv[2]},
+                                   scratch->records};
     const simd::ResolveTargets targets{out.dx,         out.dz,          out.height, out.dx_ddx,
                                        out.dx_ddy,     out.dz_ddx,      out.dz_ddy, out.height_ddx,
                                        out.height_ddy, out.nx,          out.ny,     out.nz,

@@ -27,6 +27,7 @@
 #include "core/interpolant.h"
 #include "core/lattice.h"
 #include "simd/lattice-inl.h"
+#include "simd/pair_gather-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace relief::simd {
@@ -190,36 +191,6 @@ HWY_INLINE bool WindowCorners(D d, const FbmLattice& l, VI column, VI row, V& v0
   return true;
 }
 
-#if RELIEF_FBM_X86 && HWY_TARGET <= HWY_AVX2
-// Per lane k, the two floats at l.values + at[k]: first[k] and second[k]. One 64-bit gather
-// per half vector, then permutations that split the pairs.
-template <class V, class VI>
-HWY_INLINE void GatherPairs(const FbmLattice& l, VI at, V& first, V& second) {
-  const auto* pairs = reinterpret_cast<const long long*>(l.values);  // NOLINT(runtime/int)
-#if HWY_TARGET <= HWY_AVX3
-  const __m512 lo =
-      _mm512_castsi512_ps(_mm512_i32gather_epi64(_mm512_castsi512_si256(at.raw), pairs, 4));
-  const __m512 hi =
-      _mm512_castsi512_ps(_mm512_i32gather_epi64(_mm512_extracti64x4_epi64(at.raw, 1), pairs, 4));
-  const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
-  const __m512i odd = _mm512_setr_epi32(1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31);
-  first = V{_mm512_permutex2var_ps(lo, even, hi)};
-  second = V{_mm512_permutex2var_ps(lo, odd, hi)};
-#else
-  const __m256 lo =
-      _mm256_castsi256_ps(_mm256_i32gather_epi64(pairs, _mm256_castsi256_si128(at.raw), 4));
-  const __m256 hi =
-      _mm256_castsi256_ps(_mm256_i32gather_epi64(pairs, _mm256_extracti128_si256(at.raw, 1), 4));
-  // shuffle_ps: (lo0 lo2 hi0 hi2 | lo4 lo6 hi4 hi6) for the first floats of the pairs; its
-  // 64-bit quarters in the order 0 2 1 3 are lanes 0 .. 7.
-  first = V{_mm256_castpd_ps(_mm256_permute4x64_pd(
-      _mm256_castps_pd(_mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(2, 0, 2, 0))), 0xD8))};
-  second = V{_mm256_castpd_ps(_mm256_permute4x64_pd(
-      _mm256_castps_pd(_mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(3, 1, 3, 1))), 0xD8))};
-#endif
-}
-#endif
-
 // The four corners by gathers. `column` and `row`: integers congruent modulo P to floor(wx)
 // and floor(wz), not negative. (v00, v10) and (v01, v11) are neighbours in a lattice row
 // unless i0 = P - 1, whose pair would read the next row's first value (and past the lattice
@@ -235,10 +206,10 @@ HWY_INLINE void GatherCorners(D d, const FbmLattice& l, VI column, VI row, V& v0
   const VI j1 = hn::And(hn::Add(j0, one), mask);
   const VI at00 = hn::Add(hn::ShiftLeftSame(j0, l.shift), i0);
   const VI at01 = hn::Add(hn::ShiftLeftSame(j1, l.shift), i0);
-#if RELIEF_FBM_X86 && HWY_TARGET <= HWY_AVX2
+#if RELIEF_FBM_X86 && RELIEF_PAIR_GATHER
   if (HWY_LIKELY(hn::AllFalse(di, hn::Eq(i0, mask)))) {
-    GatherPairs(l, at00, v00, v10);
-    GatherPairs(l, at01, v01, v11);
+    GatherFloatPairs(l.values, at00, v00, v10);
+    GatherFloatPairs(l.values, at01, v01, v11);
     return;
   }
 #endif

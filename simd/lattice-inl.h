@@ -12,6 +12,7 @@
 #include <hwy/highway.h>
 
 #include "core/interpolant.h"
+#include "simd/pair_gather-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace relief::simd {
@@ -56,6 +57,28 @@ inline LatticeView view_of(const NoiseLattice& lattice) {
           1.0f / float(lattice.size)};
 }
 
+// The values at the four corners of the cells (i0, j0) .. (i1, j1) (indices already wrapped):
+// where no lane's cell wraps in x (i1 = i0 + 1), each row's two corners are neighbours in
+// memory, one 64-bit pair gather (AVX2, AVX3; simd/pair_gather-inl.h) instead of two.
+template <class D, class V = hn::Vec<D>, class VI = hn::Vec<hn::RebindToSigned<D>>>
+HWY_INLINE void LatticeCorners(D d, const LatticeView& l, VI i0, VI i1, VI j0, VI j1, V& v00,
+                               V& v10, V& v01, V& v11) {
+  const VI row0 = hn::ShiftLeftSame(j0, l.shift);
+  const VI row1 = hn::ShiftLeftSame(j1, l.shift);
+#if RELIEF_PAIR_GATHER
+  const hn::RebindToSigned<D> di;
+  if (HWY_LIKELY(hn::AllFalse(di, hn::Eq(i0, hn::Set(di, l.mask))))) {
+    GatherFloatPairs(l.values, hn::Add(row0, i0), v00, v10);
+    GatherFloatPairs(l.values, hn::Add(row1, i0), v01, v11);
+    return;
+  }
+#endif
+  v00 = hn::GatherIndex(d, l.values, hn::Add(row0, i0));
+  v10 = hn::GatherIndex(d, l.values, hn::Add(row0, i1));
+  v01 = hn::GatherIndex(d, l.values, hn::Add(row1, i0));
+  v11 = hn::GatherIndex(d, l.values, hn::Add(row1, i1));
+}
+
 // sample_lattice<kKind> (interpolant.h): locate_cell, four gathers, two lerps in x, one in z.
 // `period` and `inv_period`: l.period and l.inv_period in every lane.
 template <Interpolant kKind, class D, class V = hn::Vec<D>>
@@ -73,12 +96,8 @@ HWY_INLINE V SampleLattice(D d, const LatticeView& l, V period, V inv_period, V 
   const auto j1 = hn::And(hn::Add(j0, one), mask);
   const V tx = Fade<kKind>(d, hn::Sub(wx, fx));
   const V tz = Fade<kKind>(d, hn::Sub(wz, fz));
-  const auto row0 = hn::ShiftLeftSame(j0, l.shift);
-  const auto row1 = hn::ShiftLeftSame(j1, l.shift);
-  const V v00 = hn::GatherIndex(d, l.values, hn::Add(row0, i0));
-  const V v10 = hn::GatherIndex(d, l.values, hn::Add(row0, i1));
-  const V v01 = hn::GatherIndex(d, l.values, hn::Add(row1, i0));
-  const V v11 = hn::GatherIndex(d, l.values, hn::Add(row1, i1));
+  V v00, v10, v01, v11;
+  LatticeCorners(d, l, i0, i1, j0, j1, v00, v10, v01, v11);
   const V bottom = hn::Add(v00, hn::Mul(tx, hn::Sub(v10, v00)));
   const V top = hn::Add(v01, hn::Mul(tx, hn::Sub(v11, v01)));
   return hn::Add(bottom, hn::Mul(tz, hn::Sub(top, bottom)));

@@ -12,6 +12,7 @@
 
 #include <hwy/highway.h>
 
+#include "simd/lane_loads-inl.h"
 #include "simd/resolve.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -127,13 +128,32 @@ void ResolveRect(const ResolveSlots& slots, const ResolveStreams& streams,
       const auto covered = hn::RebindMask(df, covered_i);
       const auto wide_index = hn::PromoteTo(hn::Rebind<std::int64_t, decltype(d)>(), index);
       LaneTriangle<hn::ScalableTag<double>> t;
-      hn::Vec<decltype(di)> vertex[3];
       for (int c = 0; c < 3; ++c) {
         t.k[c] = hn::GatherIndex(d, slots.k[c], wide_index);
         t.ku[c] = hn::GatherIndex(d, slots.ku[c], wide_index);
         t.kv[c] = hn::GatherIndex(d, slots.kv[c], wide_index);
-        vertex[c] = hn::GatherIndex(di, slots.vertex[c], index);
       }
+      // The lanes' records: column 3 f + c is stream f at vertex c (the nu group only when
+      // resolved).
+      const auto record = hn::ShiftLeft<5>(index);
+      static_assert(kSlotRecordFloats == 32);
+      const int groups = streams.nu != nullptr ? 4 : 3;
+      hn::Vec<decltype(df)> column[32];
+#if RELIEF_LANE_LOADS
+      HWY_ALIGN std::int32_t lane_record[HWY_MAX_BYTES / sizeof(double)];
+      hn::Store(record, di, lane_record);
+      for (int g = 0; g < groups; ++g) {
+        hn::Vec<decltype(df)> group[8];
+        LoadColumns8(slots.records + 8 * g, lane_record, group);
+        for (int c = 0; c < 8; ++c) {
+          column[8 * g + c] = group[c];
+        }
+      }
+#else
+      for (int c = 0; c < 8 * groups; ++c) {
+        column[c] = hn::GatherIndex(df, slots.records + c, record);
+      }
+#endif
       // Pixel centres of the lanes, and their quad partners in x (px ^ 1).
       const auto px = hn::Iota(di, x0 + i);
       const V u_here = hn::Add(hn::PromoteTo(d, px), half);
@@ -147,15 +167,15 @@ void ResolveRect(const ResolveSlots& slots, const ResolveStreams& streams,
       }
       const auto has_x = Barycentrics(d, t, u_partner, v_here, bx);
       const auto has_y = Barycentrics(d, t, u_here, v_partner, by);
-      const auto values = [&](const float* stream, V a[3]) {
+      const auto values = [&](int stream, V a[3]) {
         for (int c = 0; c < 3; ++c) {
-          a[c] = hn::PromoteTo(d, hn::GatherIndex(df, stream, vertex[c]));
+          a[c] = hn::PromoteTo(d, column[3 * stream + c]);
         }
       };
       const auto store = [&](float* target, V value) {
         hn::BlendedStore(hn::DemoteTo(df, value), covered, df, target + at);
       };
-      const auto with_derivatives = [&](const float* stream, float* value, float* ddx, float* ddy) {
+      const auto with_derivatives = [&](int stream, float* value, float* ddx, float* ddy) {
         V a[3];
         values(stream, a);
         const V centre = At(b, a);
@@ -163,25 +183,25 @@ void ResolveRect(const ResolveSlots& slots, const ResolveStreams& streams,
         store(ddx, hn::IfThenElseZero(has_x, hn::Mul(sign_x, hn::Sub(At(bx, a), centre))));
         store(ddy, hn::IfThenElseZero(has_y, hn::Mul(sign_y, hn::Sub(At(by, a), centre))));
       };
-      const auto plain = [&](const float* stream, float* value) {
+      const auto plain = [&](int stream, float* value) {
         V a[3];
         values(stream, a);
         store(value, At(b, a));
       };
-      with_derivatives(streams.dx, out.dx, out.dx_ddx, out.dx_ddy);
-      with_derivatives(streams.dz, out.dz, out.dz_ddx, out.dz_ddy);
-      with_derivatives(streams.height, out.height, out.height_ddx, out.height_ddy);
-      plain(streams.nx, out.nx);
-      plain(streams.ny, out.ny);
-      plain(streams.nz, out.nz);
-      plain(streams.slope, out.slope);
+      with_derivatives(0, out.dx, out.dx_ddx, out.dx_ddy);
+      with_derivatives(1, out.dz, out.dz_ddx, out.dz_ddy);
+      with_derivatives(2, out.height, out.height_ddx, out.height_ddy);
+      plain(3, out.nx);
+      plain(4, out.ny);
+      plain(5, out.nz);
+      plain(6, out.slope);
       if (streams.water_depth != nullptr) {
-        plain(streams.water_depth, out.water_depth);
+        plain(7, out.water_depth);
       } else {
         store(out.water_depth, hn::Zero(d));
       }
       if (streams.nu != nullptr) {
-        plain(streams.nu, out.nu);
+        plain(8, out.nu);
       }
     }
   }

@@ -21,6 +21,24 @@ void set_up_planes(const float* clip_x, const float* clip_y, const float* clip_w
   HWY_DYNAMIC_DISPATCH(SetUpPlanes)(clip_x, clip_y, clip_w, window, vertex, count, k, ku, kv);
 }
 
+void gather_slot_records(const ResolveStreams& streams, const std::int32_t* const vertex[3],
+                         std::size_t count, float* records) {
+  const float* const stream[9] = {streams.dx,    streams.dz,          streams.height,
+                                  streams.nx,    streams.ny,          streams.nz,
+                                  streams.slope, streams.water_depth, streams.nu};
+  for (std::size_t s = 0; s < count; ++s) {
+    float* const record = records + s * kSlotRecordFloats;
+    for (int f = 0; f < 9; ++f) {
+      for (int c = 0; c < 3; ++c) {
+        record[3 * f + c] = stream[f] != nullptr ? stream[f][vertex[c][s]] : 0.0f;
+      }
+    }
+    for (int pad = 27; pad < kSlotRecordFloats; ++pad) {
+      record[pad] = 0.0f;
+    }
+  }
+}
+
 void resolve_rect(const ResolveSlots& slots, const ResolveStreams& streams,
                   const std::int32_t* slot, int x0, int y0, int width, int height, int stride,
                   const ResolveTargets& out) {

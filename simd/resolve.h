@@ -10,14 +10,14 @@
 
 namespace relief::simd {
 
-// The triangles of a tile, one slot per run of pixels a triangle wins (set up by the caller,
-// as the scalar resolve sets a plane up per run): raster::PerspectivePlane's coefficients
-// k[i], ku[i], kv[i] and the triangle's three vertices.
+// The triangles of a tile, one slot per triangle that wins a pixel (set up by the caller):
+// raster::PerspectivePlane's coefficients k[i], ku[i], kv[i], and the slot's record of vertex
+// values (gather_slot_records).
 struct ResolveSlots {
   const double* k[3];
   const double* ku[3];
   const double* kv[3];
-  const std::int32_t* vertex[3];
+  const float* records;
 };
 
 // Per grid vertex, the streams the resolve interpolates (stage 2-4 buffers, float). nu may be
@@ -25,6 +25,16 @@ struct ResolveSlots {
 struct ResolveStreams {
   const float *dx, *dz, *height, *nx, *ny, *nz, *slope, *water_depth, *nu;
 };
+
+// A slot's record: the value of stream f (in ResolveStreams' order) at the triangle's vertex c
+// at float 3 f + c (a null stream's values 0), padded to 32 floats. The resolve reads a
+// pixel's 27 values from its slot's record in four 8-float loads, where gathering them from
+// the streams took 27 gathers (the record is written once per slot, read by every pixel of it).
+inline constexpr int kSlotRecordFloats = 32;
+
+// Fills records [0, count) (count * kSlotRecordFloats floats) from the slots' vertices.
+void gather_slot_records(const ResolveStreams& streams, const std::int32_t* const vertex[3],
+                         std::size_t count, float* records);
 
 // The resolved fields (pipeline/tile_pass.h's TileAttributes<float>), written at covered
 // pixels only; nu only when streams.nu is not null.

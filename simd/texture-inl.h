@@ -1,12 +1,14 @@
 // Per-target proto-texture sampling of core/proto_texture.cc for float, one sample per lane:
 // texture_lod (GL's isotropic LOD from log2_det) and sample_trilinear (GL_REPEAT,
-// GL_LINEAR_MIPMAP_LINEAR) with the scalar code's operations in its order. Texels are gathered
-// per channel (hn::GatherIndex, int32 indices) from the level each lane reads: the levels are
-// separate arrays, so the vector walks the levels its lanes need (usually two or three
-// neighbours), computes every lane's coordinates at that level's size, gathers, and keeps the
-// lanes that read that level. Each lane thus sees exactly the scalar arithmetic for its sample;
-// the indices of the other lanes are in range too (wrapped and masked like the scalar code's),
-// so no gather reads outside a level.
+// GL_LINEAR_MIPMAP_LINEAR) with the scalar code's operations in its order. The mip chain is
+// one array (ProtoTexture::texels), so each lane addresses its own level: a level's side, its
+// reciprocal, its row shift and its start in the chain are integer functions of the level
+// (sides are powers of two), and every lane reads exactly the one or two levels its sample
+// blends, whatever the spread of levels across the vector. Texels are gathered per channel
+// (hn::GatherIndex, int32 indices) or, on AVX2 and AVX3, a texel and its right neighbour
+// loaded per lane and transposed (simd/lane_loads-inl.h). Each lane sees exactly the scalar
+// arithmetic for its sample; the indices of inactive lanes are in range too (level 0,
+// coordinates wrapped and masked like the scalar code's), so no gather reads outside the chain.
 // Included by a kernel's -inl.h inside its per-target section (Highway's re-inclusion guard).
 #if defined(RELIEF_SIMD_TEXTURE_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef RELIEF_SIMD_TEXTURE_INL_H_
@@ -21,6 +23,7 @@
 
 #include "core/proto_texture.h"
 #include "simd/det_math-inl.h"
+#include "simd/lane_loads-inl.h"
 #include "simd/shade_vec3-inl.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -29,28 +32,21 @@ namespace HWY_NAMESPACE {
 
 namespace hn = hwy::HWY_NAMESPACE;
 
-// A proto-texture's mip chain as the kernel reads it.
+// A proto-texture's mip chain as the kernel reads it: level k has side size0 >> k and starts
+// at float 4 (size0^2 - side^2) of `texels` (core/proto_texture.h).
 struct TextureView {
-  static constexpr int kMaxLevels = 32;  // sides up to 2^31
-  const float* rgb[kMaxLevels];
-  int size[kMaxLevels];
-  int shift[kMaxLevels];  // log2 size: row j starts at texel j << shift
-  int last = 0;           // levels - 1
-  float size0 = 0;        // float(level 0's side), texture_lod's n
+  const float* texels = nullptr;
+  int shift0 = 0;   // log2 of level 0's side
+  int last = 0;     // levels - 1 (= shift0)
+  float size0 = 0;  // float(level 0's side), texture_lod's n
 };
 
 inline TextureView texture_view_of(const ProtoTexture& t) {
   TextureView v;
-  const int levels = static_cast<int>(t.levels.size());
-  v.last = levels - 1;
-  for (int k = 0; k < levels && k < TextureView::kMaxLevels; ++k) {
-    v.rgb[k] = t.levels[k].rgb.data();
-    v.size[k] = t.levels[k].size;
-    int shift = 0;
-    while ((1 << shift) < v.size[k]) {
-      ++shift;
-    }
-    v.shift[k] = shift;
+  v.texels = t.texels.data();
+  v.last = static_cast<int>(t.levels.size()) - 1;
+  while ((1 << v.shift0) < t.levels[0].size) {
+    ++v.shift0;
   }
   v.size0 = float(t.levels[0].size);
   return v;
@@ -78,43 +74,79 @@ HWY_INLINE V WrapTexture(D /*d*/, V x, V n, V inv_n) {
   return hn::IfThenElseZero(hn::IsFinite(x), hn::Sub(x, hn::Mul(n, hn::Trunc(hn::Mul(x, inv_n)))));
 }
 
-// sample_bilinear at one level for every lane.
-template <class D, class V = hn::Vec<D>>
-HWY_INLINE V3<V> SampleBilinear(D d, const TextureView& t, int level, V u, V v) {
+// sample_bilinear for every lane at its own level (0 .. last): side n = size0 >> level.
+template <class D, class V = hn::Vec<D>, class VI = hn::Vec<hn::RebindToSigned<D>>>
+HWY_INLINE V3<V> SampleBilinear(D d, const TextureView& t, VI level, V u, V v) {
   const hn::RebindToSigned<D> di;
-  const int size = t.size[level];
-  const V n = hn::Set(d, float(size));
-  const V inv_n = hn::Set(d, 1.0f / float(size));
+  const VI side_shift = hn::Sub(hn::Set(di, t.shift0), level);  // log2 n
+  const VI one = hn::Set(di, 1);
+  const VI side = hn::Set(di, 1) << side_shift;
+  const V n = hn::ConvertTo(d, side);
+  // 1 / n = 2^-log2(n), built in the exponent field: exact, as float(1) / float(n) is.
+  const V inv_n = hn::BitCast(d, hn::ShiftLeft<23>(hn::Sub(hn::Set(di, 127), side_shift)));
   const V half = hn::Set(d, 0.5f);
   const V s = WrapTexture(d, hn::Sub(hn::Mul(u, n), half), n, inv_n);
   const V tt = WrapTexture(d, hn::Sub(hn::Mul(v, n), half), n, inv_n);
   const V fs = hn::Floor(s), ft = hn::Floor(tt);
   const V a = hn::Sub(s, fs), b = hn::Sub(tt, ft);
-  const auto mask = hn::Set(di, size - 1);
-  const auto one = hn::Set(di, 1);
+  const VI mask = hn::Sub(side, one);
   // -n <= fs, ft < n after the wrap: the conversion is exact and the mask wraps negatives.
-  const auto i0 = hn::And(hn::ConvertTo(di, fs), mask);
-  const auto j0 = hn::And(hn::ConvertTo(di, ft), mask);
-  const auto i1 = hn::And(hn::Add(i0, one), mask);
-  const auto j1 = hn::And(hn::Add(j0, one), mask);
-  const int shift = t.shift[level];
-  const auto row0 = hn::ShiftLeftSame(j0, shift);
-  const auto row1 = hn::ShiftLeftSame(j1, shift);
-  // 3 (j n + i): the first channel of the texel.
-  const auto times3 = [](auto x) { return hn::Add(hn::ShiftLeft<1>(x), x); };
-  const auto k00 = times3(hn::Add(row0, i0));
-  const auto k10 = times3(hn::Add(row0, i1));
-  const auto k01 = times3(hn::Add(row1, i0));
-  const auto k11 = times3(hn::Add(row1, i1));
-  const float* base = t.rgb[level];
+  const VI i0 = hn::And(hn::ConvertTo(di, fs), mask);
+  const VI j0 = hn::And(hn::ConvertTo(di, ft), mask);
+  const VI i1 = hn::And(hn::Add(i0, one), mask);
+  const VI j1 = hn::And(hn::Add(j0, one), mask);
+  // The level's start in the chain, 4 (size0^2 - n^2), plus 3 (j n + i): the texel's red.
+  const VI start =
+      hn::Sub(hn::Set(di, 4 << (2 * t.shift0)), hn::Set(di, 4) << hn::Add(side_shift, side_shift));
+  const auto times3 = [](VI x) { return hn::Add(hn::ShiftLeft<1>(x), x); };
+  const VI row0 = hn::Add(start, times3(j0 << side_shift));
+  const VI row1 = hn::Add(start, times3(j1 << side_shift));
+  const VI k00 = hn::Add(row0, times3(i0));
+  const VI k10 = hn::Add(row0, times3(i1));
+  const VI k01 = hn::Add(row1, times3(i0));
+  const VI k11 = hn::Add(row1, times3(i1));
+  const float* base = t.texels;
+  V p00[3], p10[3], p01[3], p11[3];
+#if RELIEF_LANE_LOADS
+  // Texels (i0, j) and (i1, j) are the six floats r g b r g b from 3 (j n + i0) unless i0 is
+  // the last column: then one load per lane and row, transposed (lane_loads-inl.h), else one
+  // per texel. Each load reads up to eight floats: the chain is padded (ProtoTexture).
+  V row[6];
+  if (HWY_LIKELY(hn::AllFalse(di, hn::Eq(i0, mask)))) {
+    LoadTexelRows(base, k00, row);
+    for (int c = 0; c < 3; ++c) {
+      p00[c] = row[c];
+      p10[c] = row[3 + c];
+    }
+    LoadTexelRows(base, k01, row);
+    for (int c = 0; c < 3; ++c) {
+      p01[c] = row[c];
+      p11[c] = row[3 + c];
+    }
+  } else {
+    const auto load_texel = [&](VI at, V(&texel)[3]) {
+      LoadTexelRows(base, at, row);
+      for (int c = 0; c < 3; ++c) {
+        texel[c] = row[c];
+      }
+    };
+    load_texel(k00, p00);
+    load_texel(k10, p10);
+    load_texel(k01, p01);
+    load_texel(k11, p11);
+  }
+#else
+  for (int c = 0; c < 3; ++c) {
+    p00[c] = hn::GatherIndex(d, base + c, k00);
+    p10[c] = hn::GatherIndex(d, base + c, k10);
+    p01[c] = hn::GatherIndex(d, base + c, k01);
+    p11[c] = hn::GatherIndex(d, base + c, k11);
+  }
+#endif
   V out[3];
   for (int c = 0; c < 3; ++c) {
-    const V p00 = hn::GatherIndex(d, base + c, k00);
-    const V p10 = hn::GatherIndex(d, base + c, k10);
-    const V p01 = hn::GatherIndex(d, base + c, k01);
-    const V p11 = hn::GatherIndex(d, base + c, k11);
-    const V bottom = hn::Add(p00, hn::Mul(a, hn::Sub(p10, p00)));
-    const V top = hn::Add(p01, hn::Mul(a, hn::Sub(p11, p01)));
+    const V bottom = hn::Add(p00[c], hn::Mul(a, hn::Sub(p10[c], p00[c])));
+    const V top = hn::Add(p01[c], hn::Mul(a, hn::Sub(p11[c], p01[c])));
     out[c] = hn::Add(bottom, hn::Mul(b, hn::Sub(top, bottom)));
   }
   return {out[0], out[1], out[2]};
@@ -136,26 +168,12 @@ HWY_INLINE V3<V> SampleTrilinear(D d, const TextureView& t, V u, V v, V lod, M a
   const V fraction = hn::Sub(lod, hn::ConvertTo(d, truncated));
   auto level = hn::IfThenElse(hn::RebindMask(di, minify_most), hn::Set(di, t.last), truncated);
   level = hn::IfThenZeroElse(hn::RebindMask(di, magnify), level);
-  const auto di_active = hn::RebindMask(di, active);
-  const auto di_trilinear = hn::RebindMask(di, trilinear);
-  const auto second = hn::Add(level, hn::IfThenElseZero(di_trilinear, hn::Set(di, 1)));
-  // The levels the active lanes read: [lowest first level, highest second level].
-  const int lowest =
-      hn::GetLane(hn::MinOfLanes(di, hn::IfThenElse(di_active, level, hn::Set(di, t.last))));
-  const int highest =
-      hn::GetLane(hn::MaxOfLanes(di, hn::IfThenElse(di_active, second, hn::Set(di, 0))));
-  V3<V> first_sample{zero, zero, zero}, second_sample{zero, zero, zero};
-  for (int k = lowest; k <= highest; ++k) {
-    const auto kv = hn::Set(di, k);
-    const M as_first = hn::And(active, hn::RebindMask(d, hn::Eq(level, kv)));
-    const M as_second =
-        hn::And(trilinear, hn::RebindMask(d, hn::Eq(hn::Add(level, hn::Set(di, 1)), kv)));
-    if (hn::AllFalse(d, hn::Or(as_first, as_second))) {
-      continue;
-    }
-    const V3<V> c = SampleBilinear(d, t, k, u, v);
-    first_sample = Select3(as_first, c, first_sample);
-    second_sample = Select3(as_second, c, second_sample);
+  const V3<V> first_sample = SampleBilinear(d, t, level, u, v);
+  V3<V> second_sample = first_sample;
+  if (!hn::AllFalse(d, trilinear)) {
+    const auto next =
+        hn::Add(level, hn::IfThenElseZero(hn::RebindMask(di, trilinear), hn::Set(di, 1)));
+    second_sample = SampleBilinear(d, t, next, u, v);
   }
   const V3<V> blended = {
       hn::Add(first_sample.x, hn::Mul(fraction, hn::Sub(second_sample.x, first_sample.x))),

@@ -53,12 +53,8 @@ HWY_INLINE void SampleLatticeGradientQuintic(D d, const LatticeView& l, V px, V 
   const V cx = hn::Sub(wx, fx), cz = hn::Sub(wz, fz);
   const V tx = Fade<Interpolant::kQuintic>(d, cx);
   const V tz = Fade<Interpolant::kQuintic>(d, cz);
-  const auto row0 = hn::ShiftLeftSame(j0, l.shift);
-  const auto row1 = hn::ShiftLeftSame(j1, l.shift);
-  const V v00 = hn::GatherIndex(d, l.values, hn::Add(row0, i0));
-  const V v10 = hn::GatherIndex(d, l.values, hn::Add(row0, i1));
-  const V v01 = hn::GatherIndex(d, l.values, hn::Add(row1, i0));
-  const V v11 = hn::GatherIndex(d, l.values, hn::Add(row1, i1));
+  V v00, v10, v01, v11;
+  LatticeCorners(d, l, i0, i1, j0, j1, v00, v10, v01, v11);
   const V bottom = hn::Add(v00, hn::Mul(tx, hn::Sub(v10, v00)));
   const V top = hn::Add(v01, hn::Mul(tx, hn::Sub(v11, v01)));
   const V slope_bottom = hn::Sub(v10, v00), slope_top = hn::Sub(v11, v01);

@@ -127,12 +127,12 @@ TEST_CASE("layerHeightRangesAreRespected", "[shading]") {
   }
 }
 
-double channel_variance(const RgbImage& image, int c) {
+double channel_variance(const float* rgb, int size, int c) {
   double sum = 0, sum_sq = 0;
-  const double n = double(image.size) * image.size;
-  for (std::size_t k = c; k < image.rgb.size(); k += 3) {
-    sum += image.rgb[k];
-    sum_sq += double(image.rgb[k]) * image.rgb[k];
+  const double n = double(size) * size;
+  for (std::size_t k = c; k < 3 * std::size_t(size) * size; k += 3) {
+    sum += rgb[k];
+    sum_sq += double(rgb[k]) * rgb[k];
   }
   return sum_sq / n - (sum / n) * (sum / n);
 }
@@ -144,16 +144,19 @@ TEST_CASE("mipChainPreservesTheMeanAndLosesVarianceLevelByLevel", "[shading]") {
     const ProtoTexture t = build_proto_texture(rock, blend);
     REQUIRE(t.levels.size() == 8);  // 128, 64, ..., 1
     std::vector<double> variances;
-    for (const RgbImage& level : t.levels) {
+    for (std::size_t l = 0; l < t.levels.size(); ++l) {
+      const MipLevel& level = t.levels[l];
+      const float* rgb = t.level_texels(int(l));
       for (int c = 0; c < 3; ++c) {
         double sum = 0;
-        for (std::size_t k = c; k < level.rgb.size(); k += 3) {
-          sum += level.rgb[k];
+        for (std::size_t k = c; k < 3 * std::size_t(level.size) * level.size; k += 3) {
+          sum += rgb[k];
         }
         CHECK(sum / (double(level.size) * level.size) == Approx(t.mean[c]).epsilon(1e-5));
       }
-      variances.push_back(channel_variance(level, 0) + channel_variance(level, 1) +
-                          channel_variance(level, 2));
+      variances.push_back(channel_variance(rgb, level.size, 0) +
+                          channel_variance(rgb, level.size, 1) +
+                          channel_variance(rgb, level.size, 2));
     }
     for (std::size_t l = 1; l + 1 < variances.size(); ++l) {
       CHECK(variances[l] < variances[l - 1]);  // strictly falling (the last level is 1 x 1)
@@ -236,15 +239,15 @@ TEST_CASE("textureLodOnATiltedPlaneEqualsGlsFormulaFromTheGeometry", "[shading]"
 
 TEST_CASE("trilinearSamplingHitsTexelsRepeatsAndBlendsLevels", "[shading]") {
   const ProtoTexture t = build_proto_texture(synthesize_texture("grass", 64), 0.3);
-  const RgbImage& level0 = t.levels[0];
-  const RgbImage& level1 = t.levels[1];
+  const float* level0 = t.level_texels(0);
+  const float* level1 = t.level_texels(1);
   for (int j : {0, 7, 63}) {
     for (int i : {0, 31, 63}) {
       const float u = (i + 0.5f) / 64, v = (j + 0.5f) / 64;
       const Rgb a = sample_trilinear(t, u, v, 0.0f);
       const Rgb b = sample_trilinear(t, u + 3.0f, v - 2.0f, -5.0f);  // repeat; magnification
       for (int c = 0; c < 3; ++c) {
-        CHECK(a[c] == level0.rgb[3 * (j * 64 + i) + c]);
+        CHECK(a[c] == level0[3 * (j * 64 + i) + c]);
         CHECK(b[c] == Approx(a[c]).margin(1e-6));
       }
     }
@@ -254,7 +257,7 @@ TEST_CASE("trilinearSamplingHitsTexelsRepeatsAndBlendsLevels", "[shading]") {
   const Rgb mid = sample_trilinear(t, u, v, 0.5f);
   const Rgb l0 = sample_trilinear(t, u, v, 0.0f), l1 = sample_trilinear(t, u, v, 1.0f);
   for (int c = 0; c < 3; ++c) {
-    CHECK(l1[c] == level1.rgb[c]);
+    CHECK(l1[c] == level1[c]);
     CHECK(mid[c] == Approx(0.5 * (l0[c] + l1[c])).margin(1e-6));
   }
 }
@@ -264,7 +267,7 @@ TEST_CASE("textureCoordinatesWrapWithoutOverflowFarAwayAndForTinyTiles", "[shadi
   // int). The sampler wraps before converting; here the texel it must fetch is worked out
   // independently, in double and 64-bit integers, from the same float s = u * 64 - 0.5.
   const ProtoTexture t = build_proto_texture(synthesize_texture("rock", 64), 0.3);
-  const RgbImage& level0 = t.levels[0];
+  const float* level0 = t.level_texels(0);
   const float v = 0.5f / 64;  // a texel centre of row 0: no blending in v
   for (float u : {3e9f, -3e9f, 2147483648.0f, 1.5e10f, -7.77e12f, 1e30f, -3.4e38f, 0x1.fffffep127f,
                   33554431.75f, -16777217.0f, 1234567.125f}) {
@@ -276,15 +279,14 @@ TEST_CASE("textureCoordinatesWrapWithoutOverflowFarAwayAndForTinyTiles", "[shadi
     const std::int64_t i1 = (i0 + 1) % 64;
     const Rgb sample = sample_trilinear(t, u, v, 0.0f);
     for (int c = 0; c < 3; ++c) {
-      const double expected =
-          level0.rgb[3 * i0 + c] + a * (level0.rgb[3 * i1 + c] - level0.rgb[3 * i0 + c]);
+      const double expected = level0[3 * i0 + c] + a * (level0[3 * i1 + c] - level0[3 * i0 + c]);
       INFO("u = " << u << ", channel " << c);
       CHECK(sample[c] == Approx(expected).margin(1e-6));
     }
   }
   // Non-finite coordinates (never produced by stage 7) sample texel 0 rather than convert NaN.
   const Rgb nan_sample = sample_trilinear(t, std::nanf(""), v, 0.0f);
-  CHECK(nan_sample[0] == level0.rgb[0]);
+  CHECK(nan_sample[0] == level0[0]);
 }
 
 TEST_CASE("srgbBytesAreTheRoundedTransferFunction", "[shading]") {
