@@ -155,11 +155,140 @@ HWY_INLINE void DrawTriangleInTile(const EdgeTriangle& t, DepthCompare test,
   }
 }
 
+#if HWY_TARGET != HWY_SCALAR
+#undef RELIEF_RASTER_BLOCKS
+#define RELIEF_RASTER_BLOCKS 1
+// Edge coefficients up to this magnitude take the block path: a block's lane offsets from
+// its origin, |a| 256 dx + |b| 256 dy with dx <= 3 and dy <= 3, stay below 6 2^24.
+constexpr std::int64_t kBlockMaxCoefficient = std::int64_t{1} << 16;
+// The block origin's edge values are clamped to +-kBlockClamp: beyond it, value and offsets
+// together keep the sign of the exact value (|offset| < 2^27 < kBlockClamp), and the sum fits
+// 32 bits.
+constexpr std::int64_t kBlockClamp = std::int64_t{1} << 29;
+
+template <class DI>
+HWY_INLINE bool FitsBlocks(DI /*di*/, const EdgeTriangle& t) {
+  for (int e = 0; e < 3; ++e) {
+    if (t.a[e] > kBlockMaxCoefficient || t.a[e] < -kBlockMaxCoefficient ||
+        t.b[e] > kBlockMaxCoefficient || t.b[e] < -kBlockMaxCoefficient) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// The projected grid's triangles cover a few pixels each: blocks of 4 columns and Lanes / 4
+// rows (4 x 4 on AVX3, 4 x 2 on AVX2) test a whole small triangle in one or two steps, in
+// 32-bit lanes: lane l is pixel (bx + l % 4, by + l / 4), its edge values the block origin's
+// (exact 64-bit, clamped) plus l's offset, its depth z0 + dzdx px + dzdy py in double as the
+// scalar code forms it. Blocks never straddle the tile's edge (they are moved inside; lanes
+// outside the triangle's box are not covered), so each block row is four whole floats of a
+// tile row.
+template <class DI>
+HWY_INLINE void DrawTriangleInBlocks(DI di, const EdgeTriangle& t, DepthCompare test,
+                                     const TileBuffers& tile) {
+  const hn::Rebind<float, DI> df;
+  const hn::Rebind<std::uint32_t, DI> du;
+  const hn::Half<decltype(df)> dfh;
+  const hn::Rebind<double, decltype(dfh)> dd;
+  const hn::Half<DI> dih;
+  const hn::CappedTag<float, 4> d4;
+  const hn::CappedTag<std::uint32_t, 4> du4;
+  constexpr int kColumns = 4;
+  const int rows = static_cast<int>(hn::Lanes(di)) / kColumns;
+  const auto lane = hn::Iota(di, 0);
+  const auto lane_x = hn::And(lane, hn::Set(di, kColumns - 1));
+  const auto lane_y = hn::ShiftRight<2>(lane);
+  hn::Vec<DI> offset[3];
+  for (int e = 0; e < 3; ++e) {
+    offset[e] = hn::Add(hn::Mul(hn::Set(di, t.a[e] * std::int32_t(kSubpixel)), lane_x),
+                        hn::Mul(hn::Set(di, t.b[e] * std::int32_t(kSubpixel)), lane_y));
+  }
+  const auto zero = hn::Zero(di);
+  const auto zero_d = hn::Zero(dd), one_d = hn::Set(dd, 1.0);
+  const auto z0 = hn::Set(dd, t.z0), dzdx = hn::Set(dd, t.dzdx), dzdy = hn::Set(dd, t.dzdy);
+  const auto depth_lanes = [&](hn::Vec<decltype(dih)> px, hn::Vec<decltype(dih)> py) {
+    const auto z = hn::Add(hn::Add(z0, hn::Mul(dzdx, hn::PromoteTo(dd, px))),
+                           hn::Mul(dzdy, hn::PromoteTo(dd, py)));
+    // (z < 0 ? 0 : (z > 1 ? 1 : z)), then to float.
+    return hn::DemoteTo(
+        dfh, hn::IfThenElse(hn::Lt(z, zero_d), zero_d, hn::IfThenElse(hn::Gt(z, one_d), one_d, z)));
+  };
+  for (int row0 = t.y0; row0 <= t.y1; row0 += rows) {
+    const int by = row0 + rows > tile.y0 + kTile ? tile.y0 + kTile - rows : row0;
+    for (int column0 = t.x0; column0 <= t.x1; column0 += kColumns) {
+      const int bx = column0 + kColumns > tile.x0 + kTile ? tile.x0 + kTile - kColumns : column0;
+      const auto px = hn::Add(hn::Set(di, bx), lane_x);
+      const auto py = hn::Add(hn::Set(di, by), lane_y);
+      // This step's pixels: inside the box, from (column0, row0) on.
+      auto covered = hn::And(
+          hn::And(hn::Not(hn::Lt(px, hn::Set(di, column0))),
+                  hn::Not(hn::Gt(px, hn::Set(di, t.x1)))),
+          hn::And(hn::Not(hn::Lt(py, hn::Set(di, row0))), hn::Not(hn::Gt(py, hn::Set(di, t.y1)))));
+      for (int e = 0; e < 3; ++e) {
+        std::int64_t origin = std::int64_t{t.a[e]} * (std::int64_t{bx} * kSubpixel) +
+                              std::int64_t{t.b[e]} * (std::int64_t{by} * kSubpixel) + t.c[e];
+        origin =
+            origin > kBlockClamp ? kBlockClamp : (origin < -kBlockClamp ? -kBlockClamp : origin);
+        const auto value = hn::Add(hn::Set(di, static_cast<std::int32_t>(origin)), offset[e]);
+        covered = hn::And(covered, hn::Gt(value, zero));
+      }
+      if (hn::AllFalse(di, covered)) {
+        continue;
+      }
+      const auto depth =
+          hn::Combine(df, depth_lanes(hn::UpperHalf(dih, px), hn::UpperHalf(dih, py)),
+                      depth_lanes(hn::LowerHalf(dih, px), hn::LowerHalf(dih, py)));
+      // The block's rows of the tile's buffers, four floats each.
+      HWY_ALIGN float stored_depth[HWY_MAX_BYTES / sizeof(float)];
+      HWY_ALIGN std::uint32_t stored_primitive[HWY_MAX_BYTES / sizeof(float)];
+      const std::size_t first =
+          static_cast<std::size_t>(by - tile.y0) * kTile + static_cast<std::size_t>(bx - tile.x0);
+      for (int r = 0; r < rows; ++r) {
+        const std::size_t k = first + static_cast<std::size_t>(r) * kTile;
+        hn::Store(hn::LoadU(d4, tile.depth + k), d4, stored_depth + kColumns * r);
+        hn::Store(hn::LoadU(du4, tile.primitive + k), du4, stored_primitive + kColumns * r);
+      }
+      const auto stored = hn::Load(df, stored_depth);
+      const auto write = hn::And(hn::RebindMask(df, covered), PassesLanes(df, test, depth, stored));
+      if (hn::AllFalse(df, write)) {
+        continue;
+      }
+      hn::Store(hn::IfThenElse(write, depth, stored), df, stored_depth);
+      hn::Store(hn::IfThenElse(hn::RebindMask(du, write), hn::Set(du, t.primitive),
+                               hn::Load(du, stored_primitive)),
+                du, stored_primitive);
+      for (int r = 0; r < rows; ++r) {
+        const std::size_t k = first + static_cast<std::size_t>(r) * kTile;
+        hn::StoreU(hn::Load(d4, stored_depth + kColumns * r), d4, tile.depth + k);
+        hn::StoreU(hn::Load(du4, stored_primitive + kColumns * r), du4, tile.primitive + k);
+      }
+    }
+  }
+}
+
+#else
+#undef RELIEF_RASTER_BLOCKS
+#define RELIEF_RASTER_BLOCKS 0
+#endif
+
 void DrawTriangles(const EdgeTriangle* triangles, std::size_t count, DepthCompare test,
                    const TileBuffers& tile) {
+#if RELIEF_RASTER_BLOCKS
+  const hn::ScalableTag<std::int32_t> di;
+  const bool blocks = hn::Lanes(di) >= 8;
+  for (std::size_t t = 0; t < count; ++t) {
+    if (blocks && FitsBlocks(di, triangles[t])) {
+      DrawTriangleInBlocks(di, triangles[t], test, tile);
+    } else {
+      DrawTriangleInTile(triangles[t], test, tile);
+    }
+  }
+#else
   for (std::size_t t = 0; t < count; ++t) {
     DrawTriangleInTile(triangles[t], test, tile);
   }
+#endif
 }
 
 }  // namespace HWY_NAMESPACE

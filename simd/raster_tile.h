@@ -1,6 +1,8 @@
 // The rasteriser's inner loop (stage 6: edge functions, depth plane, depth test) as a Highway
 // kernel: raster::draw_in_tile (raster/bins.cc) for one set-up triangle in one 64 x 64 tile,
-// many pixels of a row per step (64-bit edge values, double depth), bit for bit.
+// small triangles a 4 x 4 (AVX3) or 4 x 2 (AVX2) block of pixels per step in 32-bit edge
+// values, larger ones many pixels of a row per step (64-bit edge values), depth in double,
+// bit for bit.
 #pragma once
 
 #include <cstddef>
