@@ -268,14 +268,22 @@ TEST_CASE("simdProjectedDomainIsBitIdenticalToTheReferenceOnEveryTarget", "[simd
 
 TEST_CASE("simdRasterInnerLoopIsBitIdenticalForEveryDepthTestOnEveryTarget", "[simd]") {
   const EachTarget targets;
-  // A soup of overlapping triangles in front of the camera, with shared depths for the ties.
+  // Soups of overlapping triangles in front of the camera, with shared depths for the ties:
+  // small ones (the 4 x 4 blocks of 32-bit lanes, moved inside the tile at its edges) and large
+  // ones in a larger viewport (edge values at a block's origin beyond the 32-bit clamp, and
+  // coefficients beyond the block path's limit: 64-bit rows).
+  struct Soup {
+    double min_size, max_size;
+    int width, height;
+  };
+  const Soup soup = GENERATE(Soup{0.002, 0.3, 203, 131}, Soup{0.2, 1.5, 1000, 700});
   test::TestRandom random(12);
   const std::size_t count = 3000;
   std::vector<float> x, y, z, w;
   std::vector<std::uint32_t> indices;
   for (std::size_t t = 0; t < count; ++t) {
     const double cx = random.uniform(-1.2, 1.2), cy = random.uniform(-1.2, 1.2);
-    const double size = random.uniform(0.002, 0.3);
+    const double size = random.uniform(soup.min_size, soup.max_size);
     const float depth = float(int(random.uniform(0, 8)) / 8.0);
     for (int v = 0; v < 3; ++v) {
       const float vw = float(random.uniform(1, 3));
@@ -291,9 +299,9 @@ TEST_CASE("simdRasterInnerLoopIsBitIdenticalForEveryDepthTestOnEveryTarget", "[s
         raster::DepthTest::kLessEqual, raster::DepthTest::kEqual, raster::DepthTest::kAlways,
         raster::DepthTest::kNever}) {
     raster::RasterState state;
-    state.width = 203;
-    state.height = 131;
-    state.viewport = {0.0, 0.0, 203.0, 131.0};
+    state.width = soup.width;
+    state.height = soup.height;
+    state.viewport = {0.0, 0.0, double(soup.width), double(soup.height)};
     state.cull = raster::CullMode::kNone;
     state.depth_test = test;
     state.depth_clear = test == raster::DepthTest::kGreater ? 0.0f : 0.5f;
