@@ -7,6 +7,8 @@
 #include "simd/resolve-inl.h"
 
 #if HWY_ONCE
+#include <algorithm>
+
 #include "simd/resolve.h"
 
 namespace relief::simd {
@@ -26,15 +28,18 @@ void gather_slot_records(const ResolveStreams& streams, const std::int32_t* cons
   const float* const stream[9] = {streams.dx,    streams.dz,          streams.height,
                                   streams.nx,    streams.ny,          streams.nz,
                                   streams.slope, streams.water_depth, streams.nu};
-  for (std::size_t s = 0; s < count; ++s) {
-    float* const record = records + s * kSlotRecordFloats;
-    for (int f = 0; f < 9; ++f) {
-      for (int c = 0; c < 3; ++c) {
-        record[3 * f + c] = stream[f] != nullptr ? stream[f][vertex[c][s]] : 0.0f;
-      }
+  // Absent streams and the padding are zero; the present ones are copied slot by slot.
+  std::fill(records, records + count * kSlotRecordFloats, 0.0f);
+  for (int f = 0; f < 9; ++f) {
+    const float* const values = stream[f];
+    if (values == nullptr) {
+      continue;
     }
-    for (int pad = 27; pad < kSlotRecordFloats; ++pad) {
-      record[pad] = 0.0f;
+    for (std::size_t s = 0; s < count; ++s) {
+      float* const record = records + s * kSlotRecordFloats + 3 * f;
+      record[0] = values[vertex[0][s]];
+      record[1] = values[vertex[1][s]];
+      record[2] = values[vertex[2][s]];
     }
   }
 }
