@@ -3,6 +3,7 @@
 #include "raster/bins.h"
 
 #include <algorithm>
+#include <memory>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -17,7 +18,8 @@ namespace {
 // memory checked before they are allocated, binning, then every tile into `out`.
 template <class SetupOne>
 RasterStats rasterize_with(const RasterState& state, std::uint32_t triangle_count,
-                           SetupOne setup_one, const RasterLimits& limits, VisibilityBuffer& out) {
+                           SetupOne setup_one, const RasterLimits& limits,
+                           TileRasterizer tile_rasterizer, VisibilityBuffer& out) {
   out = make_visibility_buffer(state);
   const TriangleSetup setup(state);
   const TileGrid tiles = make_tile_grid(state);
@@ -55,7 +57,18 @@ RasterStats rasterize_with(const RasterState& state, std::uint32_t triangle_coun
       tbb::blocked_range<int>(0, tiles.count(), 1),
       [&](const tbb::blocked_range<int>& r) {
         for (int tile = r.begin(); tile != r.end(); ++tile) {
-          draw_tile(std::span<const SetupChunk>(chunks), tiles, tile, state.depth_test, out);
+          if (tile_rasterizer == nullptr) {
+            draw_tile(std::span<const SetupChunk>(chunks), tiles, tile, state.depth_test, out);
+            continue;
+          }
+          const auto buffer = std::make_unique<TileVisibility>();
+          tile_rasterizer(std::span<const SetupChunk>(chunks), tiles, tile, state, *buffer);
+          for (int py = buffer->y0; py < buffer->y0 + buffer->height; ++py) {
+            const std::size_t from = buffer->index(buffer->x0, py);
+            const std::size_t to = static_cast<std::size_t>(py) * state.width + buffer->x0;
+            std::copy_n(buffer->primitive + from, buffer->width, out.primitive.begin() + to);
+            std::copy_n(buffer->depth + from, buffer->width, out.depth.begin() + to);
+          }
         }
       },
       tbb::simple_partitioner());
@@ -76,34 +89,36 @@ VisibilityBuffer make_visibility_buffer(const RasterState& state) {
 
 template <class Source>
 RasterStats rasterize(const RasterState& state, ClipVertices vertices, const Source& source,
-                      VisibilityBuffer& out, const RasterLimits& limits) {
+                      VisibilityBuffer& out, const RasterLimits& limits,
+                      TileRasterizer tile_rasterizer) {
   return rasterize_with(
       state, source.count(),
       [&](const TriangleSetup& setup, std::size_t chunk, SetupChunk& into) {
         setup_chunk(setup, vertices, source, chunk, into);
       },
-      limits, out);
+      limits, tile_rasterizer, out);
 }
 
 template <class Source>
 RasterStats rasterize(const RasterState& state, WindowVertices vertices, const Source& source,
-                      VisibilityBuffer& out, const RasterLimits& limits) {
+                      VisibilityBuffer& out, const RasterLimits& limits,
+                      TileRasterizer tile_rasterizer) {
   return rasterize_with(
       state, source.count(),
       [&](const TriangleSetup& setup, std::size_t chunk, SetupChunk& into) {
         setup_window_chunk(setup, vertices, source, chunk, into);
       },
-      limits, out);
+      limits, tile_rasterizer, out);
 }
 
 template RasterStats rasterize<IndexedTriangles>(const RasterState&, ClipVertices,
                                                  const IndexedTriangles&, VisibilityBuffer&,
-                                                 const RasterLimits&);
+                                                 const RasterLimits&, TileRasterizer);
 template RasterStats rasterize<GridTriangles>(const RasterState&, ClipVertices,
                                               const GridTriangles&, VisibilityBuffer&,
-                                              const RasterLimits&);
+                                              const RasterLimits&, TileRasterizer);
 template RasterStats rasterize<IndexedTriangles>(const RasterState&, WindowVertices,
                                                  const IndexedTriangles&, VisibilityBuffer&,
-                                                 const RasterLimits&);
+                                                 const RasterLimits&, TileRasterizer);
 
 }  // namespace relief::raster

@@ -10,7 +10,9 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 
+#include "raster/bins.h"
 #include "raster/raster_types.h"
 #include "raster/topology.h"
 #include "raster/triangle_setup.h"
@@ -25,6 +27,12 @@ struct RasterLimits {
   std::uint64_t max_bin_bytes = UINT64_MAX;
 };
 
+// Draws the triangles binned to one tile into a tile-sized buffer, as rasterize_tile does
+// (bins.h); another implementation (the SIMD kernels of pipeline/tile_pass.h) may stand in
+// for it, with the same bytes.
+using TileRasterizer = void (*)(std::span<const SetupChunk> chunks, const TileGrid& tiles, int tile,
+                                const RasterState& state, TileVisibility& out);
+
 struct RasterStats {
   std::uint64_t triangles = 0;    // triangles submitted
   std::uint64_t setup = 0;        // rasterisable pieces after culling and clipping
@@ -35,12 +43,15 @@ struct RasterStats {
 
 // Clears `out` to (kNoPrimitive, depth_clear) at the state's size and draws every triangle of
 // `source`. Vertex positions are indexed by the source's vertex indices.
+// `tile_rasterizer` null: the tiles are drawn straight into `out`.
 template <class Source>
 RasterStats rasterize(const RasterState& state, ClipVertices vertices, const Source& source,
-                      VisibilityBuffer& out, const RasterLimits& limits = {});
+                      VisibilityBuffer& out, const RasterLimits& limits = {},
+                      TileRasterizer tile_rasterizer = nullptr);
 template <class Source>
 RasterStats rasterize(const RasterState& state, WindowVertices vertices, const Source& source,
-                      VisibilityBuffer& out, const RasterLimits& limits = {});
+                      VisibilityBuffer& out, const RasterLimits& limits = {},
+                      TileRasterizer tile_rasterizer = nullptr);
 
 // Calls f(px, py) for every pixel the triangle covers, row by row from the bottom.
 template <class F>

@@ -13,6 +13,7 @@
 #include "core/lattice.h"
 #include "core/scene/scene_json.h"
 #include "core/terrain_stages.h"
+#include "pipeline/build_info.h"
 #include "pipeline/image_io.h"
 #include "test_support.h"
 #include "tools/cli.h"
@@ -291,6 +292,35 @@ TEST_CASE("sampleSoupsOfTheDocsRasterise", "[cli]") {
     CHECK(manifest["triangles"].get<int>() >= 3);
     CHECK(manifest["covered_pixels"].get<int>() > 1000);
   }
+}
+
+TEST_CASE("rasterGivesTheSameBuffersWithEveryBackendAndSimdTarget", "[cli]") {
+  test::TempDir dir("raster-backends");
+  const std::string soup = std::string(RELIEF_SOURCE_DIR) + "/docs/soups/clip.txt";
+  const std::string reference = (dir.path() / "reference").string();
+  REQUIRE(run({"raster", soup, "--out", reference, "--backend", "reference"}).code == 0);
+  std::vector<std::vector<std::string>> variants = {{}, {"--backend", "simd"}};
+  for (const SimdTargetInfo& target : build_info().simd_targets) {
+    if (target.supported) {
+      variants.push_back({"--simd", target.name});
+    }
+  }
+  for (std::size_t v = 0; v < variants.size(); ++v) {
+    const std::vector<std::string>& extra = variants[v];
+    const std::string prefix = (dir.path() / std::to_string(v)).string();
+    std::vector<std::string> args = {"raster", soup, "--out", prefix};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const CliResult r = run(args);
+    INFO(args.back() << ": " << r.err);
+    REQUIRE(r.code == 0);
+    for (const char* file : {".primitive.bin", ".depth.pfm", ".barycentric.pfm"}) {
+      CHECK(read_bytes(prefix + file) == read_bytes(reference + file));
+    }
+  }
+  const CliResult wrong =
+      run({"raster", soup, "--out", reference, "--backend", "reference-double"});
+  CHECK(wrong.code == 2);
+  CHECK_THAT(wrong.err, Contains("does not apply to relief raster"));
 }
 
 TEST_CASE("rasterRejectsMalformedSoupsNamingTheLine", "[cli]") {

@@ -248,6 +248,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
                    "framebuffer); may exceed the framebuffer")
       ->expected(4)
       ->check(kFiniteViewportValue);
+  add_backend(raster_cmd, backend, simd_target);
   add_threads(raster_cmd, threads);
   add_max_memory(raster_cmd, max_memory);
 
@@ -331,7 +332,9 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   };
   const std::unique_ptr<bool, decltype(unforce)> restore_target(&simd_forced, unforce);
   if (!simd_target.empty()) {
-    CLI::App* command = stages_cmd->parsed() ? stages_cmd : render_cmd;
+    CLI::App* command = stages_cmd->parsed()   ? stages_cmd
+                        : raster_cmd->parsed() ? raster_cmd
+                                               : render_cmd;
     if (command->get_option("--backend")->count() > 0 && backend != "simd") {
       err << "relief: error: --simd " << brief_text(simd_target) << " runs the simd backend, "
           << "not --backend " << backend << "; leave --backend out or give --backend simd\n";
@@ -347,6 +350,13 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     }
   }
   stages.backend = render.backend = *backend_from_name(backend);
+  // The rasteriser has no double variant: its arithmetic is exact integers and doubles already.
+  if (raster_cmd->parsed() && render.backend == Backend::kReferenceDouble) {
+    err << "relief: error: --backend reference-double does not apply to relief raster (its "
+           "arithmetic is already exact); allowed: simd, reference\n";
+    return kExitBadInput;
+  }
+  raster_options.simd = render.backend == Backend::kSimd;
 
   std::unique_ptr<tbb::global_control> thread_limit;
   if (threads > 0) {

@@ -46,6 +46,7 @@ struct RasterOptions {
   std::string front_face = "ccw";
   std::string depth_test = "greater";
   std::vector<double> viewport;  // x y width height; empty: the framebuffer
+  bool simd = true;              // the tiles through the SIMD kernels (the same bytes)
   MemoryBudget budget;
 };
 

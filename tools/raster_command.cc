@@ -8,6 +8,7 @@
 #include "core/scene/json_input.h"
 #include "pipeline/image_io.h"
 #include "pipeline/job_memory.h"
+#include "pipeline/tile_pass.h"
 #include "raster/rasterize.h"
 #include "raster/resolve.h"
 #include "tools/atomic_file.h"
@@ -78,16 +79,17 @@ int run_raster_command(const RasterOptions& options, std::ostream& out) {
                           : 0.0f;
 
   const raster::IndexedTriangles triangles{soup.indices};
+  const raster::TileRasterizer tiles = options.simd ? &rasterize_tile_simd : nullptr;
   raster::VisibilityBuffer visibility;
   raster::RasterStats stats;
   raster::VertexPositions positions;
   if (soup.clip_coordinates) {
     const raster::ClipVertices clip{soup.x, soup.y, soup.z, soup.w};
-    stats = raster::rasterize(state, clip, triangles, visibility, limits);
+    stats = raster::rasterize(state, clip, triangles, visibility, limits, tiles);
     positions = raster::VertexPositions::from_clip(clip, state.viewport);
   } else {
     const raster::WindowVertices window{soup.x, soup.y, soup.z};
-    stats = raster::rasterize(state, window, triangles, visibility, limits);
+    stats = raster::rasterize(state, window, triangles, visibility, limits, tiles);
     positions = raster::VertexPositions::from_window(window);
   }
   if (stats.bins_refused) {
