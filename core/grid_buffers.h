@@ -10,6 +10,7 @@
 #include <span>
 #include <vector>
 
+#include "core/frame_memory.h"
 #include "core/limits.h"
 
 namespace relief {
@@ -20,12 +21,12 @@ struct AlignedAllocator {
   AlignedAllocator() = default;
   template <class U>
   AlignedAllocator(const AlignedAllocator<U>&) {}  // NOLINT: allocator rebind
+  // Large buffers are kept for the next frame (core/frame_memory.h).
   T* allocate(std::size_t n) {
-    return static_cast<T*>(
-        ::operator new(n * sizeof(T), std::align_val_t(limits::kBufferAlignBytes)));
+    return static_cast<T*>(allocate_frame_buffer(n * sizeof(T), limits::kBufferAlignBytes));
   }
-  void deallocate(T* p, std::size_t) {
-    ::operator delete(p, std::align_val_t(limits::kBufferAlignBytes));
+  void deallocate(T* p, std::size_t n) {
+    free_frame_buffer(p, n * sizeof(T), limits::kBufferAlignBytes);
   }
   template <class U>
   bool operator==(const AlignedAllocator<U>&) const {

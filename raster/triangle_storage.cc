@@ -2,31 +2,19 @@
 
 #include <new>
 
-// Slabs where the kernel can be asked for transparent huge pages, and the sanitizers do not
-// need to see every block.
-#if defined(__linux__) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
-#define RELIEF_TRIANGLE_SLABS 1
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || \
-    __has_feature(memory_sanitizer)
-#undef RELIEF_TRIANGLE_SLABS
-#endif
-#endif
-#endif
+#include "core/frame_memory.h"
 
-#ifdef RELIEF_TRIANGLE_SLABS
-#include <sys/mman.h>
-
+#ifdef RELIEF_FRAME_MAPPINGS
 #include <cstdint>
 #include <mutex>
 #endif
 
 namespace relief::raster {
 
-#ifdef RELIEF_TRIANGLE_SLABS
+#ifdef RELIEF_FRAME_MAPPINGS
 namespace {
 
-constexpr std::size_t kHugePage = std::size_t{2} << 20;
+constexpr std::size_t kHugePage = kHugePageBytes;
 constexpr std::size_t kSlabBytes = 4 * kHugePage;           // aligned to its size
 constexpr std::size_t kSmallBytes = std::size_t{64} << 10;  // below: operator new
 constexpr std::size_t kBlockAlign = 64;
@@ -62,33 +50,11 @@ std::size_t round_up(std::size_t n, std::size_t multiple) {
   return (n + multiple - 1) / multiple * multiple;
 }
 
-// `bytes` (a multiple of kHugePage) of memory aligned to `align`, with huge pages
-// advised (advice only: without them it is ordinary memory).
-void* map_aligned(std::size_t bytes, std::size_t align) {
-  const std::size_t padded = bytes + align;
-  void* const mapped =
-      mmap(nullptr, padded, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-  if (mapped == MAP_FAILED) {
-    throw std::bad_alloc();
-  }
-  const auto start = reinterpret_cast<std::uintptr_t>(mapped);
-  const std::uintptr_t aligned = (start + align - 1) & ~(std::uintptr_t{align} - 1);
-  const std::uintptr_t end = start + padded, aligned_end = aligned + bytes;
-  if (aligned > start) {
-    munmap(mapped, aligned - start);
-  }
-  if (end > aligned_end) {
-    munmap(reinterpret_cast<void*>(aligned_end), end - aligned_end);
-  }
-  madvise(reinterpret_cast<void*>(aligned), bytes, MADV_HUGEPAGE);
-  return reinterpret_cast<void*>(aligned);
-}
-
 }  // namespace
 #endif
 
 void* allocate_triangle_storage(std::size_t bytes) {
-#ifdef RELIEF_TRIANGLE_SLABS
+#ifdef RELIEF_FRAME_MAPPINGS
   if (bytes > kLargestSlabBlock) {
     return map_aligned(round_up(bytes, kHugePage), kHugePage);
   }
@@ -113,9 +79,9 @@ void* allocate_triangle_storage(std::size_t bytes) {
 }
 
 void free_triangle_storage(void* block, [[maybe_unused]] std::size_t bytes) noexcept {
-#ifdef RELIEF_TRIANGLE_SLABS
+#ifdef RELIEF_FRAME_MAPPINGS
   if (bytes > kLargestSlabBlock) {
-    munmap(block, round_up(bytes, kHugePage));
+    unmap(block, round_up(bytes, kHugePage));
     return;
   }
   if (bytes >= kSmallBytes) {
@@ -130,7 +96,7 @@ void free_triangle_storage(void* block, [[maybe_unused]] std::size_t bytes) noex
       if (s.spare_count < kSpareSlabs) {
         s.spare[s.spare_count++] = slab;
       } else {
-        munmap(slab, kSlabBytes);
+        unmap(slab, kSlabBytes);
       }
     }
     return;
