@@ -1,0 +1,88 @@
+#include "gpu/gl_shader_prelude.h"
+
+#include <bit>
+#include <cstdint>
+#include <cstdio>
+
+#include "core/det_math.h"
+#include "core/limits.h"
+#include "core/vertex_culling.h"
+
+namespace relief::gpu {
+
+namespace {
+
+std::string define(const std::string& name, long long value) {
+  return "#define " + name + " " + std::to_string(value) + "\n";
+}
+
+// The float's exact bits: GLSL has no hexadecimal float literal.
+std::string define_float(const std::string& name, float value) {
+  char bits[16];
+  std::snprintf(bits, sizeof bits, "0x%08xu", std::bit_cast<std::uint32_t>(value));
+  return "#define " + name + " uintBitsToFloat(" + bits + ")\n";
+}
+
+}  // namespace
+
+std::string_view gl_stream_name(GlStream stream) {
+  switch (stream) {
+    case GlStream::kDx:
+      return "dx";
+    case GlStream::kDz:
+      return "dz";
+    case GlStream::kSigma:
+      return "sigma";
+    case GlStream::kNu:
+      return "nu";
+    case GlStream::kValid:
+      return "valid";
+    case GlStream::kHeight:
+      return "height";
+    case GlStream::kNx:
+      return "nx";
+    case GlStream::kNy:
+      return "ny";
+    case GlStream::kNz:
+      return "nz";
+    case GlStream::kSlope:
+      return "slope";
+    case GlStream::kWaterDepth:
+      return "water_depth";
+  }
+  return "?";
+}
+
+std::string shader_prelude() {
+  std::string s = "#version 450 core\n";
+  s += define("RELIEF_MAX_OCTAVES", limits::kMaxOctaves);
+  s += define("RELIEF_GROUP_SIZE", kGroupSize);
+  s += "#define RELIEF_NEED_DRAW " + std::to_string(int(kDraw)) + "u\n";
+  s += define("RELIEF_BINDING_PARAMS", kBindingParams);
+  s += define("RELIEF_BINDING_ROWS", kBindingRows);
+  s += define("RELIEF_BINDING_LATTICE", kBindingLattice);
+  s += define("RELIEF_BINDING_MASK", kBindingMask);
+  s += define("RELIEF_BINDING_REACH", kBindingReach);
+  for (const GlStream stream : kGlStreams) {
+    std::string name(gl_stream_name(stream));
+    for (char& c : name) {
+      c = c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c;
+    }
+    s += define("RELIEF_BINDING_" + name, stream_binding(stream));
+  }
+  // The constants of the float stages, as the CPU rounds them (Real(double) once).
+  s += define_float("RELIEF_MIN_RAY_DESCENT", float(limits::kMinRayDescent));
+  using Bits = det_math_detail::FloatBits<float>;
+  s += define_float("RELIEF_FLT_MIN", Bits::kMinNormal);
+  s += define_float("RELIEF_SUBNORMAL_SCALE", Bits::kSubnormalScale);
+  s += define("RELIEF_SUBNORMAL_SHIFT", Bits::kSubnormalShift);
+  s += define_float("RELIEF_SQRT2", float(1.4142135623730951));
+  static_assert(Bits::kTerms == 5, "det_math.glsl spells out five series terms");
+  for (int k = 0; k < Bits::kTerms; ++k) {
+    s += define_float("RELIEF_LOG2_COEFF_" + std::to_string(k),
+                      float(det_math_detail::kAtanhLog2Coeffs[k]));
+  }
+  return s;
+}
+
+}  // namespace relief::gpu

@@ -1,0 +1,105 @@
+// The terrain stages 1-2, 3 and 4 as OpenGL 4.5 compute shaders (GLSL 450, gpu/shaders/):
+// the GLSL twin of core/projected_domain.cc, core/octave_coordinates.cc (the forms' choice),
+// core/fbm.cc and core/surface.cc. Each stage reads the same parameter struct as the CPU stage
+// (core/stage_params.h), uploaded byte for byte into a std430 storage block whose GLSL
+// declaration mirrors it (gpu/shaders/params.glsl; the offsets are checked against offsetof
+// when the programs are linked, gl_param_layout.h), and writes one storage buffer per stream
+// in the CPU's layout (gl_streams.h). The buffers stay on the GPU: buffer(stream) names them
+// for a later draw pass, which reads them in its vertex shader without a round trip; read()
+// copies one back. How far the results are from the CPU's, and why: docs/gl-backend.md.
+//
+// Every call needs the EGL context the object was made in to be current on the calling thread
+// (gpu::HeadlessGl, or the caller's own); without it, or on a GL error, a call throws GlError
+// (gl_checks.h) naming what failed, and parameters that do not fit the grid or the lattice
+// throw std::invalid_argument naming the field. Nothing aborts.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include "core/grid_buffers.h"
+#include "core/lattice.h"
+#include "core/stage_params.h"
+#include "gpu/gl_objects.h"
+#include "gpu/gl_streams.h"
+#include "gpu/gl_terrain_programs.h"
+
+namespace relief::gpu {
+
+// How stage 3 forms each octave's coordinate (core/octave_coordinates.h).
+enum class OctaveForms {
+  kFromReach,  // as the frame does: from the farthest valid vertex summing each octave
+               // (octave_reach and choose_coordinate_forms, run on the GPU after stage 2)
+  kAsGiven,    // FbmParams::exact_coordinates as passed
+};
+
+class GlTerrain {
+ public:
+  // Compiles the programs, checks their parameter layouts, allocates the streams of `layout`
+  // (pitch = width rounded up to limits::kRowAlignFloats, as make_grid_layout gives) and
+  // uploads `lattice`. Throws GlError if no GL 4.5 context is current, a limit of this GL is
+  // too small for the grid or the lattice, or a program fails to build or to match the C++
+  // structs; std::invalid_argument if the layout is not a make_grid_layout one.
+  GlTerrain(GridLayout layout, const NoiseLattice& lattice);
+  ~GlTerrain() = default;
+  GlTerrain(const GlTerrain&) = delete;
+  GlTerrain& operator=(const GlTerrain&) = delete;
+
+  // Stages 2, 3 and 4 over the whole grid, as core/terrain_stages.h's run_terrain_stages does
+  // on the CPU: every valid vertex, the octaves' forms chosen from the reach; the need flags
+  // of set_need(), if any, limit stages 3 and 4 as the frame's culling does.
+  void run(const TerrainParams<float>& params);
+
+  // The stages one by one, in this order (each reads what the previous ones wrote).
+  void project_domain(const DomainParams<float>& params, const DomainRows<float>& rows);
+  void evaluate_fbm(const FbmParams<float>& params, OctaveForms forms = OctaveForms::kFromReach);
+  void surface_pass(const SurfaceParams<float>& params);
+
+  // The frame's need flags (core/vertex_culling.h: kEvaluate, kDraw), one byte per vertex:
+  // stage 3 evaluates where they are non-zero, stage 4 where kDraw is set; empty: stage 3
+  // evaluates every valid vertex and stage 4 computes every valid vertex (the default).
+  void set_need(std::span<const std::uint8_t> need);
+
+  // Replaces a stream's contents (layout().size() values; valid: bytes), e.g. stage 2's
+  // outputs from the CPU, so that stage 3 can run on them alone.
+  void upload(GlStream stream, std::span<const float> values);
+  void upload_valid(std::span<const std::uint8_t> valid);
+
+  // Copies a stream back (layout().size() values or bytes).
+  void read(GlStream stream, std::span<float> out) const;
+  void read_valid(std::span<std::uint8_t> out) const;
+  // Every stream into the matching GridBuffers fields (same layout).
+  void read_all(GridBuffers<float>& out) const;
+  // Stage 3's parameters as the GPU holds them: the last evaluate_fbm's, with the octave
+  // forms it chose.
+  FbmParams<float> fbm_params() const;
+
+  // For a draw pass: the GL buffer name of each stream (GL_SHADER_STORAGE_BUFFER or vertex
+  // attribute source; layout in gl_streams.h) and the grid's dimensions and pitch. The
+  // buffers are written by compute shaders: every stage call ends with
+  // glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT |
+  // GL_BUFFER_UPDATE_BARRIER_BIT), so a later draw or copy sees them.
+  unsigned int buffer(GlStream stream) const;
+  const GridLayout& layout() const { return layout_; }
+
+ private:
+  void require_context(const char* who) const;
+  void check_stream_size(const char* who, GlStream stream, std::size_t count) const;
+  void bind_stream(GlStream stream) const;
+  void dispatch(unsigned int program, int groups_x, int groups_y, const std::string& what) const;
+
+  GridLayout layout_;
+  void* context_ = nullptr;  // the EGL context the objects belong to
+  int lattice_size_ = 0;
+  GlTerrainPrograms programs_;
+  GlName domain_params_, fbm_params_, surface_params_;  // the structs' bytes
+  GlName rows_;                                         // DomainRows: descent, x0, step_x
+  GlName lattice_;                                      // GlLatticeHeader, then the values
+  GlName reach_;  // octave_reach's extents per finest octave (float bits)
+  GlName need_;   // the need flags, when set
+  bool use_need_ = false;
+  GlName streams_[kGlStreamCount];
+};
+
+}  // namespace relief::gpu

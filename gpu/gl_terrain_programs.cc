@@ -1,0 +1,79 @@
+#include "gpu/gl_terrain_programs.h"
+
+#include <string>
+
+#include "gpu/gl_checks.h"
+#include "gpu/gl_shader_prelude.h"
+#include "gpu/gl_shader_sources.h"
+
+namespace relief::gpu {
+
+namespace {
+
+// The prelude, params.glsl, then the named files of gpu/shaders/ in order.
+GlName build(const std::string& prelude, const std::string& name,
+             std::initializer_list<std::string_view> files) {
+  std::vector<std::string_view> sources = {prelude, shader_file("params.glsl")};
+  for (const std::string_view file : files) {
+    sources.push_back(shader_file(file));
+  }
+  return link_compute_program(sources, name);
+}
+
+}  // namespace
+
+std::vector<GlProgramBlocks> terrain_program_blocks() {
+  return {
+      {"domain", {domain_params_layout()}},   {"reach", {}},
+      {"forms", {fbm_params_layout()}},       {"fbm", {fbm_params_layout(), lattice_layout()}},
+      {"surface", {surface_params_layout()}},
+  };
+}
+
+unsigned int program_named(const GlTerrainPrograms& programs, std::string_view name) {
+  if (name == "domain") {
+    return programs.domain.get();
+  }
+  if (name == "reach") {
+    return programs.reach.get();
+  }
+  if (name == "forms") {
+    return programs.forms.get();
+  }
+  if (name == "fbm") {
+    return programs.fbm.get();
+  }
+  if (name == "surface") {
+    return programs.surface.get();
+  }
+  throw GlError("no terrain program named " + std::string(name));
+}
+
+GlTerrainPrograms build_terrain_programs() {
+  const std::string prelude = shader_prelude();
+  GlTerrainPrograms p;
+  p.domain = build(prelude, "domain.comp (stage 2)", {"det_math.glsl", "domain.comp"});
+  p.reach = build(prelude, "reach.comp (octave reach)", {"reach.comp"});
+  p.forms = build(prelude, "forms.comp (coordinate forms)", {"forms.comp"});
+  p.fbm =
+      build(prelude, "fbm.comp (stage 3)", {"lattice.glsl", "octave_coordinates.glsl", "fbm.comp"});
+  p.surface = build(prelude, "surface.comp (stage 4)", {"surface.comp"});
+  for (const GlProgramBlocks& entry : terrain_program_blocks()) {
+    std::string problems;
+    for (const GlBlockLayout& block : entry.blocks) {
+      for (const std::string& problem : layout_mismatches(program_named(p, entry.program), block)) {
+        problems += "\n  " + problem;
+      }
+    }
+    if (!problems.empty()) {
+      throw GlError("the GLSL parameter blocks of program " + std::string(entry.program) +
+                    " do not match the C++ structs (gpu/shaders/params.glsl against "
+                    "core/stage_params.h):" +
+                    problems);
+    }
+  }
+  check_gl("checking the terrain programs' parameter layouts");
+  return p;
+}
+
+}  // namespace relief::gpu

@@ -1,0 +1,36 @@
+// The compute programs of gl_terrain.h, each assembled from the prelude (gl_shader_prelude.h),
+// the parameter structs (shaders/params.glsl), the shared functions it calls and its stage's
+// .comp file, and checked against the C++ parameter layouts (gl_param_layout.h).
+#pragma once
+
+#include <string_view>
+#include <vector>
+
+#include "gpu/gl_objects.h"
+#include "gpu/gl_param_layout.h"
+
+namespace relief::gpu {
+
+struct GlTerrainPrograms {
+  GlName domain;   // stage 2: domain.comp
+  GlName reach;    // octave_reach: reach.comp
+  GlName forms;    // choose_coordinate_forms: forms.comp
+  GlName fbm;      // stage 3: fbm.comp
+  GlName surface;  // stage 4: surface.comp
+};
+
+// The parameter blocks each program reads, with the layouts they must have.
+struct GlProgramBlocks {
+  std::string_view program;
+  std::vector<GlBlockLayout> blocks;
+};
+std::vector<GlProgramBlocks> terrain_program_blocks();
+
+// Builds every program; throws GlError with the compiler's log, or with every layout
+// mismatch found, naming the program.
+GlTerrainPrograms build_terrain_programs();
+
+// The program of `programs` named as in terrain_program_blocks() ("domain", "fbm", ...).
+unsigned int program_named(const GlTerrainPrograms& programs, std::string_view name);
+
+}  // namespace relief::gpu
