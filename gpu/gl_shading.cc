@@ -1,0 +1,318 @@
+#include "gpu/gl_shading.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include <epoxy/gl.h>
+
+#include "core/limits.h"
+#include "core/srgb.h"
+#include "gpu/glsl_sources.h"
+
+namespace relief::gpu {
+
+namespace {
+
+constexpr GLuint kLocalSize = 256;    // triangles.comp's local_size_x
+constexpr GLuint kMaxGroups = 65535;  // GL 4.5's least GL_MAX_COMPUTE_WORK_GROUP_COUNT
+
+// Binding points of the shaders' blocks (shaders/*.glsl).
+constexpr GLuint kShadeBinding = 0, kLatticeBinding = 1, kSrgbBinding = 2;  // storage
+constexpr GLuint kTransformBinding = 0;                                     // uniform
+constexpr GLuint kValidBinding = 0, kNeedBinding = 1, kIndexBinding = 2;    // triangles.comp
+
+// Vertex attributes of terrain.vert: the float streams at 0-8, valid at 9, need at 10.
+constexpr GLuint kValidAttribute = 9, kNeedAttribute = 10;
+
+// Colour targets: location k of the fragment shaders is GL_COLOR_ATTACHMENT0 + k.
+constexpr GLenum kTargetFormats[5] = {GL_RGBA32F, GL_RGBA8UI, GL_R32UI, GL_RGBA32F, GL_RG32F};
+
+// The least float >= each of srgb_byte's decision points (core/srgb.h, bucket_steps).
+std::vector<float> srgb_steps() {
+  const auto& points = srgb_detail::decision_points();
+  std::vector<float> steps(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    float f = static_cast<float>(points[k]);
+    if (double(f) < points[k]) {
+      f = std::nextafter(f, 2.0f);
+    }
+    steps[k] = f;
+  }
+  return steps;
+}
+
+GLuint immutable_buffer(GLsizeiptr size, const void* data, GLbitfield flags) {
+  GLuint buffer = 0;
+  glCreateBuffers(1, &buffer);
+  glNamedBufferStorage(buffer, size, data, flags);
+  return buffer;
+}
+
+}  // namespace
+
+GlTerrainDraw::GlTerrainDraw()
+    : terrain_({{GL_VERTEX_SHADER, terrain_vertex_sources()},
+                {GL_FRAGMENT_SHADER, terrain_fragment_sources()}}),
+      background_({{GL_VERTEX_SHADER, background_vertex_sources()},
+                   {GL_FRAGMENT_SHADER, background_fragment_sources()}}),
+      triangles_({{GL_COMPUTE_SHADER, triangle_index_sources()}}) {
+  shade_block_ = immutable_buffer(sizeof(ShadeParams<float>), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  transform_block_ =
+      immutable_buffer(sizeof(TransformParams<float>), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  const std::vector<float> steps = srgb_steps();
+  srgb_steps_ =
+      immutable_buffer(static_cast<GLsizeiptr>(steps.size() * sizeof(float)), steps.data(), 0);
+  const std::uint32_t word = 0;
+  no_need_ = immutable_buffer(sizeof word, &word, 0);
+  glCreateVertexArrays(1, &terrain_vao_);
+  glCreateVertexArrays(1, &empty_vao_);
+  glCreateFramebuffers(1, &framebuffer_);
+  check_gl("GlTerrainDraw set-up");
+}
+
+GlTerrainDraw::~GlTerrainDraw() {
+  const GLuint buffers[] = {shade_block_, transform_block_, srgb_steps_, index_buffer_, no_need_};
+  glDeleteBuffers(5, buffers);
+  const GLuint arrays[] = {terrain_vao_, empty_vao_};
+  glDeleteVertexArrays(2, arrays);
+  glDeleteFramebuffers(1, &framebuffer_);
+  glDeleteRenderbuffers(6, targets_);
+}
+
+void GlTerrainDraw::build_indices(const GlGridStreams& grid, std::uint32_t triangles) {
+  const GLsizeiptr bytes = GLsizeiptr(3) * triangles * GLsizeiptr(sizeof(std::uint32_t));
+  GLint64 largest = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &largest);
+  if (bytes > largest || static_cast<GLint64>(grid.layout.size()) > largest) {
+    throw std::invalid_argument("gpu: a grid of " + std::to_string(grid.layout.width) + " x " +
+                                std::to_string(grid.layout.height) +
+                                " vertices needs storage buffers larger than this GL's " +
+                                std::to_string(largest) + " bytes");
+  }
+  glDeleteBuffers(1, &index_buffer_);
+  index_buffer_ = immutable_buffer(bytes, nullptr, 0);
+  const GLuint program = triangles_.id();
+  glUseProgram(program);
+  glProgramUniform1ui(program, glGetUniformLocation(program, "u_width"),
+                      static_cast<GLuint>(grid.layout.width));
+  glProgramUniform1ui(program, glGetUniformLocation(program, "u_pitch"),
+                      static_cast<GLuint>(grid.layout.pitch));
+  glProgramUniform1ui(program, glGetUniformLocation(program, "u_count"), triangles);
+  glProgramUniform1i(program, glGetUniformLocation(program, "u_has_need"), grid.need != 0);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kValidBinding, grid.valid);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNeedBinding, grid.need != 0 ? grid.need : no_need_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kIndexBinding, index_buffer_);
+  // Triangle t = y (groups_x 256) + x: as many rows of groups as 65535 per row needs.
+  const GLuint groups = (triangles + kLocalSize - 1) / kLocalSize;
+  const GLuint groups_x = std::min(groups, kMaxGroups);
+  glDispatchCompute(groups_x, (groups + groups_x - 1) / groups_x, 1);
+  glMemoryBarrier(GL_ELEMENT_ARRAY_BARRIER_BIT);
+  check_gl("triangle indices");
+}
+
+void GlTerrainDraw::set_up_targets(int width, int height) {
+  if (width == target_width_ && height == target_height_) {
+    return;
+  }
+  glDeleteRenderbuffers(6, targets_);
+  glCreateRenderbuffers(6, targets_);
+  GLenum draw_buffers[5];
+  for (int k = 0; k < 5; ++k) {
+    glNamedRenderbufferStorage(targets_[k], kTargetFormats[k], width, height);
+    glNamedFramebufferRenderbuffer(framebuffer_, GL_COLOR_ATTACHMENT0 + k, GL_RENDERBUFFER,
+                                   targets_[k]);
+    draw_buffers[k] = GL_COLOR_ATTACHMENT0 + k;
+  }
+  glNamedRenderbufferStorage(targets_[5], GL_DEPTH_COMPONENT32F, width, height);
+  glNamedFramebufferRenderbuffer(framebuffer_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, targets_[5]);
+  glNamedFramebufferDrawBuffers(framebuffer_, 5, draw_buffers);
+  if (glCheckNamedFramebufferStatus(framebuffer_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    throw std::runtime_error("gpu: the frame's render targets are incomplete");
+  }
+  target_width_ = width;
+  target_height_ = height;
+  check_gl("render targets");
+}
+
+void GlTerrainDraw::bind_vertex_streams(const GlGridStreams& grid) {
+  const GLuint floats[9] = {grid.dx, grid.dz,    grid.height,      grid.nx, grid.ny,
+                            grid.nz, grid.slope, grid.water_depth, grid.nu};
+  const GLuint vao = terrain_vao_;
+  for (GLuint a = 0; a < 9; ++a) {
+    if (floats[a] == 0) {  // only nu may be missing (checked by draw): a constant 0
+      glDisableVertexArrayAttrib(vao, a);
+      continue;
+    }
+    glVertexArrayVertexBuffer(vao, a, floats[a], 0, sizeof(float));
+    glVertexArrayAttribFormat(vao, a, 1, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao, a, a);
+    glEnableVertexArrayAttrib(vao, a);
+  }
+  for (const GLuint a : {kValidAttribute, kNeedAttribute}) {
+    const GLuint buffer = a == kValidAttribute ? grid.valid : grid.need;
+    if (buffer == 0) {
+      glDisableVertexArrayAttrib(vao, a);
+      continue;
+    }
+    glVertexArrayVertexBuffer(vao, a, buffer, 0, 1);
+    glVertexArrayAttribIFormat(vao, a, 1, GL_UNSIGNED_BYTE, 0);
+    glVertexArrayAttribBinding(vao, a, a);
+    glEnableVertexArrayAttrib(vao, a);
+  }
+  glVertexArrayElementBuffer(vao, index_buffer_);
+}
+
+GlFrameImage GlTerrainDraw::draw(const GlGridStreams& grid, const TransformParams<float>& transform,
+                                 const ShadeParams<float>& shade, const GlShadeResources& resources,
+                                 double camera_y) {
+  const GridLayout& layout = grid.layout;
+  if (layout.width < 2 || layout.height < 2 || layout.pitch < layout.width) {
+    throw std::invalid_argument("gpu: the grid is " + std::to_string(layout.width) + " x " +
+                                std::to_string(layout.height) + " (pitch " +
+                                std::to_string(layout.pitch) +
+                                "); a triangulated grid needs at least 2 x 2 vertices");
+  }
+  const GLuint required[] = {grid.dx, grid.dz,    grid.height,      grid.nx,   grid.ny,
+                             grid.nz, grid.slope, grid.water_depth, grid.valid};
+  for (const GLuint name : required) {
+    if (name == 0) {
+      throw std::invalid_argument("gpu: every grid stream but nu and need must be a buffer");
+    }
+  }
+  if (shade.layer_count < 1 ||
+      static_cast<std::size_t>(shade.layer_count) > resources.textures().size() ||
+      static_cast<std::size_t>(shade.layer_count) > limits::kMaxMaterialLayers) {
+    throw std::invalid_argument("gpu: shade.layer_count is " + std::to_string(shade.layer_count) +
+                                "; there are " + std::to_string(resources.textures().size()) +
+                                " proto-textures");
+  }
+  GLint largest = 0;
+  glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &largest);
+  if (shade.width < 1 || shade.height < 1 || shade.width > largest || shade.height > largest) {
+    throw std::invalid_argument("gpu: the image is " + std::to_string(shade.width) + " x " +
+                                std::to_string(shade.height) + "; this GL allows 1 to " +
+                                std::to_string(largest) + " a side");
+  }
+  const std::uint32_t triangles = 2u * static_cast<std::uint32_t>(layout.width - 1) *
+                                  static_cast<std::uint32_t>(layout.height - 1);
+  build_indices(grid, triangles);
+  set_up_targets(shade.width, shade.height);
+  bind_vertex_streams(grid);
+  // The parameter structs as bytes: the blocks mirror their layout (shade_params.glsl).
+  glNamedBufferSubData(shade_block_, 0, sizeof shade, &shade);
+  glNamedBufferSubData(transform_block_, 0, sizeof transform, &transform);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kShadeBinding, shade_block_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLatticeBinding, resources.lattice());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSrgbBinding, srgb_steps_);
+  glBindBufferBase(GL_UNIFORM_BUFFER, kTransformBinding, transform_block_);
+  for (std::size_t k = 0; k < resources.textures().size(); ++k) {
+    glBindTextureUnit(static_cast<GLuint>(k), resources.textures()[k]);
+  }
+  const GLuint program = terrain_.id();
+  glProgramUniform1iv(program, glGetUniformLocation(program, "u_texture_size"),
+                      static_cast<GLsizei>(resources.texture_sizes().size()),
+                      resources.texture_sizes().data());
+  glProgramUniform1d(program, glGetUniformLocation(program, "u_camera_y"), camera_y);
+  glVertexAttrib1f(8, 0.0f);               // nu where no stream is bound
+  glVertexAttribI1ui(kNeedAttribute, 2u);  // kDraw where no stream is bound
+
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+  glDepthRange(0.0, 1.0);
+  glViewport(0, 0, shade.width, shade.height);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_MULTISAMPLE);
+  glDisable(GL_BLEND);
+  glDisable(GL_DITHER);
+  const float far_depth = 0.0f;  // reverse-Z: infinitely far
+  glClearNamedFramebufferfv(framebuffer_, GL_DEPTH, 0, &far_depth);
+
+  // The background over every pixel, depth untouched.
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glUseProgram(background_.id());
+  glBindVertexArray(empty_vao_);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+
+  // The terrain: GREATER depth, back faces culled (the frame's raster state).
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_GREATER);
+  glDepthMask(GL_TRUE);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glFrontFace(GL_CCW);
+  glUseProgram(terrain_.id());
+  glBindVertexArray(terrain_vao_);
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(3 * triangles), GL_UNSIGNED_INT, nullptr);
+  check_gl("terrain draw");
+  glBindVertexArray(0);
+  glUseProgram(0);
+  GlFrameImage image = read_back(shade.width, shade.height);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (grid.nu == 0) {
+    image.octaves.assign(image.octaves.size(), 0.0f);
+  }
+  return image;
+}
+
+GlFrameImage GlTerrainDraw::read_back(int width, int height) const {
+  const std::size_t pixels = static_cast<std::size_t>(width) * height;
+  std::vector<float> rgba(4 * pixels);
+  std::vector<std::uint8_t> bytes(4 * pixels);
+  std::vector<float> pairs(2 * pixels);
+  GlFrameImage image;
+  image.width = width;
+  image.height = height;
+  image.primitive.resize(pixels);
+  image.depth.resize(pixels);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  const auto read = [&](int target, GLenum format, GLenum type, void* out) {
+    glNamedFramebufferReadBuffer(framebuffer_, GL_COLOR_ATTACHMENT0 + target);
+    glReadPixels(0, 0, width, height, format, type, out);
+  };
+  const auto rgb_of = [&](const auto& four, auto& three) {
+    three.resize(3 * pixels);
+    for (std::size_t k = 0; k < pixels; ++k) {
+      for (int c = 0; c < 3; ++c) {
+        three[3 * k + c] = four[4 * k + c];
+      }
+    }
+  };
+  read(0, GL_RGBA, GL_FLOAT, rgba.data());
+  rgb_of(rgba, image.linear);
+  read(1, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE, bytes.data());
+  rgb_of(bytes, image.srgb);
+  read(2, GL_RED_INTEGER, GL_UNSIGNED_INT, image.primitive.data());
+  read(3, GL_RGBA, GL_FLOAT, rgba.data());
+  rgb_of(rgba, image.normal);
+  read(4, GL_RG, GL_FLOAT, pairs.data());
+  image.world_height.resize(pixels);
+  image.octaves.resize(pixels);
+  for (std::size_t k = 0; k < pixels; ++k) {
+    image.world_height[k] = pairs[2 * k];
+    image.octaves[k] = pairs[2 * k + 1];
+  }
+  glReadPixels(0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, image.depth.data());
+  check_gl("read back");
+  return image;
+}
+
+std::vector<GlBlockMember> GlTerrainDraw::shade_params_layout() const {
+  return block_members(terrain_.id(), true, "ShadeParamsBlock");
+}
+
+std::vector<GlBlockMember> GlTerrainDraw::transform_params_layout() const {
+  return block_members(terrain_.id(), false, "TransformBlock");
+}
+
+int GlTerrainDraw::shade_params_size() const {
+  return block_size(terrain_.id(), true, "ShadeParamsBlock");
+}
+
+int GlTerrainDraw::transform_params_size() const {
+  return block_size(terrain_.id(), false, "TransformBlock");
+}
+
+}  // namespace relief::gpu

@@ -1,0 +1,124 @@
+#include <cstdio>
+#include <string>
+
+#include "core/det_math.h"
+#include "core/limits.h"
+#include "core/proto_texture.h"
+#include "core/shading_plan.h"
+#include "gpu/glsl_sources.h"
+
+namespace relief::gpu {
+
+namespace {
+
+// Constants private to core's .cc files, as they are written there (a change there must be
+// made here too; tests/gl_shading_test.cc would show it as an image difference).
+constexpr double kMinProjectionWeight = 0.01;   // shade.cc: triplanar projections skipped below
+constexpr double kMinLayerWeight = 1e-3;        // shade.cc: layers skipped below
+constexpr double kMinGrazingSine = 0.05;        // shade.cc, surface_footprint: |view.y| floor
+constexpr double kOpenWaterDepth = 1e6;         // shade.cc, background_radiance: no ground
+constexpr double kMinWeightSum = 1e-6;          // layer_weights.cc: renormalisation domain
+constexpr float kMinRhoSq = 1e-30f;             // proto_texture.cc, texture_lod: log domain
+constexpr double kHaloWeight = 0.06;            // sky.cc, sky_radiance
+constexpr double kFogSunWeight = 0.05;          // sky.cc, fog_color
+constexpr double kFresnelF0 = 0.02;             // water.cc
+constexpr double kRelativeIndex = 1.0 / 1.333;  // water.cc: air to water
+constexpr double kMinTransmittedCosine = 0.1;   // water.cc: path length domain
+constexpr double kReflectivityBase = 0.3;       // water.cc: reflectivity 0.3 + 0.7 f
+constexpr double kReflectivityDepth = 0.7;
+
+// The float `value` as a GLSL literal: 9 significant digits identify a float, and the
+// decimal lies so close to it that even a parser rounding through double returns it.
+std::string literal(float value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.8e", double(value));
+  return text;
+}
+
+void constant(std::string& out, const char* name, float value) {
+  out += "const float ";
+  out += name;
+  out += " = " + literal(value) + ";\n";
+}
+
+template <int kCount>
+void constant_array(std::string& out, const char* name, const double (&values)[kCount], int count) {
+  out += "const float " + std::string(name) + "[" + std::to_string(count) + "] = float[](";
+  for (int k = 0; k < count; ++k) {
+    out += (k > 0 ? ", " : "") + literal(static_cast<float>(values[k]));
+  }
+  out += ");\n";
+}
+
+std::vector<GlslSource> with_prelude(std::vector<GlslSource> sources) {
+  sources.insert(sources.begin(), GlslSource{"prelude", glsl_prelude()});
+  return sources;
+}
+
+std::vector<GlslSource> shading_sources() {
+  return {{"common.glsl", glsl::kCommon},      {"shade_params.glsl", glsl::kShadeParams},
+          {"shading_lattice.glsl", glsl::kLattice},    {"proto_texture.glsl", glsl::kProtoTexture},
+          {"sky_water.glsl", glsl::kSkyWater}, {"terrain_shading.glsl", glsl::kTerrainShading}};
+}
+
+}  // namespace
+
+std::string glsl_prelude() {
+  using Bits = det_math_detail::FloatBits<float>;
+  std::string out = "#version 450 core\n";
+  out += "const int kMaxLayers = " + std::to_string(limits::kMaxMaterialLayers) + ";\n";
+  out += "const int kWaveOctaves = " + std::to_string(kWaveOctaves) + ";\n";
+  // det_math.h, log2_det<float> and exp2_det<float>.
+  out += "const int kLog2Terms = " + std::to_string(Bits::kTerms) + ";\n";
+  constant_array(out, "kLog2Coeff", det_math_detail::kAtanhLog2Coeffs, Bits::kTerms);
+  const int exp2_terms = det_math_detail::Exp2Terms<float>::kTerms;
+  out += "const int kExp2Terms = " + std::to_string(exp2_terms) + ";\n";
+  constant_array(out, "kExp2Coeff", det_math_detail::kExp2Coeffs, exp2_terms);
+  constant(out, "kExp2Limit", float(Bits::kExponentBias - 2));
+  constant(out, "kSqrt2", float(1.4142135623730951));
+  constant(out, "kMinNormal", Bits::kMinNormal);
+  constant(out, "kSubnormalScale", Bits::kSubnormalScale);
+  // The guards and weights of stage 8.
+  constant(out, "kMagnificationLod", kMagnificationLod);
+  constant(out, "kMinRhoSq", kMinRhoSq);
+  constant(out, "kMinProjectionWeight", float(kMinProjectionWeight));
+  constant(out, "kMinLayerWeight", float(kMinLayerWeight));
+  constant(out, "kMinGrazingSine", float(kMinGrazingSine));
+  constant(out, "kOpenWaterDepth", float(kOpenWaterDepth));
+  constant(out, "kMinWeightSum", float(kMinWeightSum));
+  constant(out, "kHaloWeight", float(kHaloWeight));
+  constant(out, "kFogSunWeight", float(kFogSunWeight));
+  constant(out, "kFresnelF0", float(kFresnelF0));
+  constant(out, "kFresnelRest", float(1 - kFresnelF0));
+  constant(out, "kRelativeIndex", float(kRelativeIndex));
+  constant(out, "kMinTransmittedCosine", float(kMinTransmittedCosine));
+  constant(out, "kReflectivityBase", float(kReflectivityBase));
+  constant(out, "kReflectivityDepth", float(kReflectivityDepth));
+  return out;
+}
+
+std::vector<GlslSource> terrain_vertex_sources() {
+  return with_prelude({{"terrain.vert", glsl::kTerrainVert}});
+}
+
+std::vector<GlslSource> terrain_fragment_sources() {
+  std::vector<GlslSource> sources = shading_sources();
+  sources.push_back({"terrain.frag", glsl::kTerrainFrag});
+  return with_prelude(std::move(sources));
+}
+
+std::vector<GlslSource> background_vertex_sources() {
+  return with_prelude({{"background.vert", glsl::kBackgroundVert}});
+}
+
+std::vector<GlslSource> background_fragment_sources() {
+  std::vector<GlslSource> sources = shading_sources();
+  sources.push_back({"background.frag", glsl::kBackgroundFrag});
+  return with_prelude(std::move(sources));
+}
+
+std::vector<GlslSource> triangle_index_sources() {
+  return with_prelude({{"triangles.comp", glsl::kTriangles}});
+}
+
+}  // namespace relief::gpu
