@@ -1,5 +1,6 @@
-// A headless OpenGL 4.5 core context through EGL's surfaceless platform (Mesa's llvmpipe on a
-// machine without a GPU, the GPU's driver where there is one). No window system is needed.
+// A headless OpenGL 4.5 core context through EGL, no window system: the EGL device platform
+// first (a GPU's driver: NVIDIA exposes its GPUs as EGL devices), then Mesa's surfaceless
+// platform (llvmpipe on a machine without a GPU).
 #pragma once
 
 #include <memory>
@@ -17,11 +18,20 @@ class HeadlessGl {
   HeadlessGl& operator=(const HeadlessGl&) = delete;
 
   std::string renderer() const;  // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+  std::string version() const;   // GL_VERSION
+  // "EGL device" or "EGL surfaceless (Mesa)": which platform gave the context.
+  const std::string& platform() const { return platform_; }
+
+  // A context is current on one thread at a time: make_current() takes it to the calling
+  // thread (false if EGL refuses), release() lets it go, so that another thread can take it.
+  bool make_current() const;
+  void release() const;
 
  private:
   HeadlessGl() = default;
   void* display_ = nullptr;
   void* context_ = nullptr;
+  std::string platform_;
 };
 
 }  // namespace relief::gpu

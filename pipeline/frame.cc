@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 
+#include "pipeline/gl_backend.h"
 #include "pipeline/reference_backend.h"
 #include "pipeline/stage_table.h"
 
@@ -50,11 +51,17 @@ template <class Real>
 Frame render_with(const Scene& scene, const SceneResources& resources,
                   const FrameRequest& request) {
   const Clock::time_point start = Clock::now();
-  ReferenceBackend<Real> backend(scene, resources.lattice, resources.textures, request);
+  std::unique_ptr<FrameBackend> backend;
+  if (request.backend == Backend::kGl) {
+    backend = make_gl_backend(scene, resources, request);
+  } else {
+    backend = std::make_unique<ReferenceBackend<Real>>(scene, resources.lattice, resources.textures,
+                                                       request);
+  }
   Frame frame;
   frame.stats.stages.push_back({"frame plan", milliseconds_since(start), true, {}});
-  run_table(backend, StageId::kTiles, frame.stats.stages);
-  backend.finish(frame);
+  run_table(*backend, StageId::kTiles, frame.stats.stages);
+  backend->finish(frame);
   frame.stats.total_ms = milliseconds_since(start);
   return frame;
 }
@@ -69,12 +76,14 @@ std::string_view backend_name(Backend backend) {
       return "reference-double";
     case Backend::kSimd:
       return "simd";
+    case Backend::kGl:
+      return "gl";
   }
   return "reference";
 }
 
 std::optional<Backend> backend_from_name(std::string_view name) {
-  for (Backend b : {Backend::kReference, Backend::kReferenceDouble, Backend::kSimd}) {
+  for (Backend b : {Backend::kReference, Backend::kReferenceDouble, Backend::kSimd, Backend::kGl}) {
     if (backend_name(b) == name) {
       return b;
     }
@@ -84,7 +93,7 @@ std::optional<Backend> backend_from_name(std::string_view name) {
 
 std::vector<std::string_view> backend_names() {
   return {backend_name(Backend::kReference), backend_name(Backend::kReferenceDouble),
-          backend_name(Backend::kSimd)};
+          backend_name(Backend::kSimd), backend_name(Backend::kGl)};
 }
 
 Frame render_frame(const Scene& scene, const SceneResources& resources,
@@ -98,6 +107,14 @@ template <class Real>
 TerrainRun<Real> run_terrain_stages(const Scene& scene, const NoiseLattice& lattice, Backend kind) {
   const Clock::time_point start = Clock::now();
   // The whole grid, seen or not: relief stages writes every vertex.
+  if constexpr (std::is_same_v<Real, float>) {
+    if (kind == Backend::kGl) {
+      GridBuffers<float> grid = gl_terrain_stages(scene, lattice);
+      std::vector<StageTime> times{
+          {"GL stages 1-4, read back", milliseconds_since(start), true, {}}};
+      return {make_frame_plan(scene, lattice), std::move(grid), std::move(times)};
+    }
+  }
   FrameRequest request;
   request.backend = kind;
   request.skips.unseen_vertices = false;

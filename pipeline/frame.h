@@ -26,9 +26,10 @@ enum class Backend {
   kReference,        // the scalar reference stages in float: the product's images
   kReferenceDouble,  // the same stages in double, for accuracy comparisons
   kSimd,             // the float stages with Highway kernels: bit-identical to kReference
+  kGl,  // the GLSL twins of the stages on OpenGL 4.5 (gl_backend.h): within documented bounds
 };
 
-// "reference", "reference-double", "simd".
+// "reference", "reference-double", "simd", "gl".
 std::string_view backend_name(Backend backend);
 std::optional<Backend> backend_from_name(std::string_view name);
 std::vector<std::string_view> backend_names();

@@ -20,6 +20,7 @@
 #include "core/scene/json_input.h"
 #include "core/scene/scene_json.h"
 #include "pipeline/frame.h"
+#include "pipeline/gl_backend.h"
 #include "pipeline/image_io.h"
 #include "pipeline/job_memory.h"
 #include "pipeline/memory_budget.h"
@@ -59,6 +60,8 @@ auto guarded(Body&& body) -> decltype(body()) {
   } catch (const SceneError& e) {
     return Error{kExitBadInput, e.what()};
   } catch (const MemoryLimitError& e) {
+    return Error{kExitBadInput, e.what()};
+  } catch (const GlBackendError& e) {
     return Error{kExitBadInput, e.what()};
   } catch (const std::bad_alloc&) {
     // The estimate (job_memory.h) missed, or another process took the memory meanwhile.

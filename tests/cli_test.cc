@@ -154,7 +154,7 @@ TEST_CASE("renderRejectsBadInputWithoutWritingAFile", "[cli]") {
            {"render", "--set", "camera.fov_y_deg=0", "-o", png},
            {"render", "--set", "grid.margin=99", "-o", png},
            {"render", "--repeat", "0", "-o", png},
-           {"render", "--backend", "gl", "-o", png},
+           {"render", "--backend", "vulkan", "-o", png},
            {"render", "--simd", "avx9", "-o", png},
            {"render", "--simd", "sse4", "--backend", "reference", "-o", png},
            {"stages", "--backend", "", "--out", png},

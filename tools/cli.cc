@@ -20,6 +20,7 @@
 #include "core/scene/scene_json.h"
 #include "pipeline/build_info.h"
 #include "pipeline/frame.h"
+#include "pipeline/gl_backend.h"
 #include "pipeline/memory_budget.h"
 #include "tools/atomic_file.h"
 #include "tools/commands.h"
@@ -119,8 +120,9 @@ void add_backend(CLI::App* command, std::string& backend, std::string& simd_targ
   command
       ->add_option("--backend", backend,
                    "Implementation of the stages: simd (the default: Highway kernels), "
-                   "reference (the scalar float stages; simd gives their bytes exactly) or "
-                   "reference-double (every stage in double, for accuracy comparisons)")
+                   "reference (the scalar float stages; simd gives their bytes exactly), "
+                   "reference-double (every stage in double, for accuracy comparisons) or gl "
+                   "(the GLSL twins on OpenGL 4.5: a GPU, or Mesa's llvmpipe)")
       ->check(CLI::Validator(
           [names](std::string& text) -> std::string {
             return backend_from_name(text) ? "" : "unknown backend; allowed: " + names;
@@ -351,9 +353,11 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   }
   stages.backend = render.backend = *backend_from_name(backend);
   // The rasteriser has no double variant: its arithmetic is exact integers and doubles already.
-  if (raster_cmd->parsed() && render.backend == Backend::kReferenceDouble) {
-    err << "relief: error: --backend reference-double does not apply to relief raster (its "
-           "arithmetic is already exact); allowed: simd, reference\n";
+  if (raster_cmd->parsed() &&
+      (render.backend == Backend::kReferenceDouble || render.backend == Backend::kGl)) {
+    err << "relief: error: --backend " << backend
+        << " does not apply to relief raster (its arithmetic is already exact, and the GL "
+           "rasteriser is what it is compared with); allowed: simd, reference\n";
     return kExitBadInput;
   }
   raster_options.simd = render.backend == Backend::kSimd;
@@ -419,6 +423,9 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     return kExitBadInput;
   } catch (const MemoryLimitError& e) {
     err << "relief: error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const GlBackendError& e) {
+    err << "relief: error: " << brief_text(e.what(), 4 * kBriefChars) << "\n";
     return kExitBadInput;
   } catch (const OutputError& e) {
     err << "relief: error: " << e.what() << "\n";

@@ -1,0 +1,248 @@
+#include "pipeline/gl_backend.h"
+
+#include <mutex>
+#include <utility>
+
+#include "core/frame_plan.h"
+#include "core/shading_plan.h"
+#include "core/stage_params.h"
+#include "pipeline/frame_skips.h"
+#include "pipeline/stage_table.h"
+
+#ifdef RELIEF_WITH_GL
+#include "gpu/gl_buffers.h"
+#include "gpu/gl_checks.h"
+#include "gpu/gl_shading.h"
+#include "gpu/gl_terrain.h"
+#include "gpu/headless_gl.h"
+#endif
+
+namespace relief {
+
+#ifdef RELIEF_WITH_GL
+namespace {
+
+// The process's GL context and the programs it compiled (llvmpipe takes a second or more to
+// compile them: once per process, not per frame). `mutex` serialises GL frames.
+struct GlSession {
+  std::mutex mutex;
+  std::unique_ptr<gpu::HeadlessGl> gl;
+  std::string error;  // why there is no context
+  std::unique_ptr<gpu::GlTerrainDraw> draw;
+};
+
+GlSession& session() {
+  static GlSession* const state = new GlSession;  // never destroyed: the driver outlives it
+  return *state;
+}
+
+// The context, current on this thread, or GlBackendError. Called with the session locked.
+gpu::HeadlessGl& current_context(GlSession& s) {
+  if (s.gl == nullptr && s.error.empty()) {
+    s.gl = gpu::HeadlessGl::open(s.error);  // current on this thread when it opens
+    if (s.gl == nullptr && s.error.empty()) {
+      s.error = "no OpenGL context";
+    }
+  }
+  if (s.gl == nullptr) {
+    throw GlBackendError("the GL backend needs OpenGL 4.5 through EGL: " + s.error);
+  }
+  if (!s.gl->make_current()) {
+    throw GlBackendError("the GL context cannot be made current on this thread");
+  }
+  return *s.gl;
+}
+
+// Runs `work` with the context current on this thread, released afterwards; gpu/'s errors
+// (GlError, a shader log, a limit the frame needs) become GlBackendError.
+template <class Work>
+void with_context(GlSession& s, const char* what, Work&& work) {
+  gpu::HeadlessGl& gl = current_context(s);
+  try {
+    work();
+  } catch (const std::exception& e) {
+    gl.release();
+    throw GlBackendError(std::string("the GL backend's ") + what + ": " + e.what());
+  }
+  gl.release();
+}
+
+class GlBackend final : public FrameBackend {
+ public:
+  GlBackend(const Scene& scene, const SceneResources& resources, const FrameRequest& request)
+      : lock_(session().mutex),
+        scene_(scene),
+        resources_(resources),
+        request_(request),
+        plan_(make_frame_plan(scene, resources.lattice)),
+        params_(make_terrain_params<float>(plan_)) {
+    with_context(session(), "set-up", [&] {
+      terrain_ = std::make_unique<gpu::GlTerrain>(plan_.layout, resources_.lattice);
+    });
+  }
+
+  std::size_t units(StageId id) const override {
+    switch (id) {
+      case StageId::kProjectedDomain:
+      case StageId::kFractal:
+      case StageId::kSurface:
+        return params_.domain.terrain_visible != 0 ? 1 : 0;
+      case StageId::kTiles:
+        return 1;
+      default:
+        return 0;  // culling and the software rasteriser's stages: not on the GL side
+    }
+  }
+
+  void run(StageId id, std::size_t /*begin*/, std::size_t /*end*/) override {
+    GlSession& s = session();
+    switch (id) {
+      case StageId::kProjectedDomain:
+        with_context(s, "projected domain",
+                     [&] { terrain_->project_domain(params_.domain, params_.domain_rows); });
+        return;
+      case StageId::kFractal:
+        with_context(s, "fractal", [&] { terrain_->evaluate_fbm(params_.fbm); });
+        return;
+      case StageId::kSurface:
+        with_context(s, "surface pass", [&] { terrain_->surface_pass(params_.surface); });
+        return;
+      case StageId::kTiles:
+        with_context(s, "draw", [&] { draw(s); });
+        return;
+      default:
+        return;
+    }
+  }
+
+  void describe(StageId id, StageTime& time) const override {
+    if (id == StageId::kTiles && time.ran) {
+      time.name = "GL draw, stages 5-9";
+    }
+  }
+
+  void finish(Frame& frame) override { frame.image = std::move(image_); }
+
+ private:
+  void draw(GlSession& s) {
+    const ShadingPlan shading = make_shading_plan(scene_, plan_, resources_.lattice.size);
+    ShadeParams<float> shade = make_shade_params<float>(shading);
+    // No culling on the GL side, hence no lowest drawn height: the water pass over terrain
+    // runs wherever there is water (it changes no pixel above the water).
+    apply_skips(request_.skips, true, shade);
+    if (s.draw == nullptr) {
+      s.draw = std::make_unique<gpu::GlTerrainDraw>();
+    }
+    gpu::GlGridStreams streams;
+    streams.layout = plan_.layout;
+    if (params_.domain.terrain_visible != 0) {
+      const auto name = [&](gpu::GlStream stream) { return terrain_->buffer(stream); };
+      streams.dx = name(gpu::GlStream::kDx);
+      streams.dz = name(gpu::GlStream::kDz);
+      streams.height = name(gpu::GlStream::kHeight);
+      streams.nx = name(gpu::GlStream::kNx);
+      streams.ny = name(gpu::GlStream::kNy);
+      streams.nz = name(gpu::GlStream::kNz);
+      streams.slope = name(gpu::GlStream::kSlope);
+      streams.water_depth = name(gpu::GlStream::kWaterDepth);
+      streams.nu = request_.outputs.octaves ? name(gpu::GlStream::kNu) : 0;
+      streams.valid = name(gpu::GlStream::kValid);
+    } else {
+      // Nothing to draw: an upload of the (zero, invalid) buffers keeps the draw's inputs
+      // well-formed; only the background is drawn.
+      empty_grid_ = std::make_unique<GridBuffers<float>>(plan_.layout);
+      upload_ = std::make_unique<gpu::GlGridUpload>(*empty_grid_);
+      streams = upload_->streams();
+    }
+    const gpu::GlShadeResources textures(ShadeResources{&resources_.lattice, resources_.textures});
+    gpu::GlFrameImage gl =
+        s.draw->draw(streams, params_.transform, shade, textures, plan_.camera.position.y);
+    const FrameOutputs& o = request_.outputs;
+    image_.width = gl.width;
+    image_.height = gl.height;
+    image_.srgb = std::move(gl.srgb);
+    if (o.linear)
+      image_.linear = std::move(gl.linear);
+    if (o.depth)
+      image_.depth = std::move(gl.depth);
+    if (o.primitive)
+      image_.primitive = std::move(gl.primitive);
+    if (o.normal)
+      image_.normal = std::move(gl.normal);
+    if (o.world_height)
+      image_.world_height = std::move(gl.world_height);
+    if (o.octaves)
+      image_.octaves = std::move(gl.octaves);
+  }
+
+  std::unique_lock<std::mutex> lock_;
+  const Scene& scene_;
+  const SceneResources& resources_;
+  FrameRequest request_;
+  FramePlan plan_;
+  TerrainParams<float> params_;
+  std::unique_ptr<gpu::GlTerrain> terrain_;
+  std::unique_ptr<GridBuffers<float>> empty_grid_;
+  std::unique_ptr<gpu::GlGridUpload> upload_;
+  FrameImage image_;
+};
+
+}  // namespace
+
+bool gl_backend_built() {
+  return true;
+}
+
+std::string gl_renderer() {
+  GlSession& s = session();
+  const std::lock_guard<std::mutex> lock(s.mutex);
+  gpu::HeadlessGl& gl = current_context(s);
+  const std::string text = gl.renderer() + " (OpenGL " + gl.version() + ", " + gl.platform() + ")";
+  gl.release();
+  return text;
+}
+
+std::unique_ptr<FrameBackend> make_gl_backend(const Scene& scene, const SceneResources& resources,
+                                              const FrameRequest& request) {
+  return std::make_unique<GlBackend>(scene, resources, request);
+}
+
+GridBuffers<float> gl_terrain_stages(const Scene& scene, const NoiseLattice& lattice) {
+  GlSession& s = session();
+  const std::lock_guard<std::mutex> lock(s.mutex);
+  const FramePlan plan = make_frame_plan(scene, lattice);
+  const TerrainParams<float> params = make_terrain_params<float>(plan);
+  GridBuffers<float> grid(plan.layout);
+  if (params.domain.terrain_visible == 0) {
+    return grid;
+  }
+  with_context(s, "terrain stages", [&] {
+    gpu::GlTerrain terrain(plan.layout, lattice);
+    terrain.run(params);
+    terrain.read_all(grid);
+  });
+  return grid;
+}
+
+#else
+
+bool gl_backend_built() {
+  return false;
+}
+
+std::string gl_renderer() {
+  throw GlBackendError("this build of Relief has no GL side (configured with RELIEF_WITH_GL=OFF)");
+}
+
+std::unique_ptr<FrameBackend> make_gl_backend(const Scene&, const SceneResources&,
+                                              const FrameRequest&) {
+  throw GlBackendError("this build of Relief has no GL side (configured with RELIEF_WITH_GL=OFF)");
+}
+
+GridBuffers<float> gl_terrain_stages(const Scene&, const NoiseLattice&) {
+  throw GlBackendError("this build of Relief has no GL side (configured with RELIEF_WITH_GL=OFF)");
+}
+
+#endif
+
+}  // namespace relief

@@ -1,0 +1,48 @@
+// The GL backend (Backend::kGl): the frame's stage table run by the GLSL twins of the stages in
+// gpu/ on a headless OpenGL 4.5 context, an NVIDIA GPU through the EGL device platform where
+// there is one, Mesa's llvmpipe through the surfaceless platform elsewhere. Stages 1-4 are
+// compute shaders writing the grid's streams into GL buffers (gpu/gl_terrain.h), which the
+// draw of stages 5-9 reads without a round trip (gpu/gl_shading.h). The CPU computes the
+// frame's plan and parameter structs, the same bytes the CPU backends read.
+//
+// What the GL backend does not do: the vertex culling of the height bounds and the heights
+// (its stages do not run: the GPU evaluates every valid vertex and its clipper discards what
+// lies outside the frustum, which changes no pixel), and the tiles of the software
+// rasteriser (GL rasterises). docs/gl-backend.md says how far its frames are from the CPU's.
+//
+// One process-wide context serves every GL frame, one frame at a time; it is made current on
+// whichever thread runs a stage and released after it.
+#pragma once
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "core/grid_buffers.h"
+#include "pipeline/frame_backend.h"
+#include "pipeline/scene_resources.h"
+
+namespace relief {
+
+// No GL context could be made, the GL lacks 4.5 or a limit the frame needs, a shader failed or
+// a GL call reported an error: the message says which (relief exits 2).
+class GlBackendError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Whether this build has the GL side (RELIEF_WITH_GL).
+bool gl_backend_built();
+
+// The GL context's description, "NVIDIA H100 80GB HBM3/PCIe/SSE2 (OpenGL 4.6.0 NVIDIA 580.x,
+// EGL device)", opening the shared context if needed; throws GlBackendError when there is none.
+std::string gl_renderer();
+
+std::unique_ptr<FrameBackend> make_gl_backend(const Scene& scene, const SceneResources& resources,
+                                              const FrameRequest& request);
+
+// Stages 1-4 on the GL side with every vertex evaluated (as relief stages and
+// run_terrain_stages do on the CPU): the grid's buffers read back.
+GridBuffers<float> gl_terrain_stages(const Scene& scene, const NoiseLattice& lattice);
+
+}  // namespace relief
