@@ -1,6 +1,7 @@
 #include <ostream>
 
 #include "pipeline/build_info.h"
+#include "pipeline/gl_backend.h"
 #include "tools/cli.h"
 #include "tools/commands.h"
 
@@ -16,6 +17,16 @@ int run_info_command(std::ostream& out) {
     out << "  " << t.name << (t.supported ? "" : "  (this CPU cannot run it)") << "\n";
   }
   out << "simd backend target: " << info.simd_target << "\n";
+  // The GL backend's context: opening it is the only way to know what it runs on.
+  if (!gl_backend_built()) {
+    out << "GL backend: not built (RELIEF_WITH_GL=OFF)\n";
+  } else {
+    try {
+      out << "GL backend: " << gl_renderer() << "\n";
+    } catch (const GlBackendError& e) {
+      out << "GL backend: unavailable: " << e.what() << "\n";
+    }
+  }
   out.flush();
   return out ? kExitOk : kExitOutputError;
 }
