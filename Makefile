@@ -16,9 +16,12 @@ SCENE        ?= default
 PREFIX       ?= /usr/local
 
 # What the relief binary and the library need; the tests, benchmarks and the OpenGL side add
-# the rest.
+# the rest. OpenImageIO is the binary's alone (relief compare, EXR outputs); Debian 12's
+# OpenImageIOConfig.cmake refuses to load without its programs, so openimageio-tools comes
+# with it (the tests also run its idiff).
 RENDER_PACKAGES := cmake make g++ pkg-config \
-                   libtbb-dev libglm-dev libstb-dev nlohmann-json3-dev libcli11-dev libhwy-dev
+                   libtbb-dev libglm-dev libstb-dev nlohmann-json3-dev libcli11-dev libhwy-dev \
+                   libopenimageio-dev openimageio-tools
 PACKAGES := $(RENDER_PACKAGES) catch2 libbenchmark-dev \
             libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri
 

@@ -18,6 +18,10 @@ BuildInfo build_info() {
   return info;
 }
 
+std::string_view relief_version() {
+  return RELIEF_BUILD_VERSION;
+}
+
 std::string backend_label(Backend backend) {
   std::string label(backend_name(backend));
   if (backend == Backend::kSimd) {

@@ -28,6 +28,9 @@ struct BuildInfo {
 
 BuildInfo build_info();
 
+// The project's version, "MAJOR.MINOR.PATCH" (CMakeLists.txt).
+std::string_view relief_version();
+
 // The backend's name as reports print it: "simd (AVX3)" names the target it runs on.
 std::string backend_label(Backend backend);
 

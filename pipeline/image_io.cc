@@ -19,15 +19,18 @@ void append_bytes(void* context, void* data, int size) {
 
 }  // namespace
 
-std::vector<unsigned char> encode_png_rgb(int width, int height,
-                                          std::span<const std::uint8_t> rgb) {
+std::vector<unsigned char> encode_png_rgb(int width, int height, std::span<const std::uint8_t> rgb,
+                                          std::span<const ImageText> text) {
   assert(rgb.size() == static_cast<std::size_t>(width) * height * 3);
   const int row_bytes = width * 3;
   // Point stb at the last row and give it a negative stride: top-to-bottom without a copy.
   const std::uint8_t* top_row = rgb.data() + static_cast<std::size_t>(height - 1) * row_bytes;
   std::vector<unsigned char> png;
   stbi_write_png_to_func(append_bytes, &png, width, height, 3, top_row, -row_bytes);
-  return png;
+  if (text.empty() || png.empty()) {  // empty: stb_image_write failed (out of memory)
+    return png;
+  }
+  return insert_png_text(png, text);
 }
 
 std::vector<unsigned char> encode_pfm(int width, int height, int channels,

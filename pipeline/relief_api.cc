@@ -22,6 +22,7 @@
 #include "pipeline/frame.h"
 #include "pipeline/gl_backend.h"
 #include "pipeline/image_io.h"
+#include "pipeline/image_metadata.h"
 #include "pipeline/job_memory.h"
 #include "pipeline/memory_budget.h"
 #include "pipeline/scene_resources.h"
@@ -221,11 +222,7 @@ Result<Scene> Scene::load(std::string_view scene_or_preset,
 }
 
 std::string Scene::to_json() const noexcept {
-  // As `relief scene` prints it (tools/cli.cc).
-  std::string text =
-      scene_to_json(impl_->scene).dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
-  text.push_back('\n');
-  return text;
+  return scene_json_text(impl_->scene);  // as `relief scene` prints it (tools/cli.cc)
 }
 
 int Scene::width() const noexcept {
@@ -268,7 +265,10 @@ Result<Rendering> render(const Scene& scene, const RenderOptions& options) {
   });
 }
 
-Result<std::vector<unsigned char>> encode_png(const Image& image) {
+namespace {
+
+// The PNG with image_metadata.h's text: Software, and the scene when there is one.
+Result<std::vector<unsigned char>> encode_png_with(const Image& image, const relief::Scene* scene) {
   return guarded([&]() -> Result<std::vector<unsigned char>> {
     if (std::optional<Error> error = check_image_size("encode_png", image.width, image.height)) {
       return *std::move(error);
@@ -277,12 +277,23 @@ Result<std::vector<unsigned char>> encode_png(const Image& image) {
     if (image.srgb.size() != expected) {
       return size_mismatch("encode_png", image.srgb.size(), expected, "3 sRGB bytes a pixel");
     }
-    std::vector<unsigned char> png = encode_png_rgb(image.width, image.height, image.srgb);
+    const std::vector<ImageText> text = scene ? scene_metadata(*scene) : software_metadata();
+    std::vector<unsigned char> png = encode_png_rgb(image.width, image.height, image.srgb, text);
     if (png.empty()) {  // stb_image_write reports nothing else
       throw std::bad_alloc();
     }
     return png;
   });
+}
+
+}  // namespace
+
+Result<std::vector<unsigned char>> encode_png(const Image& image) {
+  return encode_png_with(image, nullptr);
+}
+
+Result<std::vector<unsigned char>> encode_png(const Image& image, const Scene& scene) {
+  return encode_png_with(image, &detail::SceneAccess::internal(scene));
 }
 
 Result<std::vector<unsigned char>> encode_pfm(int width, int height, int channels,

@@ -300,12 +300,18 @@ TEST_CASE("renderRefusesAMissingTextureFileWithTheCommandLinesMessage", "[api]")
 }
 
 TEST_CASE("encodePngGivesTheFileTheRenderCommandWrites", "[api]") {
-  const api::Result<api::Rendering> frame = api::render(small_scene());
+  const api::Scene scene = small_scene();
+  const api::Result<api::Rendering> frame = api::render(scene);
   INFO(message_of(frame));
   REQUIRE(frame);
-  const api::Result<std::vector<unsigned char>> png = api::encode_png(frame->image);
+  // With the scene: the file itself, metadata included (pipeline/image_metadata.h).
+  const api::Result<std::vector<unsigned char>> png = api::encode_png(frame->image, scene);
   INFO(message_of(png));
   REQUIRE(png);
+  // Without it the scene's text chunk is left out: shorter by at least the scene's text.
+  const api::Result<std::vector<unsigned char>> bare = api::encode_png(frame->image);
+  REQUIRE(bare);
+  CHECK(bare->size() + scene.to_json().size() < png->size());
   relief::test::TempDir dir("api-png");
   const std::filesystem::path file = dir.path() / "cli.png";
   std::vector<std::string> args = {"render", "-o", file.string()};

@@ -35,6 +35,39 @@ mkfifo "$work/fifo.json"
 expect_bad_input render "$work/fifo.json" -o "$work/out.png"
 expect_bad_input raster /dev/zero --out "$work/out"
 
+# relief compare exits as idiff does: 0 pass, 2 failure, 3 sizes differ, 4 anything that is not a
+# comparison (an unreadable or special file, a bad option), never a hang on a FIFO.
+"$relief" compare --help >/dev/null || fail "compare --help did not exit 0"
+"$relief" render --set viewport.width=16 --set viewport.height=12 --set grid.width=8 \
+  --set grid.height=8 -o "$work/a.png" >/dev/null || fail "render for compare failed"
+"$relief" render --set viewport.width=16 --set viewport.height=10 --set grid.width=8 \
+  --set grid.height=8 -o "$work/short.png" >/dev/null || fail "render for compare failed"
+"$relief" render --set viewport.width=16 --set viewport.height=12 --set grid.width=8 \
+  --set grid.height=8 --set camera.yaw_deg=90 -o "$work/b.png" >/dev/null || fail "render failed"
+expect_compare() {
+  want="$1"
+  shift
+  timeout 60 "$relief" compare "$@" >"$work/stdout" 2>"$work/stderr"
+  code=$?
+  [ "$code" -eq "$want" ] || fail "'compare $*' exited $code, expected $want"
+  if [ "$want" -eq 4 ]; then
+    grep -q "relief: error:" "$work/stderr" || fail "'compare $*' printed no error message"
+  fi
+  [ ! -e "$work/out.json" ] || [ "$want" -lt 4 ] || fail "'compare $*' left an output behind"
+  rm -f "$work/out.json"
+}
+expect_compare 0 "$work/a.png" "$work/a.png" --json "$work/out.json"
+expect_compare 2 "$work/a.png" "$work/b.png"
+expect_compare 3 "$work/a.png" "$work/short.png"
+expect_compare 4 "$work/a.png" "$work/fifo.json" --json "$work/out.json"
+expect_compare 4 "$work/a.png" /dev/zero --json "$work/out.json"
+expect_compare 4 "$work/a.png" "$work" --json "$work/out.json"
+expect_compare 4 "$work/a.png" "$work/missing.png" --json "$work/out.json"
+expect_compare 4 "$work/a.png" "$work/bad.json" --json "$work/out.json"
+expect_compare 4 "$work/a.png"
+expect_compare 4 "$work/a.png" "$work/a.png" --fail -1
+expect_compare 4 "$work/a.png" "$work/a.png" --diff "$work/out.jpg"
+
 # The scene printed to a full disk was not printed: exit 1.
 if [ -w /dev/full ]; then
   "$relief" scene >/dev/full 2>"$work/stderr"

@@ -1,10 +1,8 @@
 #include "tools/cli.h"
 
 #include <algorithm>
-#include <cctype>
-#include <charconv>
-#include <cmath>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <new>
 #include <ostream>
@@ -23,121 +21,11 @@
 #include "pipeline/gl_backend.h"
 #include "pipeline/memory_budget.h"
 #include "tools/atomic_file.h"
+#include "tools/cli_options.h"
 #include "tools/commands.h"
 #include "tools/soup.h"
 
 namespace relief {
-
-namespace {
-
-std::string preset_list() {
-  std::string out;
-  for (const std::string& name : preset_names()) {
-    out += (out.empty() ? "" : ", ") + name;
-  }
-  return out;
-}
-
-// SCENE and --set, shared by every command that renders a scene.
-struct SceneArgs {
-  std::string scene;
-  std::vector<std::string> overrides;
-};
-
-void add_scene_args(CLI::App* command, SceneArgs& args) {
-  command->add_option("SCENE", args.scene,
-                      "Scene: a JSON file, or a preset name (" + preset_list() +
-                          "). Default: the built-in default scene.");
-  command
-      ->add_option("--set", args.overrides,
-                   "Override one scene field, validated like the scene file; repeatable, "
-                   "applied in order. Example: --set terrain.H=0.85 --set grid.width=256")
-      ->type_name("KEY=VALUE")
-      ->expected(1)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-}
-
-// Memory limit of a job (memory_budget.h): "2G", "512M", bytes.
-void add_max_memory(CLI::App* command, std::string& max_memory) {
-  command
-      ->add_option("--max-memory", max_memory,
-                   "Refuse the job (exit 2) if its estimated memory exceeds SIZE (for example "
-                   "512M, 2G). Default: the memory available on this machine.")
-      ->type_name("SIZE")
-      ->check(CLI::Validator(
-          [](std::string& text) -> std::string {
-            return parse_memory_size(text) ? ""
-                                           : "a size from 1M to 1E: a number with an optional "
-                                             "unit K, M, G or T (powers of 1024)";
-          },
-          "SIZE"));
-}
-
-// A finite coordinate within +-1e6 (CLI::Range lets NaN through: every comparison with it is
-// false).
-const CLI::Validator kFiniteViewportValue(
-    [](std::string& text) -> std::string {
-      double v = 0;
-      const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-      if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v) ||
-          std::abs(v) > 1e6) {
-        return "'" + brief_text(text) + "' is not a finite number in [-1e6, 1e6]";
-      }
-      return "";
-    },
-    "NUMBER in [-1e6, 1e6]");
-
-// `name` ends in `extension` (lower case), in any letter case.
-bool has_extension(const std::string& name, std::string_view extension) {
-  if (name.size() < extension.size()) {
-    return false;
-  }
-  for (std::size_t k = 0; k < extension.size(); ++k) {
-    const char c = name[name.size() - extension.size() + k];
-    if (std::tolower(static_cast<unsigned char>(c)) != extension[k]) {
-      return false;
-    }
-  }
-  return true;
-}
-
-// An option given with an empty value (-o ""): never silently the default.
-bool given_empty(const CLI::Option* option, const std::string& value) {
-  return option->count() > 0 && value.empty();
-}
-
-// --backend NAME (pipeline/frame.h): which implementation runs the frame's stages; --simd
-// TARGET forces one Highway target (implies --backend simd).
-void add_backend(CLI::App* command, std::string& backend, std::string& simd_target) {
-  command->add_option("--simd", simd_target,
-                      "Run the simd backend on this Highway target (AVX3, AVX2, SSE4, SSSE3, "
-                      "SCALAR: relief info lists those compiled in and those this CPU runs); "
-                      "every target gives the same bytes");
-  std::string names;
-  for (std::string_view name : backend_names()) {
-    names += (names.empty() ? "" : ", ") + std::string(name);
-  }
-  command
-      ->add_option("--backend", backend,
-                   "Implementation of the stages: simd (the default: Highway kernels), "
-                   "reference (the scalar float stages; simd gives their bytes exactly), "
-                   "reference-double (every stage in double, for accuracy comparisons) or gl "
-                   "(the GLSL twins on OpenGL 4.5: a GPU, or Mesa's llvmpipe)")
-      ->check(CLI::Validator(
-          [names](std::string& text) -> std::string {
-            return backend_from_name(text) ? "" : "unknown backend; allowed: " + names;
-          },
-          "NAME"));
-}
-
-void add_threads(CLI::App* command, int& threads) {
-  command
-      ->add_option("--threads", threads,
-                   "Worker threads (default: all cores). Results are bit-identical for any count.")
-      ->check(CLI::Range(1, 1024));
-}
-
-}  // namespace
 
 int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
   CLI::App app{
@@ -148,7 +36,8 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       "relief"};
   app.require_subcommand(1);
   app.footer(
-      "Exit codes: 0 success, 2 bad input (nothing written), 1 output not written.\n"
+      "Exit codes: 0 success, 2 bad input (nothing written), 1 output not written; compare "
+      "exits as idiff does (relief compare --help).\n"
       "Run 'relief COMMAND --help' for the options of one command.");
 
   SceneArgs scene_args;
@@ -180,6 +69,13 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   std::string backend = "simd";
   std::string simd_target;
   add_backend(stages_cmd, backend, simd_target);
+  stages_cmd
+      ->add_option("--float-format", stages.raw_format,
+                   "Format of the float files: pfm (the default) or exr (OpenEXR, 32-bit float)")
+      ->transform(
+          CLI::CheckedTransformer(std::map<std::string, FloatFormat>{{"pfm", FloatFormat::kPfm},
+                                                                     {"exr", FloatFormat::kExr}},
+                                  CLI::ignore_case));
 
   RenderOptions render;
   CLI::App* render_cmd =
@@ -193,20 +89,20 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
                              "PNG file to write (default: the scene's output.image, relief.png)");
   const CLI::Option* render_float =
       render_cmd->add_option("--float", render.float_output,
-                             "Also write the linear radiance as a PFM file (default: the "
-                             "scene's output.float_image, if set)");
+                             "Also write the linear radiance as a PFM or EXR file, by its "
+                             "extension (default: the scene's output.float_image, if set)");
   // Extra per-pixel outputs of the fused back end, each written only when named.
   const std::vector<std::tuple<const char*, std::string*, const char*>> extra_outputs = {
-      {"--depth", &render.depth_output, "window depth (reverse-Z) as a PFM file"},
+      {"--depth", &render.depth_output, "window depth (reverse-Z) as a PFM or EXR file"},
       {"--primitive", &render.primitive_output,
        "winning triangle id per pixel, uint32 little-endian (4294967295: none)"},
-      {"--normal", &render.normal_output, "unit normal as a 3-channel PFM file"},
-      {"--height", &render.height_output, "world height of the terrain as a PFM file"},
-      {"--octaves", &render.octaves_output, "octave count nu as a PFM file"}};
+      {"--normal", &render.normal_output, "unit normal as a 3-channel PFM or EXR file"},
+      {"--height", &render.height_output, "world height of the terrain as a PFM or EXR file"},
+      {"--octaves", &render.octaves_output, "octave count nu as a PFM or EXR file"}};
   std::vector<const CLI::Option*> extra_options;
   for (const auto& [name, target, what] : extra_outputs) {
     extra_options.push_back(render_cmd->add_option(
-        name, *target, std::string("Also write the ") + what + ", rows bottom to top"));
+        name, *target, std::string("Also write the ") + what + " (PFM rows bottom to top)"));
   }
   render_cmd
       ->add_option("--repeat", render.repeat,
@@ -259,15 +155,47 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       "Print the version, how this build was compiled and its SIMD targets: those "
       "compiled in, those this CPU runs, and the one the simd backend uses.");
 
+  CompareOptions compare;
+  CLI::App* compare_cmd = add_compare_command(app, compare);
+
+  CrosscheckOptions crosscheck;
+  std::string cpu_backend = "simd";
+  CLI::App* crosscheck_cmd = app.add_subcommand(
+      "crosscheck",
+      "Render the scene with a CPU backend and with the GL backend (a GPU, or Mesa's "
+      "llvmpipe) and compare them stage by stage: heights, normals and octave counts at the "
+      "grid's vertices, the triangle at each pixel, the per-pixel outputs, the final images. "
+      "Writes both images, heat maps, a table and its JSON into --out; exits as idiff does on "
+      "the final images (0 pass, 1 warning, 2 failure).");
+  add_scene_args(crosscheck_cmd, scene_args);
+  const CLI::Option* crosscheck_out =
+      crosscheck_cmd->add_option("--out", crosscheck.out_dir, "Output directory")->required();
+  crosscheck_cmd
+      ->add_option("--cpu-backend", cpu_backend, "The CPU side: simd (the default) or reference")
+      ->check(CLI::IsMember({"simd", "reference"}));
+  crosscheck_cmd
+      ->add_option("--repeat", crosscheck.repeat,
+                   "Render each backend this many times for the frame times (median)")
+      ->check(CLI::Range(1, 100));
+  add_compare_thresholds(crosscheck_cmd, crosscheck.thresholds);
+  add_threads(crosscheck_cmd, threads);
+  add_max_memory(crosscheck_cmd, max_memory);
+
   // CLI11 answers an unknown command with "A subcommand is required"; say what is wrong.
-  const std::vector<std::string> commands = {"scene", "stages", "render", "raster", "info"};
+  const std::vector<std::string> commands = {"scene", "stages",  "render",    "raster",
+                                             "info",  "compare", "crosscheck"};
   if (args.size() > 1 && !args[1].empty() && args[1][0] != '-' &&
       std::find(commands.begin(), commands.end(), args[1]) == commands.end()) {
     err << "relief: error: unknown command '" << brief_text(args[1])
-        << "'; commands: scene, stages, render, raster, info\nRun 'relief --help' for "
+        << "'; commands: scene, stages, render, raster, info, compare, crosscheck\nRun 'relief "
+           "--help' for "
            "usage.\n";
     return kExitBadInput;
   }
+  // compare exits as idiff does, where 2 means the images differ: its bad options are 4.
+  const int bad_input = args.size() > 1 && args[1] == "compare"
+                            ? exit_code(CompareVerdict::kFileError)
+                            : kExitBadInput;
   std::vector<const char*> argv;
   for (const std::string& a : args) {
     argv.push_back(a.c_str());
@@ -281,14 +209,15 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   } catch (const CLI::ParseError& e) {
     err << "relief: error: " << brief_text(e.what(), 3 * kBriefChars)
         << "\nRun 'relief --help' for usage.\n";
-    return kExitBadInput;
+    return bad_input;
+  }
+  if (compare_cmd->parsed()) {
+    return run_compare_command(compare, out, err);
   }
   std::vector<std::pair<const CLI::Option*, std::string>> named = {
-      {stages_out, stages.out_dir},
-      {render_out, render.output},
-      {render_float, render.float_output},
-      {render_stats_json, render.stats_json},
-      {raster_out, raster_options.prefix}};
+      {stages_out, stages.out_dir},        {render_out, render.output},
+      {render_float, render.float_output}, {render_stats_json, render.stats_json},
+      {raster_out, raster_options.prefix}, {crosscheck_out, crosscheck.out_dir}};
   for (std::size_t k = 0; k < extra_options.size(); ++k) {
     named.emplace_back(extra_options[k], *std::get<1>(extra_outputs[k]));
   }
@@ -303,7 +232,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     err << "relief: error: FILE is empty; give the triangle soup's file name\n";
     return kExitBadInput;
   }
-  for (CLI::App* command : {scene_cmd, stages_cmd, render_cmd}) {
+  for (CLI::App* command : {scene_cmd, stages_cmd, render_cmd, crosscheck_cmd}) {
     if (command->parsed() && given_empty(command->get_option("SCENE"), scene_args.scene)) {
       err << "relief: error: SCENE is empty; give a scene file or a preset name, or leave it "
              "out for the default scene\n";
@@ -320,7 +249,8 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     }
   }
   const MemoryBudget budget = memory_budget(parse_memory_size(max_memory), max_memory);
-  stages.budget = render.budget = raster_options.budget = budget;
+  stages.budget = render.budget = raster_options.budget = crosscheck.budget = budget;
+  crosscheck.cpu_backend = *backend_from_name(cpu_backend);
   if (info_cmd->parsed()) {
     return run_info_command(out);
   }
@@ -380,8 +310,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     // The scene is validated completely before any work starts.
     const Scene scene = resolve_scene(scene_args.scene, scene_args.overrides);
     if (scene_cmd->parsed()) {
-      out << scene_to_json(scene).dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
-          << "\n";
+      out << scene_json_text(scene);
       out.flush();
       if (!out) {  // a full disk or a closed pipe: the scene was not printed
         err << "relief: error: cannot write the scene to standard output\n";
@@ -392,6 +321,9 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     if (stages_cmd->parsed()) {
       return run_stages_command(scene, stages, out);
     }
+    if (crosscheck_cmd->parsed()) {
+      return run_crosscheck_command(scene, crosscheck, out);
+    }
     if (render_cmd->parsed()) {
       const std::string& o = render.output;
       if (!o.empty() && !has_extension(o, ".png")) {
@@ -401,13 +333,15 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       }
       for (const auto& [name, value, extension] :
            std::vector<std::tuple<const char*, const std::string*, const char*>>{
-               {"--float", &render.float_output, ".pfm"},
-               {"--depth", &render.depth_output, ".pfm"},
+               {"--float", &render.float_output, ".pfm or .exr"},
+               {"--depth", &render.depth_output, ".pfm or .exr"},
                {"--primitive", &render.primitive_output, ".bin"},
-               {"--normal", &render.normal_output, ".pfm"},
-               {"--height", &render.height_output, ".pfm"},
-               {"--octaves", &render.octaves_output, ".pfm"}}) {
-        if (!value->empty() && !has_extension(*value, extension)) {
+               {"--normal", &render.normal_output, ".pfm or .exr"},
+               {"--height", &render.height_output, ".pfm or .exr"},
+               {"--octaves", &render.octaves_output, ".pfm or .exr"}}) {
+        const bool floats = std::string_view(extension) != ".bin";
+        if (!value->empty() &&
+            !(floats ? float_format_of(*value).has_value() : has_extension(*value, extension))) {
           err << "relief: error: " << name << " " << brief_text(*value) << ": give a file name "
               << "ending in " << extension << "\n";
           return kExitBadInput;

@@ -2,17 +2,25 @@
 #pragma once
 
 #include <iosfwd>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "core/scene/scene.h"
 #include "pipeline/frame.h"
 #include "pipeline/memory_budget.h"
+#include "tools/float_image_file.h"
+#include "tools/image_compare.h"
+
+namespace CLI {
+class App;
+}
 
 namespace relief {
 
 struct StagesOptions {
-  std::string out_dir;  // empty: scene.output.stages_dir
+  std::string out_dir;                         // empty: scene.output.stages_dir
+  FloatFormat raw_format = FloatFormat::kPfm;  // of the float files, NAME.pfm or NAME.exr
   int repeat = 1;
   Backend backend = Backend::kSimd;
   MemoryBudget budget;
@@ -56,5 +64,40 @@ int run_raster_command(const RasterOptions& options, std::ostream& out);
 
 // `relief info`: the version, the build and the SIMD targets (pipeline/build_info.h).
 int run_info_command(std::ostream& out);
+
+struct CompareOptions {
+  std::string a, b;  // the image files
+  CompareThresholds thresholds;
+  std::string diff;  // heat map PNG (empty: none)
+  std::string json;  // the report as JSON (empty: none)
+};
+
+// `relief compare A B`: idiff's comparison (image_compare.h). Returns idiff's exit codes: 0
+// pass, 1 warning, 2 failure, 3 different sizes, 4 anything that is not a comparison (a file
+// that cannot be read, images with different channel counts, an output that cannot be
+// written), with the message on `err`.
+int run_compare_command(const CompareOptions& options, std::ostream& out, std::ostream& err);
+
+// Adds the command and its options to `app` (compare_command.cc, beside what they fill).
+CLI::App* add_compare_command(CLI::App& app, CompareOptions& options);
+// idiff's six thresholds (--fail, --failpercent, --hardfail, --warn, --warnpercent,
+// --hardwarn) as options of `command`.
+void add_compare_thresholds(CLI::App* command, CompareThresholds& thresholds);
+
+struct CrosscheckOptions {
+  std::string out_dir;                   // the images, heat maps, table and JSON
+  Backend cpu_backend = Backend::kSimd;  // the CPU side: simd or reference
+  int repeat = 1;                        // frames per backend for the times (median)
+  // idiff's, on the sRGB images as values / 255. Defaults: a pixel more than one code apart
+  // fails, one code apart warns (docs/gl-shading.md: the paths may differ by one code).
+  CompareThresholds thresholds{1.5f / 255, 0, std::numeric_limits<float>::infinity(),
+                               0.5f / 255, 0, std::numeric_limits<float>::infinity()};
+  MemoryBudget budget;
+};
+
+// `relief crosscheck`: the scene by the CPU backend and by the GL backend, compared stage by
+// stage (crosscheck.h). Returns idiff's exit code for the final images (0 pass, 1 warning,
+// 2 failure, 3 size mismatch). Throws GlBackendError when there is no GL.
+int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options, std::ostream& out);
 
 }  // namespace relief

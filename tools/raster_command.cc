@@ -7,6 +7,7 @@
 #include "core/counter_hash.h"
 #include "core/scene/json_input.h"
 #include "pipeline/image_io.h"
+#include "pipeline/image_metadata.h"
 #include "pipeline/job_memory.h"
 #include "pipeline/tile_pass.h"
 #include "raster/rasterize.h"
@@ -125,7 +126,9 @@ int run_raster_command(const RasterOptions& options, std::ostream& out) {
                                          static_cast<std::size_t>(soup.width)));
   files.add(p + ".barycentric.pfm", encode_pfm(soup.width, soup.height, 3, barycentric,
                                                static_cast<std::size_t>(soup.width) * 3));
-  files.add(p + ".coverage.png", encode_png_rgb(soup.width, soup.height, coverage));
+  // No scene made a soup: the picture carries the software alone (image_metadata.h).
+  files.add(p + ".coverage.png",
+            encode_png_rgb(soup.width, soup.height, coverage, software_metadata()));
   const nlohmann::json manifest = {
       {"width", soup.width},
       {"height", soup.height},

@@ -7,10 +7,12 @@
 #include "pipeline/build_info.h"
 #include "pipeline/frame.h"
 #include "pipeline/image_io.h"
+#include "pipeline/image_metadata.h"
 #include "pipeline/job_memory.h"
 #include "tools/atomic_file.h"
 #include "tools/cli.h"
 #include "tools/commands.h"
+#include "tools/float_image_file.h"
 #include "tools/render_report.h"
 
 namespace relief {
@@ -55,27 +57,32 @@ int run_render_command(const Scene& scene, const RenderOptions& options, std::os
 
   const FrameImage& image = frame.image;
   const std::size_t row = std::size_t(image.width);
+  // Every image carries the scene that made it (pipeline/image_metadata.h).
+  const std::vector<ImageText> metadata = scene_metadata(scene);
+  const auto floats = [&](const std::string& name, int channels, std::span<const float> values) {
+    return encode_float_image(float_format_of(name).value_or(FloatFormat::kPfm), image.width,
+                              image.height, channels, values, row * std::size_t(channels),
+                              metadata);
+  };
   OutputSet files;  // every requested file appears, or none does
-  files.add(path, encode_png_rgb(image.width, image.height, image.srgb));
+  files.add(path, encode_png_rgb(image.width, image.height, image.srgb, metadata));
   if (!float_path.empty()) {
-    files.add(float_path, encode_pfm(image.width, image.height, 3, image.linear, 3 * row));
+    files.add(float_path, floats(float_path, 3, image.linear));
   }
   if (request.outputs.depth) {
-    files.add(options.depth_output, encode_pfm(image.width, image.height, 1, image.depth, row));
+    files.add(options.depth_output, floats(options.depth_output, 1, image.depth));
   }
   if (request.outputs.primitive) {
     files.add(options.primitive_output, bytes_of(image.primitive));
   }
   if (request.outputs.normal) {
-    files.add(options.normal_output,
-              encode_pfm(image.width, image.height, 3, image.normal, 3 * row));
+    files.add(options.normal_output, floats(options.normal_output, 3, image.normal));
   }
   if (request.outputs.world_height) {
-    files.add(options.height_output,
-              encode_pfm(image.width, image.height, 1, image.world_height, row));
+    files.add(options.height_output, floats(options.height_output, 1, image.world_height));
   }
   if (request.outputs.octaves) {
-    files.add(options.octaves_output, encode_pfm(image.width, image.height, 1, image.octaves, row));
+    files.add(options.octaves_output, floats(options.octaves_output, 1, image.octaves));
   }
   std::string stats_text;
   if (!options.stats_json.empty()) {

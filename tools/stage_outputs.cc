@@ -11,6 +11,7 @@
 
 #include "core/scene/scene_json.h"
 #include "pipeline/image_io.h"
+#include "pipeline/image_metadata.h"
 #include "tools/atomic_file.h"
 #include "tools/colormap.h"
 
@@ -67,16 +68,21 @@ std::function<float(std::size_t)> channel(const AlignedVector<float>& field) {
 
 class StageWriter {
  public:
-  StageWriter(std::filesystem::path dir, const GridBuffers<float>& buffers, OutputSet& files)
-      : dir_(std::move(dir)), buffers_(buffers), files_out_(files) {}
+  StageWriter(std::filesystem::path dir, const GridBuffers<float>& buffers, OutputSet& files,
+              FloatFormat raw_format, std::vector<ImageText> metadata)
+      : dir_(std::move(dir)),
+        buffers_(buffers),
+        files_out_(files),
+        raw_format_(raw_format),
+        metadata_(std::move(metadata)) {}
 
-  // Writes NAME.png and NAME.pfm and records them in the manifest.
+  // Writes NAME.png and NAME.pfm (or .exr) and records them in the manifest.
   void field(const std::string& name, const std::string& meaning, const std::string& units,
              const std::vector<std::function<float(std::size_t)>>& channels,
              const std::function<Rgb8(std::size_t)>& color, const ValueRange& range) {
     const GridLayout& l = buffers_.layout;
     const std::vector<std::uint8_t> rgb = picture(buffers_, color);
-    files_out_.add(dir_ / (name + ".png"), encode_png_rgb(l.width, l.height, rgb));
+    files_out_.add(dir_ / (name + ".png"), encode_png_rgb(l.width, l.height, rgb, metadata_));
     const int count = static_cast<int>(channels.size());  // PFM: 1 or 3
     std::vector<float> raw(static_cast<std::size_t>(l.width) * l.height * count);
     for (int j = 0; j < l.height; ++j) {
@@ -86,10 +92,12 @@ class StageWriter {
         }
       }
     }
-    files_out_.add(dir_ / (name + ".pfm"), encode_pfm(l.width, l.height, count, raw,
-                                                      static_cast<std::size_t>(l.width) * count));
+    const std::string raw_name = name + std::string(float_extension(raw_format_));
+    files_out_.add(dir_ / raw_name,
+                   encode_float_image(raw_format_, l.width, l.height, count, raw,
+                                      static_cast<std::size_t>(l.width) * count, metadata_));
     json entry = {{"image", name + ".png"},
-                  {"raw", name + ".pfm"},
+                  {"raw", raw_name},
                   {"channels", count},
                   {"meaning", meaning},
                   {"units", units}};
@@ -106,16 +114,19 @@ class StageWriter {
   std::filesystem::path dir_;
   const GridBuffers<float>& buffers_;
   OutputSet& files_out_;
+  FloatFormat raw_format_;
+  std::vector<ImageText> metadata_;  // carried by every PNG and EXR
   json files_ = json::object();
 };
 
 }  // namespace
 
 void write_stage_outputs(const std::filesystem::path& dir, const Scene& scene,
-                         const FramePlan& plan, const GridBuffers<float>& b) {
+                         const FramePlan& plan, const GridBuffers<float>& b,
+                         FloatFormat raw_format) {
   OutputDirectory directory(dir);
   OutputSet files;  // every field and stages.json appear together or not at all
-  StageWriter out(dir, b, files);
+  StageWriter out(dir, b, files, raw_format, scene_metadata(scene));
   const double octave_cell = scene.terrain.horizontal_scale;
   const glm::dvec3 camera = plan.camera.position;
 
@@ -212,8 +223,13 @@ void write_stage_outputs(const std::filesystem::path& dir, const Scene& scene,
   }
   const json manifest = {
       {"format",
-       "Each field: NAME.png (picture; invalid vertices dark red) and NAME.pfm (PFM, little-endian "
-       "float32, rows bottom-to-top = grid row 0 first, channels interleaved)"},
+       raw_format == FloatFormat::kExr
+           ? "Each field: NAME.png (picture; invalid vertices dark red) and NAME.exr (OpenEXR, "
+             "float32 channels R, G, B or Y, rows top-to-bottom as in the picture = grid row 0 "
+             "last)"
+           : "Each field: NAME.png (picture; invalid vertices dark red) and NAME.pfm (PFM, "
+             "little-endian float32, rows bottom-to-top = grid row 0 first, channels "
+             "interleaved)"},
       {"grid", {{"width", b.layout.width}, {"height", b.layout.height}}},
       {"valid_vertices", valid_count},
       {"camera_position", {camera.x, camera.y, camera.z}},

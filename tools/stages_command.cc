@@ -68,7 +68,7 @@ int run_stages_command(const Scene& scene, const StagesOptions& options, std::os
                                    ? run<double>(scene, lattice, backend, options.repeat, times)
                                    : run<float>(scene, lattice, backend, options.repeat, times);
   const std::string dir = options.out_dir.empty() ? scene.output.stages_dir : options.out_dir;
-  write_stage_outputs(dir, scene, plan, buffers);
+  write_stage_outputs(dir, scene, plan, buffers, options.raw_format);
   out << std::fixed << std::setprecision(3) << "grid " << plan.layout.width << "x"
       << plan.layout.height << ", " << plan.terrain.octaves.count << " octaves, backend "
       << backend_label(options.backend) << ", median of " << options.repeat << " run(s):\n";
@@ -80,7 +80,8 @@ int run_stages_command(const Scene& scene, const StagesOptions& options, std::os
     out << "  " << std::left << std::setw(28) << times.front()[s].name << std::right
         << std::setw(10) << median(values) << " ms\n";
   }
-  out << "wrote " << dir << "/stages.json and one PNG + PFM per field\n";
+  out << "wrote " << dir << "/stages.json and one PNG + "
+      << (options.raw_format == FloatFormat::kExr ? "EXR" : "PFM") << " per field\n";
   return kExitOk;
 }
 

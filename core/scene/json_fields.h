@@ -7,6 +7,7 @@
 #include <charconv>
 #include <cmath>
 #include <functional>
+#include <initializer_list>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -176,20 +177,24 @@ class LayerReader {
     return s;
   }
 
-  // An output file name that must end in `extension` (any letter case): the format it is
-  // written in.
-  std::string file_name(const json& value, const std::string& path, std::string_view extension,
+  // An output file name that must end in one of `extensions` (any letter case): the format it
+  // is written in.
+  std::string file_name(const json& value, const std::string& path,
+                        std::initializer_list<std::string_view> extensions,
                         std::string_view why) const {
     std::string name = string(value, path);
-    std::string tail = name.size() >= extension.size() ? name.substr(name.size() - extension.size())
-                                                       : std::string();
-    std::transform(tail.begin(), tail.end(), tail.begin(),
+    std::string lower = name;
+    std::transform(lower.begin(), lower.end(), lower.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if (tail != extension) {
-      fail(path, path + " = " + brief(value) + ": " + std::string(why) +
-                     "; give a name ending in " + std::string(extension));
+    std::string allowed;
+    for (const std::string_view extension : extensions) {
+      if (lower.ends_with(extension)) {
+        return name;
+      }
+      allowed += (allowed.empty() ? "" : " or ") + std::string(extension);
     }
-    return name;
+    fail(path, path + " = " + brief(value) + ": " + std::string(why) + "; give a name ending in " +
+                   allowed);
   }
 
   template <class Enum>

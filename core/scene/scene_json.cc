@@ -218,6 +218,12 @@ void validate_scene(const Scene& scene) {
   }
 }
 
+std::string scene_json_text(const Scene& scene) {
+  std::string text = scene_to_json(scene).dump(2, ' ', false, json::error_handler_t::replace);
+  text.push_back('\n');
+  return text;
+}
+
 json scene_to_json(const Scene& scene) {
   const CameraSettings& c = scene.camera;
   const TerrainSettings& t = scene.terrain;

@@ -44,6 +44,10 @@ void validate_scene(const Scene& scene);
 // The effective scene, every field present; loading it back gives the same scene.
 nlohmann::json scene_to_json(const Scene& scene);
 
+// scene_to_json as text, exactly what `relief scene` prints: two-space indentation, UTF-8 as
+// it is (invalid bytes replaced), ending in a newline. Images carry it too (image_metadata.h).
+std::string scene_json_text(const Scene& scene);
+
 // "terrain.H=0.85" as a one-field layer. VALUE is read as JSON when it parses (numbers,
 // true, null, [1, 2, 3], "quoted") and as a plain string otherwise (quintic).
 nlohmann::json parse_override(std::string_view assignment);

@@ -482,7 +482,7 @@ void apply_output(const LayerReader& in, const json& value, const std::string& p
             Handlers{
                 {"image",
                  [&](const json& v, const std::string& p) {
-                   output.image = in.file_name(v, p, ".png", "the image is written as PNG");
+                   output.image = in.file_name(v, p, {".png"}, "the image is written as PNG");
                  }},
                 {"stages_dir",
                  [&](const json& v, const std::string& p) { output.stages_dir = in.string(v, p); }},
@@ -491,8 +491,8 @@ void apply_output(const LayerReader& in, const json& value, const std::string& p
                    if (v.is_null()) {
                      output.float_image.reset();
                    } else {
-                     output.float_image =
-                         in.file_name(v, p, ".pfm", "linear radiance is written as PFM");
+                     output.float_image = in.file_name(v, p, {".pfm", ".exr"},
+                                                       "linear radiance is written as PFM or EXR");
                    }
                  }},
             });

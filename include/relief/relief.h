@@ -33,7 +33,7 @@
 //       std::cerr << "error: " << frame.error().message << "\n";
 //       return frame.error().exit_code;
 //     }
-//     const api::Result<std::vector<unsigned char>> png = api::encode_png(frame->image);
+//     const api::Result<std::vector<unsigned char>> png = api::encode_png(frame->image, *scene);
 //     std::ofstream("lava.png", std::ios::binary)
 //         .write(reinterpret_cast<const char*>(png->data()), std::streamsize(png->size()));
 //   }
@@ -271,10 +271,14 @@ Result<Rendering> render(const Scene& scene, const RenderOptions& options = {});
 // ---------------------------------------------------------------------------------------------
 // Encoding
 
-// image.srgb as an 8-bit RGB PNG file's bytes (top row first, as PNG stores it): the file
-// `relief render` writes. Error (exit code 2) unless 1 <= width, height <= 16384 and srgb
-// holds width × height × 3 bytes.
+// image.srgb as an 8-bit RGB PNG file's bytes (top row first, as PNG stores it), with a
+// "Software" text chunk ("relief VERSION"). Error (exit code 2) unless 1 <= width, height <=
+// 16384 and srgb holds width × height × 3 bytes.
 Result<std::vector<unsigned char>> encode_png(const Image& image);
+
+// The same with the scene that made the image in a text chunk "relief:scene" (scene.to_json(),
+// UTF-8; README.md, "Image metadata"): the file `relief render` writes for that scene.
+Result<std::vector<unsigned char>> encode_png(const Image& image, const Scene& scene);
 
 // A float buffer of an Image (linear, depth, normal, world_height, octaves) as a PFM file's
 // bytes (Portable Float Map, the format of `relief render --float`): "PF" (3 channels) or

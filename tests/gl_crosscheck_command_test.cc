@@ -1,0 +1,84 @@
+// relief crosscheck on llvmpipe: every preset, the CPU and GL backends compared stage by stage
+// within the bounds docs/gl-backend.md and docs/gl-shading.md derive (stages 1-4 bit-identical
+// on llvmpipe; a pixel may change triangle only near an edge; sRGB one code at most), and the
+// command's refusals.
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include "cli_support.h"
+#include "core/scene/scene_json.h"
+#include "gl_test_context.h"
+#include "test_support.h"
+
+namespace relief {
+namespace {
+
+using test::CliResult;
+using test::run;
+
+TEST_CASE("crosscheckOfEveryPresetOnLlvmpipeIsWithinTheDocumentedBounds", "[gl]") {
+  test::TempDir dir("crosscheck");
+  for (const std::string& preset : preset_names()) {
+    const std::filesystem::path out = dir.path() / preset;
+    const CliResult r =
+        run({"crosscheck", preset, "--out", out.string(), "--set", "viewport.width=240", "--set",
+             "viewport.height=160", "--set", "grid.width=160", "--set", "grid.height=160"});
+    INFO(preset << ": " << r.err << r.out);
+    REQUIRE(r.code == 0);  // PASS: no pixel more than one sRGB code apart
+    for (const char* file :
+         {"cpu.png", "gl.png", "image_difference.png", "visibility_difference.png",
+          "height_difference.png", "crosscheck.txt"}) {
+      CHECK(std::filesystem::is_regular_file(out / file));
+    }
+    const nlohmann::json j = nlohmann::json::parse(std::ifstream(out / "crosscheck.json"));
+    // Stages 1-4 are bit-identical on llvmpipe (docs/gl-backend.md).
+    CHECK(j["grid"]["valid_mismatch"] == 0);
+    CHECK(j["grid"]["max_height_error"] == 0.0);
+    CHECK(j["grid"]["max_octave_error"] == 0.0);
+    CHECK(j["grid"]["max_normal_angle_deg"] == 0.0);
+    CHECK(j["grid"]["vertices"].get<double>() > 0);
+    // Visibility: llvmpipe snaps as the CPU does; pixels change hands only on the framebuffer's
+    // border and within 2/256 px of an edge (docs/gl-shading.md): a thousandth of the image is
+    // far above what that allows on these frames.
+    CHECK(j["pixels"]["primitive_mismatch"].get<double>() <=
+          1e-3 * j["pixels"]["count"].get<double>());
+    CHECK(j["srgb"]["max_error"].get<double>() <= 1.0 / 255 + 1e-7);
+    CHECK(j["pixels"]["max_depth_error"].get<double>() < 1e-4);
+    CHECK(j["pixels"]["max_normal_angle_deg"].get<double>() < 1.0);
+    CHECK(j["frame_ms"]["gl"].get<double>() > 0);
+  }
+}
+
+TEST_CASE("crosscheckRefusesBadInputAndWritesNothing", "[gl]") {
+  test::TempDir dir("crosscheck-bad");
+  const std::string out = (dir.path() / "out").string();
+  for (const auto& args : std::vector<std::vector<std::string>>{
+           {"crosscheck"},                                 // --out missing
+           {"crosscheck", "--out", ""},                    // empty
+           {"crosscheck", "--out", out, "--fail", "nan"},  // threshold not a number
+           {"crosscheck", "--out", out, "--fail", "-1"},   // negative
+           {"crosscheck", "--out", out, "--cpu-backend", "gl"},
+           {"crosscheck", "--out", out, "--repeat", "0"},
+           {"crosscheck", "no-such-preset", "--out", out},
+           {"crosscheck", "--out", out, "--set", "viewport.width=0"}}) {
+    const CliResult r = run(args);
+    INFO(r.err);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Catch::Contains("relief: error:"));
+  }
+  CHECK(!std::filesystem::exists(out));
+  // --out naming a regular file: nothing is written, exit 1 (output error).
+  const std::string file = test::write_file(dir.path() / "file", "x");
+  const CliResult r =
+      run({"crosscheck", "--out", file, "--set", "viewport.width=64", "--set", "viewport.height=64",
+           "--set", "grid.width=32", "--set", "grid.height=32"});
+  CHECK(r.code == 1);
+  CHECK(test::read_bytes(file).size() == 1);
+}
+
+}  // namespace
+}  // namespace relief

@@ -1,0 +1,40 @@
+// The options several commands share (tools/cli.cc): the scene and its overrides, the memory
+// limit, the backend, the thread count, and checks of file names.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+namespace relief {
+
+// SCENE and --set, shared by every command that renders a scene.
+struct SceneArgs {
+  std::string scene;
+  std::vector<std::string> overrides;
+};
+
+void add_scene_args(CLI::App* command, SceneArgs& args);
+
+// Memory limit of a job (memory_budget.h): "2G", "512M", bytes.
+void add_max_memory(CLI::App* command, std::string& max_memory);
+
+// A finite coordinate within +-1e6 (CLI::Range lets NaN through: every comparison with it is
+// false).
+extern const CLI::Validator kFiniteViewportValue;
+
+// `name` ends in `extension` (lower case), in any letter case.
+bool has_extension(const std::string& name, std::string_view extension);
+
+// An option given with an empty value (-o ""): never silently the default.
+bool given_empty(const CLI::Option* option, const std::string& value);
+
+// --backend NAME (pipeline/frame.h): which implementation runs the frame's stages; --simd
+// TARGET forces one Highway target (implies --backend simd).
+void add_backend(CLI::App* command, std::string& backend, std::string& simd_target);
+
+void add_threads(CLI::App* command, int& threads);
+
+}  // namespace relief

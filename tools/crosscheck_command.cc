@@ -1,0 +1,210 @@
+// relief crosscheck: one scene rendered by a CPU backend and by the GL backend, compared stage
+// by stage (tools/crosscheck.h), with heat maps, a table and its JSON, and idiff's verdict on
+// the final images as the exit code.
+#include <algorithm>
+#include <chrono>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "pipeline/build_info.h"
+#include "pipeline/frame.h"
+#include "pipeline/gl_backend.h"
+#include "pipeline/image_io.h"
+#include "pipeline/job_memory.h"
+#include "pipeline/scene_resources.h"
+#include "tools/atomic_file.h"
+#include "tools/cli.h"
+#include "tools/colormap.h"
+#include "tools/commands.h"
+#include "tools/compare_report.h"
+#include "tools/crosscheck.h"
+
+namespace relief {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The frame with every output, rendered `repeat` times; the median wall time in ms.
+Frame timed_frame(const Scene& scene, const SceneResources& resources, Backend backend, int repeat,
+                  double& median_ms) {
+  FrameRequest request;
+  request.backend = backend;
+  request.outputs = {true, true, true, true, true, true};
+  std::vector<double> times;
+  Frame frame;
+  for (int r = 0; r < repeat; ++r) {
+    const Clock::time_point start = Clock::now();
+    frame = render_frame(scene, resources, request);
+    times.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+  }
+  std::sort(times.begin(), times.end());
+  median_ms = times[times.size() / 2];
+  return frame;
+}
+
+// A heat map of `values` (rows bottom to top), 0 black-blue to `scale` red; NaN magenta.
+std::vector<std::uint8_t> heat_map(const std::vector<float>& values, double scale) {
+  std::vector<std::uint8_t> rgb(3 * values.size());
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    const Rgb8 c = heat_color(scale > 0 ? double(values[k]) / scale : 0.0);
+    std::copy(c.begin(), c.end(), rgb.begin() + std::ptrdiff_t(3 * k));
+  }
+  return rgb;
+}
+
+// The CPU image in grey, red where the two frames' triangles differ.
+std::vector<std::uint8_t> visibility_map(const FrameImage& cpu, const FrameImage& gl) {
+  std::vector<std::uint8_t> rgb(cpu.srgb.size());
+  for (std::size_t k = 0; k < cpu.primitive.size(); ++k) {
+    const double grey = (cpu.srgb[3 * k] + cpu.srgb[3 * k + 1] + cpu.srgb[3 * k + 2]) / (3.0 * 255);
+    const Rgb8 c = cpu.primitive[k] != gl.primitive[k] ? Rgb8{255, 0, 0} : gray_color(0.6 * grey);
+    std::copy(c.begin(), c.end(), rgb.begin() + std::ptrdiff_t(3 * k));
+  }
+  return rgb;
+}
+
+double largest(const std::vector<float>& values) {
+  double m = 0;
+  for (float v : values) {
+    if (std::isfinite(v)) {
+      m = std::max(m, double(v));
+    }
+  }
+  return m;
+}
+
+nlohmann::json figures_json(const CompareResult& r) {
+  return {{"verdict", std::string(verdict_name(r.verdict))},
+          {"mean_error", r.mean_error},
+          {"rms_error", r.rms_error},
+          {"psnr_db", std::isfinite(r.psnr) ? nlohmann::json(r.psnr) : nlohmann::json("inf")},
+          {"max_error", r.max_error},
+          {"max_at", {r.max_x, r.max_y, r.max_channel}},
+          {"warn_pixels", r.warn_pixels},
+          {"fail_pixels", r.fail_pixels}};
+}
+
+}  // namespace
+
+int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options,
+                           std::ostream& out) {
+  // Two frames with every output, and two grids: twice a render's memory.
+  MemoryEstimate estimate = estimate_render_memory(
+      scene, options.cpu_backend, FrameOutputs{true, true, true, true, true, true});
+  estimate.add("the GL frame and the grids", estimate.total());
+  check_memory(estimate, options.budget, "relief crosscheck", "Lower the viewport or grid size");
+  const SceneResources resources = load_scene_resources(scene);
+  const std::string renderer = gl_renderer();  // GlBackendError (exit 2) when there is no GL
+  double cpu_ms = 0, gl_ms = 0;
+  const Frame cpu = timed_frame(scene, resources, options.cpu_backend, options.repeat, cpu_ms);
+  const Frame gl = timed_frame(scene, resources, Backend::kGl, options.repeat, gl_ms);
+  const TerrainRun<float> cpu_terrain = run_terrain_stages<float>(scene, resources.lattice);
+  const GridBuffers<float> gl_grid = gl_terrain_stages(scene, resources.lattice);
+  const GridDifference grid = compare_grids(cpu_terrain.grid, gl_grid);
+  const FrameDifference frame = compare_frames(cpu.image, gl.image, options.thresholds);
+
+  const double amplitude = scene.terrain.amplitude;
+  std::ostringstream table;
+  table << std::setprecision(4);
+  table << "relief crosscheck: " << backend_label(options.cpu_backend) << " against gl on "
+        << renderer << "\n"
+        << scene.viewport.width << "x" << scene.viewport.height << " image, "
+        << cpu_terrain.plan.layout.width << "x" << cpu_terrain.plan.layout.height << " grid\n"
+        << "frame time (median of " << options.repeat << "): cpu " << cpu_ms << " ms, gl " << gl_ms
+        << " ms, gl / cpu " << gl_ms / cpu_ms << "\n"
+        << "stage                measure                          value\n"
+        << "1-2 domain           vertices valid in one grid only  " << grid.valid_mismatch << "\n"
+        << "1-2 domain           max octave count error           " << grid.max_octave_error << "\n"
+        << "3 fractal            max height error / amplitude     "
+        << grid.max_height_error / amplitude << "\n"
+        << "3 fractal            RMS height error / amplitude     "
+        << grid.rms_height_error / amplitude << "\n"
+        << "4 surface            max normal angle (deg)           " << grid.max_normal_angle_deg
+        << "\n"
+        << "6 visibility         pixels whose triangle differs    " << frame.primitive_mismatch
+        << " (" << 100.0 * frame.visibility_share() << "%)\n"
+        << "6-7 depth            max error (same triangle)        " << frame.max_depth_error << "\n"
+        << "7 normal             max angle (deg, same triangle)   " << frame.max_normal_angle_deg
+        << "\n"
+        << "7 height             max error / amplitude            "
+        << frame.max_height_error / amplitude << "\n"
+        << "7 octaves            max error                        " << frame.max_octave_error
+        << "\n"
+        << "8 linear radiance    max error, PSNR (dB)             " << frame.linear.max_error
+        << ", " << frame.linear.psnr << "\n"
+        << "9 sRGB image         max error (codes), PSNR (dB)     " << frame.srgb.max_error * 255.0
+        << ", " << frame.srgb.psnr << "\n"
+        << "9 sRGB image         pixels over warn / fail          " << frame.srgb.warn_pixels
+        << " / " << frame.srgb.fail_pixels << "\n"
+        << verdict_name(frame.srgb.verdict) << "\n";
+
+  const nlohmann::json json = {
+      {"cpu_backend", backend_label(options.cpu_backend)},
+      {"gl_renderer", renderer},
+      {"width", scene.viewport.width},
+      {"height", scene.viewport.height},
+      {"frame_ms", {{"cpu", cpu_ms}, {"gl", gl_ms}, {"repeat", options.repeat}}},
+      {"grid",
+       {{"vertices", grid.vertices},
+        {"valid_mismatch", grid.valid_mismatch},
+        {"max_octave_error", grid.max_octave_error},
+        {"max_height_error", grid.max_height_error},
+        {"rms_height_error", grid.rms_height_error},
+        {"amplitude", amplitude},
+        {"max_normal_angle_deg", grid.max_normal_angle_deg}}},
+      {"pixels",
+       {{"count", frame.pixels},
+        {"primitive_mismatch", frame.primitive_mismatch},
+        {"max_depth_error", frame.max_depth_error},
+        {"max_normal_angle_deg", frame.max_normal_angle_deg},
+        {"max_height_error", frame.max_height_error},
+        {"max_octave_error", frame.max_octave_error}}},
+      {"linear", figures_json(frame.linear)},
+      {"srgb", figures_json(frame.srgb)}};
+
+  const std::filesystem::path dir = options.out_dir;
+  OutputDirectory directory(dir);
+  OutputSet files;
+  const int w = scene.viewport.width, h = scene.viewport.height;
+  files.add(dir / "cpu.png", encode_png_rgb(w, h, cpu.image.srgb));
+  files.add(dir / "gl.png", encode_png_rgb(w, h, gl.image.srgb));
+  if (!frame.srgb_difference.empty()) {
+    std::vector<float> top_first(frame.srgb_difference.size());
+    for (int y = 0; y < h; ++y) {
+      std::copy_n(frame.srgb_difference.begin() + std::ptrdiff_t(y) * w, w,
+                  top_first.begin() + std::ptrdiff_t(h - 1 - y) * w);
+    }
+    files.add(dir / "image_difference.png", difference_heat_map_png(top_first, w, h));
+    files.add(dir / "visibility_difference.png",
+              encode_png_rgb(w, h, visibility_map(cpu.image, gl.image)));
+  }
+  const GridLayout& layout = cpu_terrain.plan.layout;
+  std::vector<float> height_rows(std::size_t(layout.width) * layout.height);
+  for (int j = 0; j < layout.height; ++j) {
+    for (int i = 0; i < layout.width; ++i) {
+      height_rows[std::size_t(j) * layout.width + i] = grid.height_error[layout.index(i, j)];
+    }
+  }
+  files.add(dir / "height_difference.png",
+            encode_png_rgb(layout.width, layout.height,
+                           heat_map(height_rows, largest(grid.height_error))));
+  const std::string text = table.str();
+  files.add(dir / "crosscheck.txt",
+            std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()));
+  const std::string json_text = json.dump(2) + "\n";
+  files.add(dir / "crosscheck.json",
+            std::span(reinterpret_cast<const unsigned char*>(json_text.data()), json_text.size()));
+  files.commit();
+  directory.keep();
+  out << text;
+  out.flush();
+  return exit_code(frame.srgb.verdict);
+}
+
+}  // namespace relief

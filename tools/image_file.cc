@@ -1,0 +1,82 @@
+#include "tools/image_file.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include "core/input_file.h"
+#include "core/scene/json_input.h"
+
+namespace relief {
+
+struct ImageFile::Input {
+  std::unique_ptr<OIIO::ImageInput> image;
+};
+
+namespace {
+
+std::string named(const std::filesystem::path& path) {
+  return brief_text(path.string());
+}
+
+// OpenImageIO's message, on one line (it may hold several, one per plugin tried).
+std::string oiio_reason(std::string message) {
+  for (char& c : message) {
+    c = (c == '\n' || c == '\t') ? ' ' : c;
+  }
+  return brief_text(message.empty() ? std::string("unknown error") : message, 3 * kBriefChars);
+}
+
+}  // namespace
+
+ImageFile::ImageFile(const std::filesystem::path& path)
+    : path_(path), input_(std::make_unique<Input>()) {
+  try {
+    // Only a regular file of a bounded size reaches OpenImageIO; the descriptor is closed
+    // again at once, OpenImageIO opens the file by name.
+    const InputFile check(path, kMaxImageFileBytes);
+  } catch (const InputFileError& e) {
+    throw ImageFileError(named(path) + " " + e.what());
+  }
+  input_->image = OIIO::ImageInput::open(path.string());
+  if (!input_->image) {
+    throw ImageFileError(named(path) +
+                         " cannot be read as an image: " + oiio_reason(OIIO::geterror()));
+  }
+  const OIIO::ImageSpec& spec = input_->image->spec();
+  if (spec.deep || spec.depth != 1) {
+    throw ImageFileError(named(path) + " is a " + (spec.deep ? "deep" : "volume") +
+                         " image; only flat 2-D images are compared");
+  }
+  if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1) {
+    throw ImageFileError(named(path) + " holds no pixels");
+  }
+  width_ = spec.width;
+  height_ = spec.height;
+  channels_ = spec.nchannels;
+}
+
+ImageFile::~ImageFile() = default;
+
+std::string ImageFile::format() const {
+  return input_->image->format_name();
+}
+
+std::uintmax_t ImageFile::float_bytes() const {
+  return std::uintmax_t(width_) * std::uintmax_t(height_) * std::uintmax_t(channels_) *
+         sizeof(float);
+}
+
+FloatImage ImageFile::read() {
+  FloatImage image;
+  image.width = width_;
+  image.height = height_;
+  image.channels = channels_;
+  image.channel_names = input_->image->spec().channelnames;
+  image.pixels.resize(float_bytes() / sizeof(float));
+  if (!input_->image->read_image(0, 0, 0, channels_, OIIO::TypeFloat, image.pixels.data())) {
+    throw ImageFileError(named(path_) +
+                         " cannot be read: " + oiio_reason(input_->image->geterror()));
+  }
+  return image;
+}
+
+}  // namespace relief
