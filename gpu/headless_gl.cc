@@ -53,11 +53,20 @@ std::unique_ptr<HeadlessGl> HeadlessGl::open(std::string& error) {
     error = "EGL has no eglGetPlatformDisplayEXT (install libegl-mesa0)";
     return nullptr;
   }
-  const auto make = [](EGLDisplay display, EGLContext context, const char* platform) {
+  // What is current now: release() makes it current again.
+  void* const previous_display = eglGetCurrentDisplay();
+  void* const previous_draw = eglGetCurrentSurface(EGL_DRAW);
+  void* const previous_read = eglGetCurrentSurface(EGL_READ);
+  void* const previous_context = eglGetCurrentContext();
+  const auto make = [&](EGLDisplay display, EGLContext context, const char* platform) {
     std::unique_ptr<HeadlessGl> gl(new HeadlessGl());
     gl->display_ = display;
     gl->context_ = context;
     gl->platform_ = platform;
+    gl->previous_display_ = previous_display;
+    gl->previous_draw_ = previous_draw;
+    gl->previous_read_ = previous_read;
+    gl->previous_context_ = previous_context;
     return gl;
   };
   // The device platform: each EGL device in turn (a GPU driver's), software devices last
@@ -117,12 +126,24 @@ HeadlessGl::~HeadlessGl() {
   eglTerminate(display_);
 }
 
-bool HeadlessGl::make_current() const {
+bool HeadlessGl::make_current() {
+  if (eglGetCurrentContext() == context_) {
+    return true;  // already here: what it replaced stays remembered
+  }
+  previous_display_ = eglGetCurrentDisplay();
+  previous_draw_ = eglGetCurrentSurface(EGL_DRAW);
+  previous_read_ = eglGetCurrentSurface(EGL_READ);
+  previous_context_ = eglGetCurrentContext();
   return eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_) == EGL_TRUE;
 }
 
-void HeadlessGl::release() const {
-  eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+void HeadlessGl::release() {
+  if (previous_context_ != EGL_NO_CONTEXT && previous_context_ != context_) {
+    eglMakeCurrent(previous_display_, previous_draw_, previous_read_, previous_context_);
+  } else {
+    eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  }
+  previous_context_ = EGL_NO_CONTEXT;
 }
 
 std::string HeadlessGl::version() const {

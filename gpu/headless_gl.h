@@ -23,15 +23,21 @@ class HeadlessGl {
   const std::string& platform() const { return platform_; }
 
   // A context is current on one thread at a time: make_current() takes it to the calling
-  // thread (false if EGL refuses), release() lets it go, so that another thread can take it.
-  bool make_current() const;
-  void release() const;
+  // thread (false if EGL refuses), remembering what was current there; release() lets it go
+  // and makes that current again, so that another thread can take it and a caller's own
+  // context is left as it was.
+  bool make_current();
+  void release();
 
  private:
   HeadlessGl() = default;
   void* display_ = nullptr;
   void* context_ = nullptr;
   std::string platform_;
+  void* previous_display_ = nullptr;  // what make_current() replaced
+  void* previous_draw_ = nullptr;
+  void* previous_read_ = nullptr;
+  void* previous_context_ = nullptr;
 };
 
 }  // namespace relief::gpu

@@ -10,8 +10,13 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_support.h"
+#include "core/frame_plan.h"
 #include "core/scene/scene_json.h"
+#include "core/stage_params.h"
 #include "gl_test_context.h"
+#include "gpu/gl_checks.h"
+#include "gpu/gl_terrain.h"
+#include "pipeline/scene_resources.h"
 #include "test_support.h"
 
 namespace relief {
@@ -51,6 +56,35 @@ TEST_CASE("crosscheckOfEveryPresetOnLlvmpipeIsWithinTheDocumentedBounds", "[gl]"
     CHECK(j["pixels"]["max_normal_angle_deg"].get<double>() < 1.0);
     CHECK(j["frame_ms"]["gl"].get<double>() > 0);
   }
+}
+
+TEST_CASE("theGlBackendLeavesTheCallersContextCurrentAndRaisesNoGlError", "[gl]") {
+  test::gl_context();
+  void* const before = gpu::current_egl_context();
+  REQUIRE(before != nullptr);
+  test::TempDir dir("crosscheck-context");
+  const CliResult r = run({"render", "--backend", "gl", "-o", (dir.path() / "a.png").string(),
+                           "--set", "viewport.width=64", "--set", "viewport.height=48", "--set",
+                           "grid.width=48", "--set", "grid.height=48"});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(gpu::current_egl_context() == before);
+  // The test context still works, and GL's debug output reported no error on it.
+  test::gl_debug_errors().clear();
+  const Scene scene = resolve_scene(
+      "lava", {"viewport.width=64", "viewport.height=48", "grid.width=48", "grid.height=48"});
+  const SceneResources resources = load_scene_resources(scene);
+  const FramePlan plan = make_frame_plan(scene, resources.lattice);
+  gpu::GlTerrain terrain(plan.layout, resources.lattice);
+  terrain.run(make_terrain_params<float>(plan));
+  GridBuffers<float> grid(plan.layout);
+  terrain.read_all(grid);
+  CHECK(test::gl_debug_errors().empty());
+  // An invalid call is reported through the callback (the test of the test).
+  glBindBuffer(GL_ARRAY_BUFFER, 0xdeadbeefu);
+  CHECK_FALSE(test::gl_debug_errors().empty());
+  gpu::clear_gl_errors();
+  test::gl_debug_errors().clear();
 }
 
 TEST_CASE("crosscheckRefusesBadInputAndWritesNothing", "[gl]") {

@@ -127,14 +127,16 @@ int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options,
         << grid.rms_height_error / amplitude << "\n"
         << "4 surface            max normal angle (deg)           " << grid.max_normal_angle_deg
         << "\n"
-        << "6 visibility         pixels whose triangle differs    " << frame.primitive_mismatch
-        << " (" << 100.0 * frame.visibility_share() << "%)\n"
-        << "6-7 depth            max error (same triangle)        " << frame.max_depth_error << "\n"
-        << "7 normal             max angle (deg, same triangle)   " << frame.max_normal_angle_deg
+        << "6 visibility         pixels whose triangle differs    "
+        << frame.pixels.primitive_mismatch << " (" << 100.0 * frame.pixels.visibility_share()
+        << "%)\n"
+        << "6-7 depth            max error (same triangle)        " << frame.pixels.max_depth_error
         << "\n"
+        << "7 normal             max angle (deg, same triangle)   "
+        << frame.pixels.max_normal_angle_deg << "\n"
         << "7 height             max error / amplitude            "
-        << frame.max_height_error / amplitude << "\n"
-        << "7 octaves            max error                        " << frame.max_octave_error
+        << frame.pixels.max_height_error / amplitude << "\n"
+        << "7 octaves            max error                        " << frame.pixels.max_octave_error
         << "\n"
         << "8 linear radiance    max error, PSNR (dB)             " << frame.linear.max_error
         << ", " << frame.linear.psnr << "\n"
@@ -159,12 +161,12 @@ int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options,
         {"amplitude", amplitude},
         {"max_normal_angle_deg", grid.max_normal_angle_deg}}},
       {"pixels",
-       {{"count", frame.pixels},
-        {"primitive_mismatch", frame.primitive_mismatch},
-        {"max_depth_error", frame.max_depth_error},
-        {"max_normal_angle_deg", frame.max_normal_angle_deg},
-        {"max_height_error", frame.max_height_error},
-        {"max_octave_error", frame.max_octave_error}}},
+       {{"count", frame.pixels.pixels},
+        {"primitive_mismatch", frame.pixels.primitive_mismatch},
+        {"max_depth_error", frame.pixels.max_depth_error},
+        {"max_normal_angle_deg", frame.pixels.max_normal_angle_deg},
+        {"max_height_error", frame.pixels.max_height_error},
+        {"max_octave_error", frame.pixels.max_octave_error}}},
       {"linear", figures_json(frame.linear)},
       {"srgb", figures_json(frame.srgb)}};
 
