@@ -142,8 +142,9 @@ TEST_CASE("backendNamesRoundTrip", "[frame]") {
     REQUIRE(backend_from_name(name).has_value());
     CHECK(backend_name(*backend_from_name(name)) == name);
   }
-  CHECK(backend_names().size() == 3);
-  CHECK_FALSE(backend_from_name("gl").has_value());  // not yet (the GLSL twin)
+  CHECK(backend_names().size() == 4);
+  CHECK(backend_from_name("gl") == Backend::kGl);
+  CHECK_FALSE(backend_from_name("vulkan").has_value());
   CHECK_FALSE(backend_from_name("Reference").has_value());
 }
 
