@@ -7,7 +7,6 @@
 // per-pixel outputs and the sRGB image.
 // Run: build/bench/relief_gl_frame_report [repeat, default 5] [preset ...]
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -24,8 +23,6 @@
 namespace relief {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 Frame median_frame(const Scene& scene, const SceneResources& resources, Backend backend, int repeat,
                    int threads, double& median_ms) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
@@ -33,16 +30,7 @@ Frame median_frame(const Scene& scene, const SceneResources& resources, Backend 
   FrameRequest request;
   request.backend = backend;
   request.outputs = {true, true, true, true, true, true};
-  std::vector<double> times;
-  Frame frame;
-  for (int r = 0; r < repeat; ++r) {
-    const Clock::time_point start = Clock::now();
-    frame = render_frame(scene, resources, request);
-    times.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
-  }
-  std::sort(times.begin(), times.end());
-  median_ms = times[times.size() / 2];
-  return frame;
+  return render_frame_repeated(scene, resources, request, repeat, median_ms);
 }
 
 int run(int argc, char** argv) {

@@ -1,5 +1,6 @@
 #include "pipeline/frame.h"
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 
@@ -101,6 +102,20 @@ Frame render_frame(const Scene& scene, const SceneResources& resources,
   return request.backend == Backend::kReferenceDouble
              ? render_with<double>(scene, resources, request)
              : render_with<float>(scene, resources, request);
+}
+
+Frame render_frame_repeated(const Scene& scene, const SceneResources& resources,
+                            const FrameRequest& request, int repeat, double& median_ms) {
+  std::vector<double> times;
+  Frame frame;
+  for (int r = 0; r < std::max(repeat, 1); ++r) {
+    const Clock::time_point start = Clock::now();
+    frame = render_frame(scene, resources, request);
+    times.push_back(milliseconds_since(start));
+  }
+  std::sort(times.begin(), times.end());
+  median_ms = times[times.size() / 2];
+  return frame;
 }
 
 template <class Real>

@@ -100,6 +100,11 @@ struct Frame {
 Frame render_frame(const Scene& scene, const SceneResources& resources,
                    const FrameRequest& request);
 
+// The frame rendered `repeat` (>= 1) times, for a time that the machine's noise does not
+// decide: the last frame, and in `median_ms` the median of the wall times.
+Frame render_frame_repeated(const Scene& scene, const SceneResources& resources,
+                            const FrameRequest& request, int repeat, double& median_ms);
+
 // Stages 1-4 alone (relief stages), by `backend` (reference or simd in float, reference-double
 // in double): the frame's plan, the grid buffers and the time of each stage.
 template <class Real>

@@ -2,7 +2,6 @@
 // by stage (tools/crosscheck.h), with heat maps, a table and its JSON, and idiff's verdict on
 // the final images as the exit code.
 #include <algorithm>
-#include <chrono>
 #include <iomanip>
 #include <ostream>
 #include <sstream>
@@ -28,24 +27,13 @@ namespace relief {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 // The frame with every output, rendered `repeat` times; the median wall time in ms.
 Frame timed_frame(const Scene& scene, const SceneResources& resources, Backend backend, int repeat,
                   double& median_ms) {
   FrameRequest request;
   request.backend = backend;
   request.outputs = {true, true, true, true, true, true};
-  std::vector<double> times;
-  Frame frame;
-  for (int r = 0; r < repeat; ++r) {
-    const Clock::time_point start = Clock::now();
-    frame = render_frame(scene, resources, request);
-    times.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
-  }
-  std::sort(times.begin(), times.end());
-  median_ms = times[times.size() / 2];
-  return frame;
+  return render_frame_repeated(scene, resources, request, repeat, median_ms);
 }
 
 // A heat map of `values` (rows bottom to top), 0 black-blue to `scale` red; NaN magenta.
