@@ -81,6 +81,20 @@ class GlBackend final : public FrameBackend {
     });
   }
 
+  // The frame's GL objects belong to the session's context: deleted there (GL deletes a name
+  // in whatever context is current, so with another context current, a caller's own, it
+  // would delete that context's objects of the same names, and with none it would abort).
+  ~GlBackend() override {
+    GlSession& s = session();
+    if (s.gl != nullptr && s.gl->make_current()) {
+      upload_.reset();
+      terrain_.reset();
+      s.gl->release();
+    }
+  }
+  GlBackend(const GlBackend&) = delete;
+  GlBackend& operator=(const GlBackend&) = delete;
+
   std::size_t units(StageId id) const override {
     switch (id) {
       case StageId::kProjectedDomain:
