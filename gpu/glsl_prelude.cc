@@ -56,9 +56,10 @@ std::vector<GlslSource> with_prelude(std::vector<GlslSource> sources) {
 }
 
 std::vector<GlslSource> shading_sources() {
-  return {{"common.glsl", glsl::kCommon},      {"shade_params.glsl", glsl::kShadeParams},
-          {"shading_lattice.glsl", glsl::kLattice},    {"proto_texture.glsl", glsl::kProtoTexture},
-          {"sky_water.glsl", glsl::kSkyWater}, {"terrain_shading.glsl", glsl::kTerrainShading}};
+  return {
+      {"common.glsl", glsl::kCommon},           {"shade_params.glsl", glsl::kShadeParams},
+      {"shading_lattice.glsl", glsl::kLattice}, {"proto_texture.glsl", glsl::kProtoTexture},
+      {"sky_water.glsl", glsl::kSkyWater},      {"terrain_shading.glsl", glsl::kTerrainShading}};
 }
 
 }  // namespace
