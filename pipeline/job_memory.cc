@@ -100,6 +100,17 @@ MemoryEstimate estimate_render_memory(const Scene& scene, Backend backend,
                                        outputs.world_height + outputs.octaves;
   estimate.add("image " + size_text(scene.viewport.width, scene.viewport.height),
                pixels * (kRenderPixelBytes + 2 * 4 * output_floats + 4 * outputs.primitive));
+  if (backend == Backend::kGl) {
+    // The GL side's copies (host memory under llvmpipe, the GPU's otherwise: counted either
+    // way): per pixel the render targets (RGBA32F linear and normal 32, RGBA8UI sRGB 4, R32UI
+    // primitive 4, RG32F height and octaves 8, DEPTH32F 4), the read-back staging (RGBA32F 16,
+    // RGBA8 4, RG32F 8) and every output read back (43); per vertex the eleven float streams
+    // (44) and the index buffer of its two triangles (24).
+    constexpr std::uintmax_t kGlPixelBytes = 52 + 28 + 43;
+    constexpr std::uintmax_t kGlVertexBytes = 44 + 24;
+    estimate.add("GL targets, read-back and buffers",
+                 pixels * kGlPixelBytes + vertices * kGlVertexBytes);
+  }
   return estimate;
 }
 

@@ -16,6 +16,7 @@
 #include "gl_test_context.h"
 #include "gpu/gl_checks.h"
 #include "gpu/gl_terrain.h"
+#include "pipeline/job_memory.h"
 #include "pipeline/scene_resources.h"
 #include "test_support.h"
 
@@ -85,6 +86,23 @@ TEST_CASE("theGlBackendLeavesTheCallersContextCurrentAndRaisesNoGlError", "[gl]"
   CHECK_FALSE(test::gl_debug_errors().empty());
   gpu::clear_gl_errors();
   test::gl_debug_errors().clear();
+}
+
+TEST_CASE("aGlRenderTooLargeForTheMemoryIsRefusedNamingTheGlPart", "[gl]") {
+  test::TempDir dir("gl-memory");
+  const std::string png = (dir.path() / "big.png").string();
+  // 16384^2 pixels: 4 GiB for the CPU's image, about 31 GiB more for the GL side's copies.
+  const CliResult r = run({"render", "--backend", "gl", "-o", png, "--set", "viewport.width=16384",
+                           "--set", "viewport.height=16384", "--max-memory", "8G"});
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains("GL targets, read-back and buffers"));
+  CHECK(!std::filesystem::exists(png));
+  // The CPU backends' estimate of the same render has no GL part, and fits.
+  const Scene scene = resolve_scene("default", {"viewport.width=16384", "viewport.height=16384"});
+  const MemoryEstimate cpu = estimate_render_memory(scene, Backend::kSimd, {});
+  const MemoryEstimate gl = estimate_render_memory(scene, Backend::kGl, {});
+  CHECK(cpu.total() < (std::uintmax_t{8} << 30));
+  CHECK(gl.total() - cpu.total() >= std::uintmax_t{16384} * 16384 * 123);
 }
 
 TEST_CASE("crosscheckRefusesBadInputAndWritesNothing", "[gl]") {
