@@ -11,9 +11,11 @@
 #include "core/terrain_stages.h"
 #include "core/vertex_transform.h"
 #include "pipeline/memory_budget.h"
+#include "pipeline/simd_setup.h"
 #include "simd/fbm.h"
 #include "simd/projected_domain.h"
 #include "simd/surface.h"
+#include "simd/vertex_outcodes.h"
 #include "simd/vertex_transform.h"
 
 namespace relief {
@@ -92,11 +94,19 @@ void ReferenceBackend<Real>::run(StageId id, std::size_t begin, std::size_t end)
       project_domain<Real>(params_.domain, params_.domain_rows, rows, grid_.domain());
       return;
     case StageId::kOutcodes:
-      vertex_outcodes<Real>(cull_, rows, grid_.dx, grid_.dz, {}, grid_.valid, outcode_);
+    case StageId::kDrawOutcodes: {
+      // Before stage 3 the segments of the height bounds, after it the vertices' own heights.
+      const std::span<const Real> height =
+          id == StageId::kOutcodes ? std::span<const Real>{} : std::span<const Real>(grid_.height);
+      if constexpr (std::is_same_v<Real, float>) {
+        if (request_.backend == Backend::kSimd) {
+          simd::vertex_outcodes(cull_, rows, grid_.dx, grid_.dz, height, grid_.valid, outcode_);
+          return;
+        }
+      }
+      vertex_outcodes<Real>(cull_, rows, grid_.dx, grid_.dz, height, grid_.valid, outcode_);
       return;
-    case StageId::kDrawOutcodes:
-      vertex_outcodes<Real>(cull_, rows, grid_.dx, grid_.dz, grid_.height, grid_.valid, outcode_);
-      return;
+    }
     case StageId::kDrawNeeds:
       tally_draws(rows, request_.skips.unseen_vertices
                             ? refine_draw_needs(plan_.layout, rows, grid_.valid, outcode_, need_)
@@ -202,6 +212,9 @@ void ReferenceBackend<Real>::prepare(StageId id) {
     }
     case StageId::kTriangleSetup:
       setup_ = std::make_unique<raster::TriangleSetup>(state_);
+      if (request_.backend == Backend::kSimd) {
+        setup_->set_snap_kernels(&simd_snap_kernels());
+      }
       chunks_.resize(raster::setup_chunk_count(triangles().count()));
       return;
     case StageId::kTiles: {

@@ -65,6 +65,12 @@ struct PreparedVertices {
     kSnapped = 8,  // kPlain, outcode 0, window x and y within the snap limit: floor_x, floor_y,
                    // z, fx, fy are set (else they are unspecified)
   };
+  // The passes' intermediate bits (SnapKernels::window): the flags above in bits 0-2,
+  // clip_outcode in bits 8-13 (the near and far bits; the others where float left them
+  // undecided), and kGuardUndecided where float could not decide the guard-band bits.
+  static constexpr std::uint32_t kOutcodeShift = 8;
+  static constexpr std::uint32_t kGuardUndecided = 1u << 16;
+
   std::size_t begin = 0;
   std::vector<std::uint8_t> flags;
   std::vector<std::uint8_t> outcode;  // clip_outcode (set when kPlain)
@@ -72,8 +78,33 @@ struct PreparedVertices {
   // z, and the snapped snap_to_fixed(x), snap_to_fixed(y).
   std::vector<float> floor_x, floor_y, z;
   std::vector<std::int32_t> fx, fy;
+  // Scratch of the passes: window x and y, and the intermediate bits.
+  std::vector<float> window_x, window_y;
+  std::vector<std::uint32_t> bits;
 
   void resize(std::size_t n);
+};
+
+// The per-frame constants of the per-vertex passes: the guard band in clip units, and the
+// viewport transform (to_window).
+struct SnapConstants {
+  float guard_x, guard_y;
+  float scale_x, scale_y, translate_x, translate_y;
+};
+
+// prepare_vertices' two per-vertex passes over n vertices, as a backend may supply them (the
+// simd backend's Highway kernels); each must give its values bit for bit. Between them,
+// prepare_vertices computes the whole outcode of the few vertices marked kGuardUndecided.
+struct SnapKernels {
+  // Window coordinates (to_window) and the intermediate bits. valid and need may be null (all
+  // valid; all drawn), else bit kDraw = 2 of need marks a drawn vertex.
+  void (*window)(const SnapConstants& constants, const float* x, const float* y, const float* z,
+                 const float* w, const std::uint8_t* valid, const std::uint8_t* need, std::size_t n,
+                 float* window_x, float* window_y, float* window_z, std::uint32_t* bits);
+  // The flags, outcodes, floors and snapped coordinates from the window coordinates and bits.
+  void (*snap)(std::size_t n, const std::uint32_t* bits, const float* window_x,
+               const float* window_y, std::uint8_t* flags, std::uint8_t* outcode, float* floor_x,
+               float* floor_y, std::int32_t* fx, std::int32_t* fy);
 };
 
 // The pixel region and face culling of a raster state, as the edge set-up applies them.
@@ -98,6 +129,11 @@ class TriangleSetup {
   void prepare_vertices(ClipVertices vertices, std::size_t begin, std::size_t end,
                         std::span<const std::uint8_t> valid, std::span<const std::uint8_t> need,
                         PreparedVertices& out) const;
+
+  // prepare_vertices through `kernels` from now on (null: the portable loops); the values are
+  // the same.
+  void set_snap_kernels(const SnapKernels* kernels) { snap_kernels_ = kernels; }
+  SnapConstants snap_constants() const;
 
   // setup_chunk for the grid: the drawn triangles among [begin, end) of `source` set up in
   // order, each exactly as setup_clip would set it up, appended to `out`; `submitted` counts
@@ -145,6 +181,7 @@ class TriangleSetup {
   ClipPlanes planes_;
   float scale_x_, scale_y_, translate_x_, translate_y_;
   EdgeRules edge_rules_;
+  const SnapKernels* snap_kernels_ = nullptr;
 };
 
 // Round-half-to-even of (coordinate - 0.5) * 256 in float: llvmpipe's snapping, exactly.

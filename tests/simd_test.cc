@@ -31,34 +31,11 @@
 #include "simd/surface.h"
 #include "simd/targets.h"
 #include "simd/vertex_transform.h"
+#include "simd_targets.h"
 #include "test_support.h"
 
 namespace relief {
 namespace {
-
-// The targets to check here; restores the best target when it goes out of scope.
-class EachTarget {
- public:
-  EachTarget() {
-    for (const simd::Target& t : simd::compiled_targets()) {
-      if (t.supported) {
-        runnable_.push_back(t.name);
-      } else {
-        skipped_ += (skipped_.empty() ? "" : ", ") + t.name;
-      }
-    }
-  }
-  ~EachTarget() { simd::force_target("best"); }
-  EachTarget(const EachTarget&) = delete;
-  EachTarget& operator=(const EachTarget&) = delete;
-
-  const std::vector<std::string>& runnable() const { return runnable_; }
-  const std::string& skipped() const { return skipped_; }
-
- private:
-  std::vector<std::string> runnable_;
-  std::string skipped_;
-};
 
 bool same_bits(std::span<const float> a, std::span<const float> b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
