@@ -25,6 +25,7 @@ LodPlan make_lod_plan(const TerrainSettings& terrain) {
     lod.c1 = 0.5 / log2_r;
   }
   lod.nu_max = terrain.last_octave - terrain.first_octave + 1;
+  lod.whole_octaves = !terrain.lod.fractional;
   return lod;
 }
 

@@ -20,7 +20,8 @@ namespace relief {
 struct LodPlan {
   double c0 = 0;
   double c1 = 0;
-  double nu_max = 1;  // N: all octaves
+  double nu_max = 1;           // N: all octaves
+  bool whole_octaves = false;  // nu rounded up to a whole number (terrain.lod.fractional off)
 };
 
 // §2.2 domain warping constants, Relief's reading (docs/paper-reading.md).

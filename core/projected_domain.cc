@@ -83,6 +83,9 @@ void project_domain(const DomainParams<Real>& p, const DomainRows<Real>& table, 
       if (spacing_sq > p.min_spacing_sq) {
         nu = std::clamp(p.c0 - p.c1 * log2_det(spacing_sq), Real(1), p.nu_max);
       }
+      if (p.whole_octaves != 0) {
+        nu = std::ceil(nu);  // nu_max is whole: still within [1, nu_max]
+      }
       out.dx[k] = centre.x;
       out.dz[k] = centre.z;
       out.sigma[k] = std::sqrt(spacing_sq);

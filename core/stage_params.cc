@@ -29,6 +29,7 @@ DomainParams<Real> make_domain_params(const FramePlan& plan) {
   p.height = plan.layout.height;
   p.pitch = plan.layout.pitch;
   p.terrain_visible = plan.projector.terrain_visible ? 1 : 0;
+  p.whole_octaves = plan.lod.whole_octaves ? 1 : 0;
   return p;
 }
 

@@ -31,6 +31,7 @@ struct DomainParams {
   Real min_spacing_sq = 0;          // kMinSpacingSq: the log's domain guard
   std::int32_t width = 0, height = 0, pitch = 0;
   std::int32_t terrain_visible = 0;
+  std::int32_t whole_octaves = 0;  // 1: nu rounded up (LodPlan::whole_octaves)
 };
 
 // Stage 2's per-row table, rows -1 .. height at index j + 1, each value formed in double per

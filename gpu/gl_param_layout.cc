@@ -58,6 +58,7 @@ GlBlockLayout domain_params_layout() {
               RELIEF_SCALAR(Domain, "domain.", height),
               RELIEF_SCALAR(Domain, "domain.", pitch),
               RELIEF_SCALAR(Domain, "domain.", terrain_visible),
+              RELIEF_SCALAR(Domain, "domain.", whole_octaves),
           }};
 }
 

@@ -112,8 +112,10 @@ void ProjectDomainRows(const DomainParams<float>& p, const DomainRows<float>& ta
         const V raw = hn::Sub(hn::Set(d, p.c0), hn::Mul(hn::Set(d, p.c1), Log2Det(d, spacing_sq)));
         const V clamped =
             hn::IfThenElse(hn::Lt(raw, one), one, hn::IfThenElse(hn::Lt(nu_max, raw), nu_max, raw));
-        const V lod =
-            hn::IfThenElse(hn::Gt(spacing_sq, hn::Set(d, p.min_spacing_sq)), clamped, nu_max);
+        V lod = hn::IfThenElse(hn::Gt(spacing_sq, hn::Set(d, p.min_spacing_sq)), clamped, nu_max);
+        if (p.whole_octaves != 0) {
+          lod = hn::Ceil(lod);  // std::ceil: exact on every target for 1 <= lod <= nu_max
+        }
         dx = hn::IfThenElseZero(valid, centre.x);
         dz = hn::IfThenElseZero(valid, centre.z);
         sigma = hn::IfThenElseZero(valid, hn::Sqrt(spacing_sq));

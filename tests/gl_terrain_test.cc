@@ -54,6 +54,7 @@ TEST_CASE("glTerrainStagesMatchTheCpuWhereFloatIsStressed", "[gl]") {
       {"lava", {"terrain.warp.r0=[3,4]", "terrain.warp.t0=[0.5,-0.25]"}},
       {"alpine", {"terrain.interpolant=\"linear\"", "camera.pitch_deg=-35"}},
       {"dunes", {"terrain.interpolant=\"cubic\"", "camera.pitch_deg=12"}},
+      {"default", {"terrain.lod.fractional=false", "terrain.lod.bias=0.37"}},
   };
   int exact_octaves = 0;
   for (const auto& [preset, overrides] : cases) {

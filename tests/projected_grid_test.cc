@@ -5,10 +5,12 @@
 
 #include <catch2/catch.hpp>
 
+#include "core/fbm.h"
 #include "core/frame_plan.h"
 #include "core/height_bound_pyramid.h"
 #include "core/lattice.h"
 #include "core/projected_domain.h"
+#include "core/scene/scene_json.h"
 #include "core/stage_params.h"
 #include "core/terrain_stages.h"
 #include "test_support.h"
@@ -231,6 +233,44 @@ TEST_CASE("nyquistCriterionGivesOneOctaveLessPerDoublingOfTheSpacing", "[project
   // §4.1: nu = log(sigma) / (-H log r) (+ the octaves before): amplitude of octave nu-1 is sigma.
   const double s = t.amplitude * std::pow(2.0, -3 * t.H);
   CHECK(amp.c0 - amp.c1 * std::log2(s * s) == Approx(4.0));
+}
+
+TEST_CASE("withoutTheFractionalOctaveEveryVertexSumsWholeOctavesRoundedUp", "[projected_grid]") {
+  // §4.1's geomorphing off: nu is the fractional count rounded up, never more than N, and the
+  // heights are the fBm of that whole count (the fractional octave's weight is 0 or 1).
+  const std::vector<std::string> size = {"grid.width=97", "grid.height=61",
+                                         "terrain.lod.bias=0.37"};
+  Scene scene = resolve_scene("default", size);
+  const NoiseLattice lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
+  const FramePlan smooth_plan = make_frame_plan(scene, lattice);
+  scene.terrain.lod.fractional = false;
+  const FramePlan whole_plan = make_frame_plan(scene, lattice);
+  GridBuffers<float> smooth(smooth_plan.layout), whole(whole_plan.layout);
+  run_terrain_stages(smooth_plan, smooth);
+  run_terrain_stages(whole_plan, whole);
+  int fractional = 0, checked = 0;
+  for (std::size_t k = 0; k < smooth.layout.size(); ++k) {
+    if (!smooth.valid[k]) {
+      continue;
+    }
+    REQUIRE(whole.valid[k]);
+    CHECK(whole.nu[k] == std::ceil(smooth.nu[k]));
+    CHECK(whole.nu[k] <= float(smooth_plan.lod.nu_max));
+    fractional += smooth.nu[k] != std::floor(smooth.nu[k]);
+    if (k % 97 == 0) {
+      // The frame's own coordinate forms may round the last bits differently from
+      // fbm_height's; a fractional weight would be off by far more.
+      const float direct =
+          fbm_height<float>(whole_plan.terrain, whole.dx[k], whole.dz[k], whole.nu[k]);
+      CHECK(std::abs(whole.height[k] - direct) <= 1e-5f * float(scene.terrain.amplitude));
+      ++checked;
+    }
+  }
+  CHECK(fractional > 0);  // the default frame has fractional counts to round
+  CHECK(checked > 10);
+  // The scene file says so, and reads back.
+  CHECK(resolve_scene("default", {"terrain.lod.fractional=false"}).terrain.lod.fractional == false);
+  CHECK_THROWS(resolve_scene("default", {"terrain.lod.fractional=1"}));
 }
 
 }  // namespace

@@ -219,7 +219,8 @@ TEST_CASE("simdProjectedDomainIsBitIdenticalToTheReferenceOnEveryTarget", "[simd
            {"camera.pitch_deg=-0.5", "camera.fov_y_deg=120"},
            {"camera.position=[0, 20000, 0]", "camera.pitch_deg=-30"},
            {"camera.position=[5e8, 2, -3e8]", "camera.far=1e6"},
-           {"terrain.lod.criterion=nyquist", "terrain.lod.bias=3"}}) {
+           {"terrain.lod.criterion=nyquist", "terrain.lod.bias=3"},
+           {"terrain.lod.fractional=false", "terrain.lod.bias=0.37"}}) {
     std::vector<std::string> all = {"grid.width=83", "grid.height=47"};
     all.insert(all.end(), overrides.begin(), overrides.end());
     const Scene scene = resolve_scene("default", all);

@@ -52,6 +52,10 @@ enum class LodCriterion {
 struct LodSettings {
   LodCriterion criterion = LodCriterion::kAmplitude;
   double bias = 0.0;  // octaves added to (or, negative, removed from) the criterion's count
+  // §4.1 geomorphing: the octave after floor(nu) weighted by nu's fraction (true), or whole
+  // octaves only, nu rounded up (false: cheaper to reason about, but octaves pop in and out
+  // as the camera moves).
+  bool fractional = true;
 };
 
 // §2.2 domain warping. Relief's reading of the garbled formulas is in docs/paper-reading.md.

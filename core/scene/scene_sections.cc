@@ -46,6 +46,8 @@ void apply_lod(const LayerReader& in, const json& value, const std::string& path
                  [&](const json& v, const std::string& p) {
                    lod.bias = in.number(v, p, Range{-limits::kMaxLodBias, limits::kMaxLodBias});
                  }},
+                {"fractional",
+                 [&](const json& v, const std::string& p) { lod.fractional = in.boolean(v, p); }},
             });
 }
 

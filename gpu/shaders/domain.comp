@@ -116,6 +116,9 @@ void main() {
           precise float lod = domain.c0 - domain.c1 * log2_det(spacing_sq);
           nu = lod < 1.0 ? 1.0 : (domain.nu_max < lod ? domain.nu_max : lod);
         }
+        if (domain.whole_octaves != 0) {
+          nu = ceil(nu);
+        }
         dx = centre.x;
         dz = centre.z;
         sigma = sqrt(spacing_sq);

@@ -21,6 +21,7 @@ struct DomainParams {  // stage 2 (§4.1)
   float min_spacing_sq;
   int width, height, pitch;
   int terrain_visible;
+  int whole_octaves;
 };
 
 struct FbmParams {  // stage 3 (Eq. 1, §2.2, §4.1)
