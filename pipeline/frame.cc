@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <memory>
+#include <stdexcept>
+#include <string>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -102,6 +105,60 @@ Frame render_frame(const Scene& scene, const SceneResources& resources,
   return request.backend == Backend::kReferenceDouble
              ? render_with<double>(scene, resources, request)
              : render_with<float>(scene, resources, request);
+}
+
+namespace {
+
+template <class Real>
+FrameStats render_bands_with(const Scene& scene, const SceneResources& resources,
+                             const FrameRequest& request, int band_rows,
+                             const std::function<void(const FrameImage&, int)>& consume) {
+  const Clock::time_point start = Clock::now();
+  ReferenceBackend<Real> backend(scene, resources.lattice, resources.textures, request);
+  FrameStats stats;
+  stats.stages.push_back({"frame plan", milliseconds_since(start), true, {}});
+  run_table(backend, StageId::kBinning, stats.stages);
+  const StageInfo& tiles = kFrameStages[std::size(kFrameStages) - 1];
+  const Clock::time_point tiles_start = Clock::now();
+  for (int first_row = 0; first_row < scene.viewport.height; first_row += band_rows) {
+    backend.set_band(first_row, band_rows);
+    backend.prepare(StageId::kTiles);
+    const std::size_t units = backend.units(StageId::kTiles);
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, units, tiles.grain),
+        [&](const tbb::blocked_range<std::size_t>& r) {
+          backend.run(StageId::kTiles, r.begin(), r.end());
+        },
+        tbb::simple_partitioner());
+    backend.after(StageId::kTiles);
+    Frame band;
+    backend.finish(band);
+    consume(band.image, first_row);
+    stats.tile_parts = std::move(band.stats.tile_parts);
+    stats.raster = band.stats.raster;
+  }
+  StageTime time{std::string(tiles.name), milliseconds_since(tiles_start), true, {}};
+  backend.describe(StageId::kTiles, time);
+  stats.stages.push_back(std::move(time));
+  stats.total_ms = milliseconds_since(start);
+  return stats;
+}
+
+}  // namespace
+
+FrameStats render_frame_bands(const Scene& scene, const SceneResources& resources,
+                              const FrameRequest& request, int band_rows,
+                              const std::function<void(const FrameImage&, int)>& consume) {
+  if (request.backend == Backend::kGl) {
+    throw std::invalid_argument("render_frame_bands: the GL backend renders whole frames only");
+  }
+  if (band_rows <= 0 || band_rows % raster::kTileSize != 0) {
+    throw std::invalid_argument("render_frame_bands: band_rows must be a positive multiple of " +
+                                std::to_string(raster::kTileSize));
+  }
+  return request.backend == Backend::kReferenceDouble
+             ? render_bands_with<double>(scene, resources, request, band_rows, consume)
+             : render_bands_with<float>(scene, resources, request, band_rows, consume);
 }
 
 Frame render_frame_repeated(const Scene& scene, const SceneResources& resources,

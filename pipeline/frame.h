@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -46,10 +47,21 @@ struct FrameOutputs {
   bool octaves = false;       // interpolated octave count nu (stage 2)
 };
 
+// The octave count of a ground-truth frame (pipeline/ground_truth.h) in place of stage 2's
+// LOD rule: from a lower bound of each vertex's distance to the camera instead of the grid
+// spacing, nu = clamp(c0 - c1 log2(dx^2 + dz^2 + gap_sq), 1, nu_max), nu_max where the squared
+// distance is below limits::kMinSpacingSq (the log's domain guard).
+struct DistanceLod {
+  double c0 = 0, c1 = 0, nu_max = 1;
+  double gap_sq = 0;  // squared height of the camera above the highest possible terrain, or 0
+};
+
 struct FrameRequest {
   Backend backend = Backend::kReference;
   FrameOutputs outputs;
   FrameSkips skips;
+  // The CPU backends only (reference, reference-double, simd); the GL backend ignores it.
+  std::optional<DistanceLod> distance_lod;
   // Memory the rasteriser's bins may take (raster/rasterize.h); a frame whose bins need more
   // throws MemoryLimitError.
   std::uint64_t max_bin_bytes = UINT64_MAX;
@@ -99,6 +111,16 @@ struct Frame {
 // Throws MemoryLimitError when the rasteriser's bins exceed request.max_bin_bytes.
 Frame render_frame(const Scene& scene, const SceneResources& resources,
                    const FrameRequest& request);
+
+// The frame's image in bands of `band_rows` framebuffer rows (a positive multiple of
+// raster::kTileSize), bottom band first: stages 1-6 up to binning run once, then the tiles of
+// each band, whose image (width x its rows, rows bottom to top, the last band possibly lower)
+// is handed to `consume(band, first_row)` and then dropped, so that the per-pixel memory is
+// one band's. The bands together are bit-identical to render_frame's image. CPU backends only
+// (throws std::invalid_argument for the GL backend). Returns the frame's statistics.
+FrameStats render_frame_bands(const Scene& scene, const SceneResources& resources,
+                              const FrameRequest& request, int band_rows,
+                              const std::function<void(const FrameImage&, int)>& consume);
 
 // The frame rendered `repeat` (>= 1) times, for a time that the machine's noise does not
 // decide: the last frame, and in `median_ms` the median of the wall times.

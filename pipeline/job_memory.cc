@@ -1,5 +1,6 @@
 #include "pipeline/job_memory.h"
 
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -111,6 +112,30 @@ MemoryEstimate estimate_render_memory(const Scene& scene, Backend backend,
     estimate.add("GL targets, read-back and buffers",
                  pixels * kGlPixelBytes + vertices * kGlVertexBytes);
   }
+  return estimate;
+}
+
+MemoryEstimate estimate_ground_truth_memory(const Scene& supersampled, int band_rows, int width,
+                                            int height) {
+  FrameOutputs linear;
+  linear.linear = true;
+  MemoryEstimate frame = estimate_render_memory(supersampled, Backend::kReferenceDouble, linear);
+  MemoryEstimate estimate;
+  for (auto& part : frame.parts) {
+    if (part.first.rfind("image ", 0) != 0) {  // the whole supersampled image is never held
+      estimate.add(std::move(part.first), part.second);
+    }
+  }
+  const std::uintmax_t band = std::uintmax_t(supersampled.viewport.width) *
+                              std::uintmax_t(std::min(band_rows, supersampled.viewport.height));
+  estimate.add("band of " +
+                   size_text(supersampled.viewport.width,
+                             std::min(band_rows, supersampled.viewport.height)) +
+                   " samples",
+               band * (3 + 12));
+  // Linear radiance 12, sRGB 3 and its PNG 13, the float file's encoding 2 x 12.
+  estimate.add("image " + size_text(width, height),
+               std::uintmax_t(width) * std::uintmax_t(height) * (12 + kRenderPixelBytes + 24));
   return estimate;
 }
 

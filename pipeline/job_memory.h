@@ -19,6 +19,13 @@ namespace relief {
 MemoryEstimate estimate_render_memory(const Scene& scene, Backend backend,
                                       const FrameOutputs& outputs);
 
+// `relief reference` (ground_truth.h): the resources, the grid of `supersampled` (the scene
+// with its viewport and grid enlarged) in double with its set-up triangles, one band of
+// `band_rows` supersampled rows (sRGB and linear radiance), and the output image of
+// width x height pixels (linear radiance, sRGB, the PNG's encoding and the float file's).
+MemoryEstimate estimate_ground_truth_memory(const Scene& supersampled, int band_rows, int width,
+                                            int height);
+
 // `relief stages`: the lattice, the grid buffers, and one field's picture and raw file at a
 // time.
 MemoryEstimate estimate_stages_memory(const Scene& scene, Backend backend);

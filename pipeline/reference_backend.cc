@@ -3,13 +3,16 @@
 #include <algorithm>
 #include <type_traits>
 
+#include "core/det_math.h"
 #include "core/fbm.h"
 #include "core/input_file.h"
+#include "core/limits.h"
 #include "core/octave_coordinates.h"
 #include "core/projected_domain.h"
 #include "core/surface.h"
 #include "core/terrain_stages.h"
 #include "core/vertex_transform.h"
+#include "pipeline/distance_lod.h"
 #include "pipeline/memory_budget.h"
 #include "pipeline/simd_setup.h"
 #include "simd/fbm.h"
@@ -66,9 +69,25 @@ std::size_t ReferenceBackend<Real>::units(StageId id) const {
     case StageId::kBinning:
       return raster::setup_chunk_count(triangles().count());
     case StageId::kTiles:
-      return static_cast<std::size_t>(tiles_.count());
+      return static_cast<std::size_t>(band_tile_rows()) * tiles_.columns;
   }
   return 0;
+}
+
+template <class Real>
+void ReferenceBackend<Real>::set_band(int first_row, int rows) {
+  band_first_row_ = first_row;
+  band_rows_ = rows;
+}
+
+template <class Real>
+int ReferenceBackend<Real>::band_tile_rows() const {
+  if (band_rows_ < 0) {
+    return tiles_.rows;
+  }
+  const int first = band_first_tile_row();
+  const int end = std::min(tiles_.rows, (band_first_row_ + band_rows_) / raster::kTileSize);
+  return std::max(0, end - first);
 }
 
 template <class Real>
@@ -88,10 +107,15 @@ void ReferenceBackend<Real>::run(StageId id, std::size_t begin, std::size_t end)
       if constexpr (std::is_same_v<Real, float>) {
         if (request_.backend == Backend::kSimd) {
           simd::project_domain(params_.domain, params_.domain_rows, rows, grid_.domain());
-          return;
+        } else {
+          project_domain<Real>(params_.domain, params_.domain_rows, rows, grid_.domain());
         }
+      } else {
+        project_domain<Real>(params_.domain, params_.domain_rows, rows, grid_.domain());
       }
-      project_domain<Real>(params_.domain, params_.domain_rows, rows, grid_.domain());
+      if (request_.distance_lod) {
+        apply_distance_lod<Real>(*request_.distance_lod, rows, grid_);  // the ground truth's
+      }
       return;
     case StageId::kOutcodes:
     case StageId::kDrawOutcodes: {
@@ -183,12 +207,14 @@ void ReferenceBackend<Real>::run(StageId id, std::size_t begin, std::size_t end)
         raster::bin_chunk(chunks_[c], tiles_);
       }
       return;
-    case StageId::kTiles:
-      for (std::size_t tile = begin; tile < end; ++tile) {
+    case StageId::kTiles: {
+      const std::size_t first = std::size_t(band_first_tile_row()) * tiles_.columns;
+      for (std::size_t tile = first + begin; tile < first + end; ++tile) {
         tile_pass_->run(chunks_, tiles_, static_cast<int>(tile), times_,
                         request_.skips.empty_tiles);
       }
       return;
+    }
   }
 }
 
@@ -222,10 +248,15 @@ void ReferenceBackend<Real>::prepare(StageId id) {
       shading_plan_ = make_shading_plan(scene_, plan_, lattice_.size);
       shade_ = make_shade_params<Real>(shading_plan_);
       apply_skips(request_.skips, water_in_view(), shade_);
-      const std::size_t pixels = std::size_t(state_.width) * state_.height;
+      const int rows = band_rows_ < 0
+                           ? state_.height
+                           : std::max(0, std::min(state_.height, band_first_row_ + band_rows_) -
+                                             band_first_row_);
+      const std::size_t pixels = std::size_t(state_.width) * rows;
       const FrameOutputs& o = request_.outputs;
+      image_ = FrameImage{};
       image_.width = state_.width;
-      image_.height = state_.height;
+      image_.height = rows;
       image_.srgb.assign(3 * pixels, 0);
       image_.linear.assign(o.linear ? 3 * pixels : 0, 0.0f);
       image_.depth.assign(o.depth ? pixels : 0, state_.depth_clear);
@@ -238,7 +269,8 @@ void ReferenceBackend<Real>::prepare(StageId id) {
                                         grid_.nz, grid_.slope,  grid_.water_depth, grid_.nu};
       tile_pass_ = std::make_unique<TilePass<Real>>(
           state_, triangles(), streams, shade_, ShadeResources{&lattice_, textures_}, o,
-          plan_.camera.position.y, image_, request_.backend == Backend::kSimd);
+          plan_.camera.position.y, image_, request_.backend == Backend::kSimd,
+          band_rows_ < 0 ? 0 : band_first_row_);
       return;
     }
     default:

@@ -41,6 +41,11 @@ class ReferenceBackend final : public FrameBackend {
   void describe(StageId id, StageTime& time) const override;
   void finish(Frame& frame) override;
 
+  // Restricts the tile stage to framebuffer rows [first_row, first_row + rows), both multiples
+  // of raster::kTileSize (rows may end past the framebuffer): units(kTiles) counts the band's
+  // tiles and the image prepared for them holds the band's rows alone (render_frame_bands).
+  void set_band(int first_row, int rows);
+
   const FramePlan& plan() const { return plan_; }
   const GridBuffers<Real>& grid() const { return grid_; }
   GridBuffers<Real> take_grid() { return std::move(grid_); }
@@ -48,6 +53,8 @@ class ReferenceBackend final : public FrameBackend {
  private:
   raster::ClipVertices raster_positions() const;
   raster::GridTriangles triangles() const { return {plan_.layout, grid_.valid, need_}; }
+  int band_first_tile_row() const { return band_first_row_ / raster::kTileSize; }
+  int band_tile_rows() const;
   void tally_rows(RowRange rows, const NeedCount& count);
   void tally_fbm(const FbmWork& work);
   void tally_draws(RowRange rows, const NeedCount& count);
@@ -89,6 +96,8 @@ class ReferenceBackend final : public FrameBackend {
   FrameImage image_;
   TileTimes times_;
   std::unique_ptr<TilePass<Real>> tile_pass_;
+  int band_first_row_ = 0;
+  int band_rows_ = -1;  // -1: the whole framebuffer
 };
 
 // The raster state of a scene's frame: its viewport, back faces culled (the terrain's

@@ -80,7 +80,7 @@ template <class Real>
 TilePass<Real>::TilePass(const raster::RasterState& state, const raster::GridTriangles& triangles,
                          VertexStreams<Real> streams, const ShadeParams<Real>& shade,
                          const ShadeResources& resources, const FrameOutputs& outputs,
-                         double camera_y, FrameImage& image, bool simd)
+                         double camera_y, FrameImage& image, bool simd, int first_row)
     : state_(state),
       triangles_(triangles),
       streams_(streams),
@@ -90,6 +90,7 @@ TilePass<Real>::TilePass(const raster::RasterState& state, const raster::GridTri
       camera_y_(camera_y),
       image_(image),
       simd_(simd && std::is_same_v<Real, float>),
+      first_row_(first_row),
       scale_x_(state.viewport.width * 0.5),
       scale_y_(state.viewport.height * 0.5),
       translate_x_(state.viewport.x + state.viewport.width * 0.5),
@@ -294,7 +295,7 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
   const int width = image_.width;
   for (int py = vis.y0; py < vis.y0 + vis.height; ++py) {
     const std::size_t first = vis.index(vis.x0, py);
-    const std::size_t pixel = static_cast<std::size_t>(py) * width + vis.x0;
+    const std::size_t pixel = static_cast<std::size_t>(py - first_row_) * width + vis.x0;
     const std::size_t values = 3 * static_cast<std::size_t>(vis.width);
     if constexpr (std::is_same_v<Real, float>) {
       if (simd_) {
@@ -313,7 +314,7 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
   for (int py = vis.y0; any_output && py < vis.y0 + vis.height; ++py) {
     for (int px = vis.x0; px < vis.x0 + vis.width; ++px) {
       const std::size_t k = vis.index(px, py);
-      const std::size_t pixel = static_cast<std::size_t>(py) * width + px;
+      const std::size_t pixel = static_cast<std::size_t>(py - first_row_) * width + px;
       if (outputs_.linear) {
         for (int c = 0; c < 3; ++c) {
           image_.linear[3 * pixel + c] = static_cast<float>(scratch->rgb[3 * k + c]);

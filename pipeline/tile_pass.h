@@ -89,10 +89,12 @@ class TilePass {
  public:
   // `image` must be sized (width, height, srgb, and each requested output) before run().
   // `simd`: the Highway kernels (simd/) where there is one, float only; the same bytes.
+  // `first_row`: the framebuffer row that is the image's row 0, for an image holding a band of
+  // rows (render_frame_bands, frame.h); only tiles inside the band may then be run.
   TilePass(const raster::RasterState& state, const raster::GridTriangles& triangles,
            VertexStreams<Real> streams, const ShadeParams<Real>& shade,
            const ShadeResources& resources, const FrameOutputs& outputs, double camera_y,
-           FrameImage& image, bool simd = false);
+           FrameImage& image, bool simd = false, int first_row = 0);
 
   // Renders tile `tile`; tiles may run concurrently (each writes only its own pixels). With
   // `skip_empty`, a tile no triangle is binned to is not rasterised or resolved.
@@ -115,6 +117,7 @@ class TilePass {
   double camera_y_;
   FrameImage& image_;
   bool simd_;
+  int first_row_;
   double scale_x_, scale_y_, translate_x_, translate_y_;  // viewport, as VertexPositions
 };
 

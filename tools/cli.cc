@@ -23,6 +23,7 @@
 #include "tools/atomic_file.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
+#include "tools/reference_command.h"
 #include "tools/soup.h"
 
 namespace relief {
@@ -181,15 +182,24 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   add_threads(crosscheck_cmd, threads);
   add_max_memory(crosscheck_cmd, max_memory);
 
+  // The ground truth and the error of a render against it (reference_command.h).
+  ReferenceOptions reference;
+  CLI::App* reference_cmd = add_reference_command(app, reference);
+  add_scene_args(reference_cmd, scene_args);
+  add_threads(reference_cmd, threads);
+  add_max_memory(reference_cmd, max_memory);
+  ErrorOptions error_options;
+  CLI::App* error_cmd = add_error_command(app, error_options);
+  add_max_memory(error_cmd, max_memory);
+
   // CLI11 answers an unknown command with "A subcommand is required"; say what is wrong.
-  const std::vector<std::string> commands = {"scene", "stages",  "render",    "raster",
-                                             "info",  "compare", "crosscheck"};
+  const std::vector<std::string> commands = {"scene",   "stages",     "render",    "raster", "info",
+                                             "compare", "crosscheck", "reference", "error"};
   if (args.size() > 1 && !args[1].empty() && args[1][0] != '-' &&
       std::find(commands.begin(), commands.end(), args[1]) == commands.end()) {
     err << "relief: error: unknown command '" << brief_text(args[1])
-        << "'; commands: scene, stages, render, raster, info, compare, crosscheck\nRun 'relief "
-           "--help' for "
-           "usage.\n";
+        << "'; commands: scene, stages, render, raster, info, compare, crosscheck, reference, "
+           "error\nRun 'relief --help' for usage.\n";
     return kExitBadInput;
   }
   // compare exits as idiff does, where 2 means the images differ: its bad options are 4.
@@ -232,7 +242,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     err << "relief: error: FILE is empty; give the triangle soup's file name\n";
     return kExitBadInput;
   }
-  for (CLI::App* command : {scene_cmd, stages_cmd, render_cmd, crosscheck_cmd}) {
+  for (CLI::App* command : {scene_cmd, stages_cmd, render_cmd, crosscheck_cmd, reference_cmd}) {
     if (command->parsed() && given_empty(command->get_option("SCENE"), scene_args.scene)) {
       err << "relief: error: SCENE is empty; give a scene file or a preset name, or leave it "
              "out for the default scene\n";
@@ -250,6 +260,10 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   }
   const MemoryBudget budget = memory_budget(parse_memory_size(max_memory), max_memory);
   stages.budget = render.budget = raster_options.budget = crosscheck.budget = budget;
+  reference.budget = error_options.budget = budget;
+  if (error_cmd->parsed()) {
+    return run_error_command(error_options, out, err);
+  }
   crosscheck.cpu_backend = *backend_from_name(cpu_backend);
   if (info_cmd->parsed()) {
     return run_info_command(out);
@@ -323,6 +337,9 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     }
     if (crosscheck_cmd->parsed()) {
       return run_crosscheck_command(scene, crosscheck, out);
+    }
+    if (reference_cmd->parsed()) {
+      return run_reference_command(scene, reference, out, err);
     }
     if (render_cmd->parsed()) {
       const std::string& o = render.output;

@@ -15,4 +15,9 @@ Rgb8 heat_color(double t);
 
 Rgb8 gray_color(double t);
 
+// A magma-like map (black - purple - orange - pale yellow), the colours FLIP's error maps use:
+// matplotlib's magma at nine evenly spaced points, linear between (in sRGB); t clamped; NaN
+// maps to pure white, which magma never reaches.
+Rgb8 magma_color(double t);
+
 }  // namespace relief

@@ -1,0 +1,219 @@
+// The ground-truth render (pipeline/ground_truth.h) and relief reference: deterministic for
+// every run, thread count and band split; its octave rule; convergence of the supersampling;
+// bad options and memory refusals.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <tbb/global_control.h>
+#include <catch2/catch.hpp>
+
+#include "cli_support.h"
+#include "core/scene/scene_json.h"
+#include "pipeline/frame.h"
+#include "pipeline/ground_truth.h"
+#include "pipeline/height_error.h"
+#include "pipeline/image_error.h"
+#include "test_support.h"
+
+namespace relief {
+namespace {
+
+// 64 x 48 pixels; the reference's grid is 64 x 64 (32 x 32 scaled by 2).
+Scene tiny_scene() {
+  return resolve_scene(
+      "default", {"viewport.width=64", "viewport.height=48", "grid.width=32", "grid.height=32"});
+}
+
+GroundTruthSettings tiny_settings(int supersample = 2) {
+  GroundTruthSettings s;
+  s.supersample = supersample;
+  s.grid_scale = 2;
+  return s;
+}
+
+TEST_CASE("groundTruthIsBitIdenticalAcrossRunsThreadCountsAndBands", "[ground-truth]") {
+  const Scene scene = tiny_scene();
+  const SceneResources resources = load_scene_resources(scene);
+  const GroundTruthImage first = render_ground_truth(scene, resources, tiny_settings());
+  REQUIRE(first.bands == 1);
+  for (int threads : {1, 2}) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    const GroundTruthImage again = render_ground_truth(scene, resources, tiny_settings());
+    CHECK(again.linear == first.linear);
+    CHECK(again.srgb == first.srgb);
+  }
+  // 96 supersampled rows in bands of 64: two bands, the same bits.
+  GroundTruthSettings banded = tiny_settings();
+  banded.band_rows = 64;
+  const GroundTruthImage bands = render_ground_truth(scene, resources, banded);
+  CHECK(bands.bands == 2);
+  CHECK(bands.linear == first.linear);
+  CHECK(bands.srgb == first.srgb);
+  for (const float v : first.linear) {
+    REQUIRE(std::isfinite(v));
+  }
+}
+
+TEST_CASE("bandsOfAFrameAreTheWholeFrame", "[ground-truth]") {
+  const Scene scene = resolve_scene(
+      "lake", {"viewport.width=100", "viewport.height=150", "grid.width=48", "grid.height=48"});
+  const SceneResources resources = load_scene_resources(scene);
+  FrameRequest request;
+  request.backend = Backend::kReferenceDouble;
+  request.outputs.linear = true;
+  const Frame whole = render_frame(scene, resources, request);
+  std::vector<float> linear(whole.image.linear.size(), -1.0f);
+  std::vector<std::uint8_t> srgb(whole.image.srgb.size(), 0);
+  render_frame_bands(scene, resources, request, 64, [&](const FrameImage& band, int first_row) {
+    std::copy(band.linear.begin(), band.linear.end(),
+              linear.begin() + std::ptrdiff_t(3 * first_row * band.width));
+    std::copy(band.srgb.begin(), band.srgb.end(),
+              srgb.begin() + std::ptrdiff_t(3 * first_row * band.width));
+  });
+  CHECK(linear == whole.image.linear);
+  CHECK(srgb == whole.image.srgb);
+}
+
+TEST_CASE("octaveRuleSumsOctavesDownToEpsilonOfAPixelUpToTheCap", "[ground-truth]") {
+  const Scene scene = tiny_scene();
+  const SceneResources resources = load_scene_resources(scene);
+  const GroundTruthLod gt = ground_truth_lod(scene, resources, 0.125);
+  const DistanceLod& lod = gt.lod;
+  CHECK(lod.nu_max == scene.terrain.last_octave - scene.terrain.first_octave + 1);
+  // nu at a distance (lower bound) d = sqrt(dx^2 + dz^2 + gap^2).
+  const auto nu = [&](double d) { return lod.c0 - lod.c1 * std::log2(d * d); };
+  // The cap binds exactly inside cap_distance.
+  CHECK(nu(gt.cap_distance * 0.999) > lod.nu_max);
+  CHECK(nu(gt.cap_distance * 1.001) < lod.nu_max);
+  // Halving epsilon adds 1 / H octaves everywhere (amplitude falls by 2^-H per octave at r = 2).
+  const GroundTruthLod finer = ground_truth_lod(scene, resources, 0.0625);
+  CHECK(finer.lod.c0 - lod.c0 == Approx(1.0 / scene.terrain.H));
+  // At nu octaves (k0 = 0) the last octave summed whole has amplitude A r^-((nu - 1) H) at
+  // least epsilon times the pixel footprint there, the next one less.
+  const double d = 5000;
+  const double kappa = nu(d) - 1.0;  // the continuous index of the finest octave
+  const double amplitude =
+      scene.terrain.amplitude * std::pow(scene.terrain.r, -kappa * scene.terrain.H);
+  const double tan_y = std::tan(scene.camera.fov_y_deg * std::numbers::pi / 360.0);
+  const double tan_x = tan_y * 64.0 / 48.0;
+  const double pixel_min = 2.0 * tan_y / 48.0 / (1.0 + tan_x * tan_x + tan_y * tan_y);
+  CHECK(amplitude == Approx(0.125 * pixel_min * d));
+}
+
+TEST_CASE("supersamplingConvergesAndTheRenderStaysNearItsReference", "[ground-truth]") {
+  const Scene scene = tiny_scene();
+  const SceneResources resources = load_scene_resources(scene);
+  const GroundTruthImage finest = render_ground_truth(scene, resources, tiny_settings(8));
+  // The box filter's error against the 8 x 8 reference shrinks as samples are added (measured
+  // RMSE 0.016, 0.0067, 0.0033 for 1, 2, 4: about 1 / N, as for edges).
+  double previous = HUGE_VAL;
+  for (int n : {1, 2, 4}) {
+    const GroundTruthImage coarse = render_ground_truth(scene, resources, tiny_settings(n));
+    const ImageError e = image_error(coarse.linear, finest.linear, 64, 48);
+    INFO("supersample " << n << ": rmse " << e.rmse << ", mean FLIP " << e.mean_flip);
+    CHECK(e.rmse < previous);
+    previous = e.rmse;
+  }
+  // The real-time render of the same scene stays near the truth (measured: 23.7 dB, mean FLIP
+  // 0.15; the bounds leave a margin).
+  FrameRequest request;
+  request.outputs.linear = true;
+  const Frame frame = render_frame(scene, resources, request);
+  const ImageError e = image_error(frame.image.linear, finest.linear, 64, 48);
+  INFO("render: psnr " << e.psnr_db << ", mean FLIP " << e.mean_flip);
+  CHECK(e.psnr_db > 15.0);
+  CHECK(e.mean_flip < 0.3);
+}
+
+TEST_CASE("floatHeightErrorAtTheVerticesIsSmall", "[ground-truth]") {
+  const Scene scene = tiny_scene();
+  const SceneResources resources = load_scene_resources(scene);
+  const VertexHeightError e = vertex_height_error(scene, resources.lattice, Backend::kReference);
+  CHECK(e.vertices > 0);
+  CHECK(e.rms <= e.max);
+  // Camera-relative float heights: within 1e-4 of the amplitude (docs/ground-truth.md).
+  CHECK(e.max < 1e-4 * e.amplitude);
+}
+
+TEST_CASE("referenceCommandWritesBothImagesAndRefusesBadOptions", "[ground-truth][cli]") {
+  test::TempDir dir("reference");
+  const std::string png = (dir.path() / "ref.png").string();
+  const std::vector<std::string> base = {
+      "reference",     "--set", "viewport.width=64", "--set", "viewport.height=48", "--set",
+      "grid.width=32", "--set", "grid.height=32"};
+  // `extra`, then -o and --grid-scale 2 unless `extra` names them.
+  const auto with = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), extra.begin(), extra.end());
+    if (std::find(extra.begin(), extra.end(), "-o") == extra.end()) {
+      args.insert(args.end(), {"-o", png});
+    }
+    if (std::find(extra.begin(), extra.end(), "--grid-scale") == extra.end()) {
+      args.insert(args.end(), {"--grid-scale", "2"});
+    }
+    return test::run(args);
+  };
+  for (const auto& [extra, message] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"--supersample", "0"}, "--supersample 0 is out of range"},
+           {{"--supersample", "17"}, "--supersample 17"},
+           {{"--supersample", "300"}, "--supersample 300"},
+           {{"--grid-scale", "0"}, "--grid-scale 0"},
+           {{"--grid-scale", "300"}, "--grid-scale 300"},
+           {{"--octave-epsilon", "0"}, "--octave-epsilon 0"},
+           {{"--octave-epsilon", "nan"}, "--octave-epsilon"},
+           {{"--octave-epsilon", "2"}, "--octave-epsilon 2"},
+           {{"--float", dir.path() / "x.txt"}, ".pfm or .exr"},
+           {{"-o", dir.path() / "x.jpg"}, "ending in .png"},
+           {{"--max-memory", "1M"}, "this reference render"}}) {
+    const test::CliResult r = with(extra);
+    test::require_refused(r, message, png);
+    CHECK(dir.empty());
+  }
+  const test::CliResult ok = with({"--supersample", "2", "--stats"});
+  INFO(ok.err);
+  REQUIRE(ok.code == kExitOk);
+  CHECK_THAT(ok.out, Catch::Matchers::Contains("float heights against double"));
+  CHECK(std::filesystem::exists(png));
+  CHECK(std::filesystem::exists(dir.path() / "ref.exr"));
+  // The PNG against its own float image: only the 8-bit rounding differs.
+  const test::CliResult e =
+      test::run({"error", png, (dir.path() / "ref.exr").string(), "--json",
+                 (dir.path() / "e.json").string(), "--map", (dir.path() / "map.png").string()});
+  INFO(e.err);
+  REQUIRE(e.code == kExitOk);
+  CHECK(std::filesystem::exists(dir.path() / "e.json"));
+  CHECK(std::filesystem::exists(dir.path() / "map.png"));
+  CHECK_THAT(e.out, Catch::Matchers::Contains("mean FLIP"));
+}
+
+TEST_CASE("errorCommandRefusesBadInputWithNothingWritten", "[ground-truth][cli]") {
+  test::TempDir dir("error");
+  const std::string a = (dir.path() / "a.png").string();
+  const std::string b = (dir.path() / "b.png").string();
+  REQUIRE(test::run({"render", "--set", "viewport.width=32", "--set", "viewport.height=24", "--set",
+                     "grid.width=16", "--set", "grid.height=16", "-o", a})
+              .code == kExitOk);
+  REQUIRE(test::run({"render", "--set", "viewport.width=24", "--set", "viewport.height=24", "--set",
+                     "grid.width=16", "--set", "grid.height=16", "-o", b})
+              .code == kExitOk);
+  const std::string map = (dir.path() / "map.png").string();
+  test::require_refused(test::run({"error", a, b, "--map", map}), "the sizes differ", map);
+  test::require_refused(test::run({"error", a, a, "--ppd", "0", "--map", map}), "--ppd 0", map);
+  test::require_refused(test::run({"error", a, a, "--map", (dir.path() / "m.jpg").string()}),
+                        "ending in .png", map);
+  test::require_refused(
+      test::run({"error", a, (dir.path() / "missing.exr").string(), "--map", map}), "missing.exr",
+      map);
+  test::require_refused(test::run({"error", a, a, "--map", ""}), "empty", map);
+  // Identical images: no error at all.
+  const test::CliResult same = test::run({"error", a, a});
+  REQUIRE(same.code == kExitOk);
+  CHECK_THAT(same.out, Catch::Matchers::Contains("PSNR      inf dB"));
+  CHECK_THAT(same.out, Catch::Matchers::Contains("mean FLIP 0 "));
+}
+
+}  // namespace
+}  // namespace relief

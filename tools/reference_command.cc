@@ -1,0 +1,161 @@
+// `relief reference [SCENE] -o FILE.png [--float FILE.exr|.pfm]`: the ground-truth render
+// (pipeline/ground_truth.h; docs/ground-truth.md). This file parses its options and writes its
+// files; the render is the pipeline's.
+#include <chrono>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "core/scene/json_input.h"
+#include "pipeline/ground_truth.h"
+#include "pipeline/height_error.h"
+#include "pipeline/image_io.h"
+#include "pipeline/image_metadata.h"
+#include "pipeline/job_memory.h"
+#include "tools/atomic_file.h"
+#include "tools/cli.h"
+#include "tools/cli_options.h"
+#include "tools/float_image_file.h"
+#include "tools/reference_command.h"
+#include "tools/render_report.h"
+#include "tools/terminal_progress.h"
+
+namespace relief {
+
+namespace {
+
+// FILE.png -> FILE.exr: the float image beside the PNG unless --float names one.
+std::string float_name(const std::string& png) {
+  return png.substr(0, png.size() - 4) + ".exr";
+}
+
+std::string settings_text(const GroundTruthSettings& s) {
+  std::ostringstream text;
+  text << "supersample=" << s.supersample << " grid_scale=" << s.grid_scale
+       << " octave_epsilon=" << std::setprecision(17) << s.octave_epsilon;
+  return text.str();
+}
+
+void print_height_error(std::ostream& out, const Scene& scene) {
+  const NoiseLattice lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
+  const VertexHeightError e = vertex_height_error(scene, lattice, Backend::kSimd);
+  out << std::scientific << std::setprecision(3) << "  float heights against double at the same "
+      << "domain points (scene's grid " << scene.grid.width << "x" << scene.grid.height << ", "
+      << e.vertices << " vertices): max " << e.max << ", rms " << e.rms << " world units ("
+      << e.max / e.amplitude << " and " << e.rms / e.amplitude << " of the amplitude)\n"
+      << std::fixed;
+}
+
+}  // namespace
+
+CLI::App* add_reference_command(CLI::App& app, ReferenceOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "reference",
+      "Render the scene's ground truth: the stages in double, octaves summed until their "
+      "amplitude is below --octave-epsilon of a pixel's footprint, a finer grid "
+      "(--grid-scale) and N x N samples per pixel (--supersample), box-filtered in linear "
+      "radiance. Writes an sRGB PNG and the linear radiance (EXR or PFM). Slow by design.");
+  options.output_option = command->add_option("-o,--output", options.output,
+                                              "PNG file to write (default reference.png)");
+  options.float_option = command->add_option(
+      "--float", options.float_output,
+      "The linear radiance as a PFM or EXR file, by its extension (default: -o's name with .exr)");
+  command
+      ->add_option("--supersample", options.settings.supersample,
+                   "N: N x N samples per pixel, averaged with a box filter in linear radiance "
+                   "(1-16, and the supersampled viewport at most 16384 a side)")
+      ->capture_default_str();
+  command
+      ->add_option("--grid-scale", options.settings.grid_scale,
+                   "Projected-grid vertices per axis: the scene's times this (1-16, and at most "
+                   "8192 a side)")
+      ->capture_default_str();
+  command
+      ->add_option("--octave-epsilon", options.settings.octave_epsilon,
+                   "Sum octaves while their amplitude is at least this fraction of a pixel's "
+                   "footprint at the vertex's distance (1e-6 to 1); the scene's last_octave caps "
+                   "them")
+      ->capture_default_str();
+  command->add_flag("--stats", options.stats,
+                    "Also print the stage times of the supersampled frame and the float error "
+                    "of the heights at the scene's own grid vertices");
+  return command;
+}
+
+int run_reference_command(const Scene& scene, const ReferenceOptions& options, std::ostream& out,
+                          std::ostream& err) {
+  for (const auto& [option, value] : {std::pair{options.output_option, &options.output},
+                                      std::pair{options.float_option, &options.float_output}}) {
+    if (given_empty(option, *value)) {
+      err << "relief: error: " << option->get_name() << " is empty; give a file name\n";
+      return kExitBadInput;
+    }
+  }
+  if (!has_extension(options.output, ".png")) {
+    err << "relief: error: -o " << brief_text(options.output)
+        << ": the image is written as PNG; give a file name ending in .png\n";
+    return kExitBadInput;
+  }
+  const std::string float_path =
+      options.float_output.empty() ? float_name(options.output) : options.float_output;
+  if (!float_format_of(float_path)) {
+    err << "relief: error: --float " << brief_text(float_path)
+        << ": give a file name ending in .pfm or .exr\n";
+    return kExitBadInput;
+  }
+  try {
+    validate_ground_truth(scene, options.settings);
+  } catch (const GroundTruthError& e) {
+    err << "relief: error: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  const MemoryEstimate estimate = ground_truth_memory(scene, options.settings);
+  check_memory(estimate, options.budget, "this reference render",
+               "Lower --supersample or --grid-scale, or the scene's viewport or grid");
+
+  const auto start = std::chrono::steady_clock::now();
+  const SceneResources resources = load_scene_resources(scene);  // validates texture files
+  TerminalProgress progress("relief reference", "bands");
+  const GroundTruthImage image =
+      render_ground_truth(scene, resources, options.settings, memory_left(estimate, options.budget),
+                          [&](int done, int total) { progress.update(done, total); });
+  progress.finish();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  std::vector<ImageText> metadata = scene_metadata(scene);
+  metadata.push_back({"relief:reference", settings_text(options.settings)});
+  OutputSet files;  // both appear, or neither
+  files.add(options.output, encode_png_rgb(image.width, image.height, image.srgb, metadata));
+  files.add(float_path,
+            encode_float_image(*float_format_of(float_path), image.width, image.height, 3,
+                               image.linear, 3 * std::size_t(image.width), metadata));
+  files.commit();
+
+  const GroundTruthSettings& s = options.settings;
+  const Scene big = supersampled_scene(scene, s);
+  out << std::fixed << std::setprecision(3) << image.width << "x" << image.height
+      << " reference: " << s.supersample << "x" << s.supersample << " samples a pixel ("
+      << big.viewport.width << "x" << big.viewport.height << " in " << image.bands
+      << " band(s)), grid " << big.grid.width << "x" << big.grid.height
+      << ", backend reference-double\n"
+      << "  octaves summed down to " << s.octave_epsilon << " of a pixel's footprint; all "
+      << int(image.lod.lod.nu_max) << " of the scene's octaves (the cap) within "
+      << std::setprecision(1) << image.lod.cap_distance << " world units of the camera\n"
+      << std::setprecision(3) << "  " << seconds << " s, estimated peak memory "
+      << estimate.describe() << "\n";
+  if (options.stats) {
+    RenderRuns runs;
+    runs.add(image.stats);
+    print_stage_stats(out, runs);
+    print_height_error(out, scene);
+  }
+  out << "wrote " << options.output << " and " << float_path << "\n";
+  return kExitOk;
+}
+
+}  // namespace relief

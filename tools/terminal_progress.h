@@ -1,0 +1,29 @@
+// Progress of long work on a terminal: "LABEL: 3/8 bands, 12.4 s, about 20 s left", rewritten
+// in place on standard error, only when standard error is a terminal (never in logs, pipes or
+// the tests); finish() ends the line.
+#pragma once
+
+#include <chrono>
+#include <string>
+
+namespace relief {
+
+class TerminalProgress {
+ public:
+  // `unit`: what is counted ("bands", "configurations").
+  TerminalProgress(std::string label, std::string unit);
+  ~TerminalProgress();
+  TerminalProgress(const TerminalProgress&) = delete;
+  TerminalProgress& operator=(const TerminalProgress&) = delete;
+
+  void update(int done, int total);
+  void finish();
+
+ private:
+  std::string label_, unit_;
+  bool enabled_;
+  bool open_ = false;  // a line was written and not yet ended
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace relief
