@@ -103,6 +103,12 @@ float texture_lod(int texture_size, float dudx, float dvdx, float dudy, float dv
   return 0.5f * log2_det(rho_sq);
 }
 
+float nearest_mip_lod(float lod) {
+  // ceil(lambda + 1/2) - 1 as ceil(lambda - 1/2): lambda - 1/2 is exact for lambda > 1/2
+  // (below 2^23), where lambda + 1/2 would round up to a whole number just above 1/2.
+  return lod > 0.5f ? std::ceil(lod - 0.5f) : 0.0f;
+}
+
 Rgb sample_trilinear(const ProtoTexture& texture, float u, float v, float lod) {
   const int last = static_cast<int>(texture.levels.size()) - 1;
   if (!(lod > 0.0f)) {
@@ -114,6 +120,9 @@ Rgb sample_trilinear(const ProtoTexture& texture, float u, float v, float lod) {
   const int level = static_cast<int>(lod);
   const float fraction = lod - float(level);
   const Rgb a = sample_bilinear(texture, level, u, v);
+  if (fraction == 0.0f) {
+    return a;  // a whole lod: one level (nearest_mip_lod's)
+  }
   const Rgb b = sample_bilinear(texture, level + 1, u, v);
   return {a[0] + fraction * (b[0] - a[0]), a[1] + fraction * (b[1] - a[1]),
           a[2] + fraction * (b[2] - a[2])};

@@ -56,10 +56,17 @@ float texture_lod(int texture_size, float dudx, float dvdx, float dudy, float dv
 inline constexpr float kMagnificationLod = -64.0f;
 
 // GL_REPEAT, GL_LINEAR_MIPMAP_LINEAR (GL_LINEAR when lambda <= 0): bilinear in the two levels
-// around lambda (clamped to the chain), blended by its fractional part. Texel centres at
+// around lambda (clamped to the chain), blended by its fractional part (where it is 0, the
+// first level alone: a + 0 (b - a) = a for finite texels). Texel centres at
 // (i + 1/2) / size. Any finite u, v: coordinates are wrapped exactly before they become texel
 // indices (callers still keep u small, subtracting the camera's position in whole repeats, so
 // that float keeps sub-texel precision near the camera).
 Rgb sample_trilinear(const ProtoTexture& texture, float u, float v, float lod);
+
+// GL_LINEAR_MIPMAP_NEAREST's level (GL 4.5 §8.14.3) as a lod sample_trilinear reads as that
+// level alone: 0 for lambda <= 1/2 (or NaN), else ceil(lambda + 1/2) - 1, in float (a whole
+// number: its fraction is 0, and sample_trilinear fetches one level), computed as
+// ceil(lambda - 1/2), exactly.
+float nearest_mip_lod(float lod);
 
 }  // namespace relief

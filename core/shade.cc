@@ -22,10 +22,13 @@ constexpr double kMinProjectionWeight = 0.01;
 constexpr double kMinLayerWeight = 1e-3;
 
 template <class Real>
-Vec3<Real> sample(const ProtoTexture& t, Real u, Real v, Real dudx, Real dvdx, Real dudy,
-                  Real dvdy) {
+Vec3<Real> sample(const ProtoTexture& t, bool nearest_mip, Real u, Real v, Real dudx, Real dvdx,
+                  Real dudy, Real dvdy) {
   const int size = t.levels[0].size;
-  const float lod = texture_lod(size, float(dudx), float(dvdx), float(dudy), float(dvdy));
+  float lod = texture_lod(size, float(dudx), float(dvdx), float(dudy), float(dvdy));
+  if (nearest_mip) {
+    lod = nearest_mip_lod(lod);
+  }
   const Rgb c = sample_trilinear(t, float(u), float(v), lod);
   return {Real(c[0]), Real(c[1]), Real(c[2])};
 }
@@ -43,7 +46,7 @@ Vec3<Real> layer_albedo(const ShadeParams<Real>& p, const LayerParams<Real>& l,
   const Real ydx = a.height_ddx * inv, ydy = a.height_ddy * inv;
   if (!p.triplanar) {
     ++work.texture_fetches;
-    return sample<Real>(texture, x, z, xdx, zdx, xdy, zdy);
+    return sample<Real>(texture, p.nearest_mip != 0, x, z, xdx, zdx, xdy, zdy);
   }
   // Squared-normal weights (Mekala; Scape): they sum to one for a unit normal.
   Real w[3] = {n.x * n.x, n.y * n.y, n.z * n.z};
@@ -60,13 +63,13 @@ Vec3<Real> layer_albedo(const ShadeParams<Real>& p, const LayerParams<Real>& l,
   };
   Vec3<Real> sum{0, 0, 0};
   if (used_projection(0)) {
-    sum = sum + sample<Real>(texture, z, y, zdx, ydx, zdy, ydy) * w[0];
+    sum = sum + sample<Real>(texture, p.nearest_mip != 0, z, y, zdx, ydx, zdy, ydy) * w[0];
   }
   if (used_projection(1)) {
-    sum = sum + sample<Real>(texture, x, z, xdx, zdx, xdy, zdy) * w[1];
+    sum = sum + sample<Real>(texture, p.nearest_mip != 0, x, z, xdx, zdx, xdy, zdy) * w[1];
   }
   if (used_projection(2)) {
-    sum = sum + sample<Real>(texture, x, y, xdx, ydx, xdy, ydy) * w[2];
+    sum = sum + sample<Real>(texture, p.nearest_mip != 0, x, y, xdx, ydx, xdy, ydy) * w[2];
   }
   return sum * (Real(1) / used);  // domain: used >= 1/3 - 2% for a unit normal
 }

@@ -43,6 +43,7 @@ ShadingPlan make_shading_plan(const Scene& scene, const FramePlan& frame, int la
   plan.height = scene.viewport.height;
   plan.pixel_angle = 2.0 * frame.camera.tan_half_fov_y / scene.viewport.height;
   plan.triplanar = scene.shading.triplanar;
+  plan.nearest_mip = scene.shading.texture_filter == TextureFilter::kBilinear;
   const glm::dvec3 camera = frame.camera.position;
   const double water_level = scene.terrain.water_level.value_or(0.0);
 

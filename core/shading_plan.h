@@ -69,6 +69,7 @@ struct DitherPlan {
 struct ShadingPlan {
   std::vector<LayerPlan> layers;
   bool triplanar = true;
+  bool nearest_mip = false;  // shading.texture_filter = bilinear
   LightPlan light;
   SkyPlan sky;
   WaterPlan water;

@@ -116,6 +116,7 @@ ShadeParams<Real> make_shade_params(const ShadingPlan& plan) {
   p.height = plan.height;
   p.layer_count = static_cast<std::int32_t>(plan.layers.size());
   p.triplanar = plan.triplanar ? 1 : 0;
+  p.nearest_mip = plan.nearest_mip ? 1 : 0;
   for (std::size_t k = 0; k < plan.layers.size(); ++k) {
     const LayerPlan& l = plan.layers[k];
     LayerParams<Real>& q = p.layers[k];

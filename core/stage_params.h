@@ -144,6 +144,7 @@ struct ShadeParams {
   std::int32_t terrain_water = 0;
   std::int32_t always_specular = 0;
   std::int32_t skip_zero_weights = 1;
+  std::int32_t nearest_mip = 0;  // 1: GL_LINEAR_MIPMAP_NEAREST (nearest_mip_lod)
   Vec3<Real> camera_forward{};
   // The background's view ray per pixel is formed in double (it is the sky's direction to a
   // thousandth of a pixel at any field of view) and rounded once: these stay double.

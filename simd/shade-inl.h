@@ -54,11 +54,17 @@ struct AttributeVectors {
   V slope, water_depth;
 };
 
-// sample (shade.cc): texture_lod at level 0's size, then sample_trilinear.
+// sample (shade.cc): texture_lod at level 0's size (nearest_mip_lod's level where the frame
+// filters with the nearest level), then sample_trilinear.
 template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
-HWY_INLINE V3<V> SampleTexture(D d, const TextureView& t, V u, V v, V dudx, V dvdx, V dudy, V dvdy,
-                               M active) {
-  const V lod = TextureLod(d, t.size0, dudx, dvdx, dudy, dvdy);
+HWY_INLINE V3<V> SampleTexture(D d, const TextureView& t, bool nearest_mip, V u, V v, V dudx,
+                               V dvdx, V dudy, V dvdy, M active) {
+  V lod = TextureLod(d, t.size0, dudx, dvdx, dudy, dvdy);
+  if (nearest_mip) {
+    // nearest_mip_lod: lod > 1/2 ? ceil(lod - 1/2) : 0 (NaN: 0).
+    const V half = hn::Set(d, 0.5f);
+    lod = hn::IfThenElseZero(hn::Gt(lod, half), hn::Ceil(hn::Sub(lod, half)));
+  }
   return SampleTrilinear(d, t, u, v, lod, active);
 }
 
@@ -74,7 +80,7 @@ HWY_INLINE V3<V> LayerAlbedo(D d, const ShadeParams<float>& p, const LayerParams
   const V zdx = hn::Mul(a.dz_ddx, inv), zdy = hn::Mul(a.dz_ddy, inv);
   if (!p.triplanar) {
     work.texture_fetches += hn::CountTrue(d, gate);
-    return SampleTexture(d, texture, x, z, xdx, zdx, xdy, zdy, gate);
+    return SampleTexture(d, texture, p.nearest_mip != 0, x, z, xdx, zdx, xdy, zdy, gate);
   }
   const V y = hn::Add(hn::Set(d, l.offset_y), hn::Mul(a.height, inv));
   const V ydx = hn::Mul(a.height_ddx, inv), ydy = hn::Mul(a.height_ddy, inv);
@@ -97,11 +103,11 @@ HWY_INLINE V3<V> LayerAlbedo(D d, const ShadeParams<float>& p, const LayerParams
     }
     V3<V> c;
     if (axis == 0) {
-      c = SampleTexture(d, texture, z, y, zdx, ydx, zdy, ydy, sampled);
+      c = SampleTexture(d, texture, p.nearest_mip != 0, z, y, zdx, ydx, zdy, ydy, sampled);
     } else if (axis == 1) {
-      c = SampleTexture(d, texture, x, z, xdx, zdx, xdy, zdy, sampled);
+      c = SampleTexture(d, texture, p.nearest_mip != 0, x, z, xdx, zdx, xdy, zdy, sampled);
     } else {
-      c = SampleTexture(d, texture, x, y, xdx, ydx, xdy, ydy, sampled);
+      c = SampleTexture(d, texture, p.nearest_mip != 0, x, y, xdx, ydx, xdy, ydy, sampled);
     }
     sum = Select3(sampled, Add3(sum, Scale3(c, w[axis])), sum);
   }

@@ -154,7 +154,7 @@ HWY_INLINE V3<V> SampleBilinear(D d, const TextureView& t, VI level, V u, V v) {
 
 // sample_trilinear for the lanes of `active` (the others' results are unspecified): level 0
 // where lod <= 0 (or NaN), the last level where lod >= last, else the two levels around lod
-// blended by its fraction.
+// blended by its fraction (a whole lod: its level alone).
 template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
 HWY_INLINE V3<V> SampleTrilinear(D d, const TextureView& t, V u, V v, V lod, M active) {
   const hn::RebindToSigned<D> di;
@@ -166,20 +166,21 @@ HWY_INLINE V3<V> SampleTrilinear(D d, const TextureView& t, V u, V v, V lod, M a
   // int(lod) only matters where 0 < lod < last; elsewhere it is replaced.
   const auto truncated = hn::ConvertTo(di, hn::IfThenElseZero(trilinear, lod));
   const V fraction = hn::Sub(lod, hn::ConvertTo(d, truncated));
+  // A whole lod reads its level alone, as sample_trilinear returns it.
+  const M blend = hn::And(trilinear, hn::Ne(fraction, zero));
   auto level = hn::IfThenElse(hn::RebindMask(di, minify_most), hn::Set(di, t.last), truncated);
   level = hn::IfThenZeroElse(hn::RebindMask(di, magnify), level);
   const V3<V> first_sample = SampleBilinear(d, t, level, u, v);
   V3<V> second_sample = first_sample;
-  if (!hn::AllFalse(d, trilinear)) {
-    const auto next =
-        hn::Add(level, hn::IfThenElseZero(hn::RebindMask(di, trilinear), hn::Set(di, 1)));
+  if (!hn::AllFalse(d, blend)) {
+    const auto next = hn::Add(level, hn::IfThenElseZero(hn::RebindMask(di, blend), hn::Set(di, 1)));
     second_sample = SampleBilinear(d, t, next, u, v);
   }
   const V3<V> blended = {
       hn::Add(first_sample.x, hn::Mul(fraction, hn::Sub(second_sample.x, first_sample.x))),
       hn::Add(first_sample.y, hn::Mul(fraction, hn::Sub(second_sample.y, first_sample.y))),
       hn::Add(first_sample.z, hn::Mul(fraction, hn::Sub(second_sample.z, first_sample.z)))};
-  return Select3(trilinear, blended, first_sample);
+  return Select3(blend, blended, first_sample);
 }
 
 }  // namespace HWY_NAMESPACE

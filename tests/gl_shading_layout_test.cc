@@ -101,6 +101,7 @@ Offsets<ShadeParams<float>> shade_offsets() {
   o.add("terrain_water", &p.terrain_water);
   o.add("always_specular", &p.always_specular);
   o.add("skip_zero_weights", &p.skip_zero_weights);
+  o.add("nearest_mip", &p.nearest_mip);
   o.add3("camera_forward", p.camera_forward);
   o.add("forward[0]", &p.forward[0], sizeof(double));
   o.add("right[0]", &p.right[0], sizeof(double));

@@ -213,6 +213,10 @@ TEST_CASE("glFramesOfEveryPresetMatchTheCpuFrameWithinTheDocumentedBounds", "[gl
   for (const std::string& preset : preset_names()) {
     check_preset(preset, kSize);
   }
+  // The nearest mip level (GL_LINEAR_MIPMAP_NEAREST) on both sides.
+  std::vector<std::string> bilinear = kSize;
+  bilinear.push_back("shading.texture_filter=\"bilinear\"");
+  check_preset("alpine", bilinear);
 }
 
 TEST_CASE("glDrawsOnlyTheTrianglesWhoseVerticesAllHaveKDraw", "[gl]") {

@@ -237,6 +237,33 @@ TEST_CASE("textureLodOnATiltedPlaneEqualsGlsFormulaFromTheGeometry", "[shading]"
   CHECK(checked > 1000);
 }
 
+TEST_CASE("theNearestMipLevelIsGlsLinearMipmapNearestAndFetchesOneLevel", "[shading]") {
+  // GL 4.5 §8.14.3: level 0 for lambda <= 1/2, else ceil(lambda + 1/2) - 1.
+  CHECK(nearest_mip_lod(-64.0f) == 0.0f);
+  CHECK(nearest_mip_lod(0.5f) == 0.0f);
+  CHECK(nearest_mip_lod(std::nextafter(0.5f, 1.0f)) == 1.0f);
+  CHECK(nearest_mip_lod(1.5f) == 1.0f);
+  CHECK(nearest_mip_lod(1.50001f) == 2.0f);
+  CHECK(nearest_mip_lod(2.49f) == 2.0f);
+  CHECK(nearest_mip_lod(std::nanf("")) == 0.0f);
+  const ProtoTexture t = build_proto_texture(synthesize_texture("rock", 64), 0.3);
+  const int last = static_cast<int>(t.levels.size()) - 1;
+  // A whole lod is its level alone: the texel of that level at its centres.
+  for (int level = 1; level < last && t.levels[level].size >= 4; ++level) {
+    const int n = t.levels[level].size;
+    const float u = 1.5f / float(n), v = 2.5f / float(n);
+    const Rgb got = sample_trilinear(t, u, v, nearest_mip_lod(float(level) + 0.3f));
+    const float* texel = t.level_texels(level) + 3 * (2 * n + 1);
+    for (int c = 0; c < 3; ++c) {
+      CHECK(got[c] == texel[c]);
+    }
+  }
+  // The filter changes the image and the scene file reads it back.
+  const Scene bilinear = resolve_scene("default", {"shading.texture_filter=\"bilinear\""});
+  CHECK(bilinear.shading.texture_filter == TextureFilter::kBilinear);
+  CHECK_THROWS(resolve_scene("default", {"shading.texture_filter=\"anisotropic\""}));
+}
+
 TEST_CASE("trilinearSamplingHitsTexelsRepeatsAndBlendsLevels", "[shading]") {
   const ProtoTexture t = build_proto_texture(synthesize_texture("grass", 64), 0.3);
   const float* level0 = t.level_texels(0);

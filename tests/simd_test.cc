@@ -420,7 +420,8 @@ TEST_CASE("simdFramesMatchTheReferenceWithEverySkipOffAndAtOddSizes", "[simd]") 
        std::vector<std::pair<const char*, std::vector<std::string>>>{
            {"alpine", {"shading.triplanar=false", "viewport.width=131", "viewport.height=67"}},
            {"lake", {"camera.pitch_deg=-35", "viewport.width=100", "viewport.height=71"}},
-           {"default", {"camera.pitch_deg=12", "viewport.width=97", "viewport.height=65"}}}) {
+           {"default", {"camera.pitch_deg=12", "viewport.width=97", "viewport.height=65"}},
+           {"dunes", {"shading.texture_filter=\"bilinear\"", "viewport.width=90"}}}) {
     std::vector<std::string> all = {"grid.width=61", "grid.height=53"};
     all.insert(all.end(), overrides.begin(), overrides.end());
     const Scene scene = resolve_scene(preset, all);

@@ -49,6 +49,12 @@ enum class LodCriterion {
   kNyquist,    // the last octave is the one whose lattice cell spans two grid spacings
 };
 
+// How a layer's proto-texture is filtered between mip levels (GL 4.5 §8.14.2).
+enum class TextureFilter {
+  kTrilinear,  // GL_LINEAR_MIPMAP_LINEAR: the two levels around lambda, blended
+  kBilinear,   // GL_LINEAR_MIPMAP_NEAREST: the level nearest lambda alone (one fetch, not two)
+};
+
 struct LodSettings {
   LodCriterion criterion = LodCriterion::kAmplitude;
   double bias = 0.0;  // octaves added to (or, negative, removed from) the criterion's count
@@ -104,8 +110,9 @@ struct MaterialLayer {
 struct ShadingSettings {
   std::vector<MaterialLayer> layers;  // the default set is in scene_defaults.cc
   int texture_size = 256;             // side of the built-in textures, power of two
-  double mip_blend = 0.3;     // §4.2: each mip level blended this far toward the mean colour
-  bool triplanar = true;      // Mekala, Scape: three projections weighted by squared normals
+  double mip_blend = 0.3;  // §4.2: each mip level blended this far toward the mean colour
+  bool triplanar = true;   // Mekala, Scape: three projections weighted by squared normals
+  TextureFilter texture_filter = TextureFilter::kTrilinear;
   double dither = 0.6;        // Scape: transition dithering, in units of each layer's spreads
   double dither_scale = 9.0;  // world units per lattice cell of the dithering noise
 };

@@ -270,9 +270,14 @@ json scene_to_json(const Scene& scene) {
                       {"specular", l.specular}});
   }
   const ShadingSettings& sh = scene.shading;
-  out["shading"] = {{"layers", layers},          {"texture_size", sh.texture_size},
-                    {"mip_blend", sh.mip_blend}, {"triplanar", sh.triplanar},
-                    {"dither", sh.dither},       {"dither_scale", sh.dither_scale}};
+  out["shading"] = {
+      {"layers", layers},
+      {"texture_size", sh.texture_size},
+      {"mip_blend", sh.mip_blend},
+      {"triplanar", sh.triplanar},
+      {"texture_filter", sh.texture_filter == TextureFilter::kTrilinear ? "trilinear" : "bilinear"},
+      {"dither", sh.dither},
+      {"dither_scale", sh.dither_scale}};
   const LightingSettings& li = scene.lighting;
   out["lighting"] = {{"sun_azimuth_deg", li.sun_azimuth_deg},
                      {"sun_elevation_deg", li.sun_elevation_deg},

@@ -365,6 +365,13 @@ void apply_shading(const LayerReader& in, const json& value, const std::string& 
            }},
           {"triplanar",
            [&](const json& v, const std::string& p) { shading.triplanar = in.boolean(v, p); }},
+          {"texture_filter",
+           [&](const json& v, const std::string& p) {
+             shading.texture_filter =
+                 in.choice<TextureFilter>(v, p,
+                                          {{"trilinear", TextureFilter::kTrilinear},
+                                           {"bilinear", TextureFilter::kBilinear}});
+           }},
           {"dither",
            [&](const json& v, const std::string& p) {
              shading.dither = in.number(v, p, Range{0.0, limits::kMaxDither});

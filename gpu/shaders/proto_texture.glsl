@@ -60,14 +60,27 @@ vec3 sample_trilinear(int layer, float u, float v, float lod) {
   const int level = int(lod);
   precise float fraction = lod - float(level);
   precise vec3 a = sample_bilinear(layer, level, u, v);
+  if (fraction == 0.0) {
+    return a;  // a whole lod: one level (nearest_mip_lod's)
+  }
   precise vec3 b = sample_bilinear(layer, level + 1, u, v);
   precise vec3 r = a + fraction * (b - a);
   return r;
 }
 
+// GL_LINEAR_MIPMAP_NEAREST's level as a whole lod (proto_texture.h, nearest_mip_lod).
+float nearest_mip_lod(float lod) {
+  precise float r = lod > 0.5 ? ceil(lod - 0.5) : 0.0;
+  return r;
+}
+
 // shade.cc, sample(): the LOD from the quad derivatives, then the trilinear fetch.
-vec3 sample_layer(int layer, float u, float v, float dudx, float dvdx, float dudy, float dvdy) {
+vec3 sample_layer(int layer, bool nearest_mip, float u, float v, float dudx, float dvdx,
+                  float dudy, float dvdy) {
   const int size = u_texture_size[layer];
-  const float lod = texture_lod(size, dudx, dvdx, dudy, dvdy);
+  float lod = texture_lod(size, dudx, dvdx, dudy, dvdy);
+  if (nearest_mip) {
+    lod = nearest_mip_lod(lod);
+  }
   return sample_trilinear(layer, u, v, lod);
 }

@@ -60,7 +60,7 @@ vec3 layer_albedo(int layer, Attributes a, vec3 n) {
   precise float zdx = a.dz_ddx * inv, zdy = a.dz_ddy * inv;
   precise float ydx = a.height_ddx * inv, ydy = a.height_ddy * inv;
   if (P.triplanar == 0) {
-    return sample_layer(layer, x, z, xdx, zdx, xdy, zdy);
+    return sample_layer(layer, P.nearest_mip != 0, x, z, xdx, zdx, xdy, zdy);
   }
   precise float w0 = n.x * n.x, w1 = n.y * n.y, w2 = n.z * n.z;
   w0 = w0 < kMinProjectionWeight ? 0.0 : w0;
@@ -72,13 +72,13 @@ vec3 layer_albedo(int layer, Attributes a, vec3 n) {
   used = used + w2;
   precise vec3 sum = vec3(0.0);
   if (w0 > 0.0 || P.skip_zero_weights == 0) {
-    sum = sum + sample_layer(layer, z, y, zdx, ydx, zdy, ydy) * w0;
+    sum = sum + sample_layer(layer, P.nearest_mip != 0, z, y, zdx, ydx, zdy, ydy) * w0;
   }
   if (w1 > 0.0 || P.skip_zero_weights == 0) {
-    sum = sum + sample_layer(layer, x, z, xdx, zdx, xdy, zdy) * w1;
+    sum = sum + sample_layer(layer, P.nearest_mip != 0, x, z, xdx, zdx, xdy, zdy) * w1;
   }
   if (w2 > 0.0 || P.skip_zero_weights == 0) {
-    sum = sum + sample_layer(layer, x, y, xdx, ydx, xdy, ydy) * w2;
+    sum = sum + sample_layer(layer, P.nearest_mip != 0, x, y, xdx, ydx, xdy, ydy) * w2;
   }
   precise vec3 r = sum * (1.0 / used);
   return r;
