@@ -145,6 +145,9 @@ struct ShadeParams {
   std::int32_t always_specular = 0;
   std::int32_t skip_zero_weights = 1;
   std::int32_t nearest_mip = 0;  // 1: GL_LINEAR_MIPMAP_NEAREST (nearest_mip_lod)
+  // Unused: keeps the float struct's size a multiple of 16 bytes, the size GL gives the
+  // std430 block that mirrors it (gpu/shaders/shade_params.glsl).
+  std::int32_t reserved[3] = {};
   Vec3<Real> camera_forward{};
   // The background's view ray per pixel is formed in double (it is the sky's direction to a
   // thousandth of a pixel at any field of view) and rounded once: these stay double.

@@ -46,6 +46,7 @@ layout(std430, binding = 0) readonly buffer ShadeParamsBlock {
   int always_specular;
   int skip_zero_weights;
   int nearest_mip;
+  int reserved[3];
   Float3 camera_forward;
   double forward[3], right[3], up[3];
   double tan_half_fov_x, tan_half_fov_y;
