@@ -22,8 +22,10 @@ PREFIX       ?= /usr/local
 RENDER_PACKAGES := cmake make g++ pkg-config \
                    libtbb-dev libglm-dev libstb-dev nlohmann-json3-dev libcli11-dev libhwy-dev \
                    libopenimageio-dev openimageio-tools
+# gnuplot-nox draws relief sweep's plot (an external program, run only by that command; the
+# tests require it).
 PACKAGES := $(RENDER_PACKAGES) catch2 libbenchmark-dev \
-            libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri
+            libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri gnuplot-nox
 
 # Every part on (the options' defaults, spelled out so that a cache configured otherwise is
 # corrected), and every part off for make render.

@@ -25,6 +25,7 @@
 #include "tools/commands.h"
 #include "tools/reference_command.h"
 #include "tools/soup.h"
+#include "tools/sweep_command.h"
 
 namespace relief {
 
@@ -191,15 +192,22 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   ErrorOptions error_options;
   CLI::App* error_cmd = add_error_command(app, error_options);
   add_max_memory(error_cmd, max_memory);
+  // Frame time against error over the speed knobs (sweep_command.h).
+  SweepOptions sweep;
+  CLI::App* sweep_cmd = add_sweep_command(app, sweep);
+  add_scene_args(sweep_cmd, scene_args);
+  add_threads(sweep_cmd, threads);
+  add_max_memory(sweep_cmd, max_memory);
 
   // CLI11 answers an unknown command with "A subcommand is required"; say what is wrong.
-  const std::vector<std::string> commands = {"scene",   "stages",     "render",    "raster", "info",
-                                             "compare", "crosscheck", "reference", "error"};
+  const std::vector<std::string> commands = {"scene", "stages",  "render",     "raster",
+                                             "info",  "compare", "crosscheck", "reference",
+                                             "error", "sweep"};
   if (args.size() > 1 && !args[1].empty() && args[1][0] != '-' &&
       std::find(commands.begin(), commands.end(), args[1]) == commands.end()) {
     err << "relief: error: unknown command '" << brief_text(args[1])
         << "'; commands: scene, stages, render, raster, info, compare, crosscheck, reference, "
-           "error\nRun 'relief --help' for usage.\n";
+           "error, sweep\nRun 'relief --help' for usage.\n";
     return kExitBadInput;
   }
   // compare exits as idiff does, where 2 means the images differ: its bad options are 4.
@@ -242,7 +250,8 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     err << "relief: error: FILE is empty; give the triangle soup's file name\n";
     return kExitBadInput;
   }
-  for (CLI::App* command : {scene_cmd, stages_cmd, render_cmd, crosscheck_cmd, reference_cmd}) {
+  for (CLI::App* command :
+       {scene_cmd, stages_cmd, render_cmd, crosscheck_cmd, reference_cmd, sweep_cmd}) {
     if (command->parsed() && given_empty(command->get_option("SCENE"), scene_args.scene)) {
       err << "relief: error: SCENE is empty; give a scene file or a preset name, or leave it "
              "out for the default scene\n";
@@ -260,7 +269,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   }
   const MemoryBudget budget = memory_budget(parse_memory_size(max_memory), max_memory);
   stages.budget = render.budget = raster_options.budget = crosscheck.budget = budget;
-  reference.budget = error_options.budget = budget;
+  reference.budget = error_options.budget = sweep.budget = budget;
   if (error_cmd->parsed()) {
     return run_error_command(error_options, out, err);
   }
@@ -340,6 +349,9 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     }
     if (reference_cmd->parsed()) {
       return run_reference_command(scene, reference, out, err);
+    }
+    if (sweep_cmd->parsed()) {
+      return run_sweep_command(scene, sweep, out, err);
     }
     if (render_cmd->parsed()) {
       const std::string& o = render.output;

@@ -17,7 +17,7 @@ TerminalProgress::~TerminalProgress() {
   finish();
 }
 
-void TerminalProgress::update(int done, int total) {
+void TerminalProgress::update(int done, int total, std::string_view detail) {
   if (!enabled_) {
     return;
   }
@@ -26,12 +26,15 @@ void TerminalProgress::update(int done, int total) {
   // The rate so far predicts the rest; nothing is said before the first unit is done (done > 0
   // guards the division).
   if (done > 0 && done < total) {
-    std::fprintf(stderr, "\r%s: %d/%d %s, %.1f s, about %.0f s left   ", label_.c_str(), done,
-                 total, unit_.c_str(), elapsed, elapsed / done * (total - done));
+    std::fprintf(stderr, "\r%s: %d/%d %s, %.1f s, about %.0f s left", label_.c_str(), done, total,
+                 unit_.c_str(), elapsed, elapsed / done * (total - done));
   } else {
-    std::fprintf(stderr, "\r%s: %d/%d %s, %.1f s                    ", label_.c_str(), done, total,
-                 unit_.c_str(), elapsed);
+    std::fprintf(stderr, "\r%s: %d/%d %s, %.1f s", label_.c_str(), done, total, unit_.c_str(),
+                 elapsed);
   }
+  // The rest of the previous line is cleared (ANSI "erase to end of line").
+  std::fprintf(stderr, "%s%.*s\x1b[K", detail.empty() ? "" : ": ", int(detail.size()),
+               detail.data());
   std::fflush(stderr);
   open_ = true;
 }

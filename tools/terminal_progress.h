@@ -1,10 +1,11 @@
-// Progress of long work on a terminal: "LABEL: 3/8 bands, 12.4 s, about 20 s left", rewritten
-// in place on standard error, only when standard error is a terminal (never in logs, pipes or
-// the tests); finish() ends the line.
+// Progress of long work on a terminal: "LABEL: 3/8 bands, 12.4 s, about 20 s left[: DETAIL]",
+// rewritten in place on standard error, only when standard error is a terminal (never in logs,
+// pipes or the tests); finish() ends the line.
 #pragma once
 
 #include <chrono>
 #include <string>
+#include <string_view>
 
 namespace relief {
 
@@ -16,7 +17,8 @@ class TerminalProgress {
   TerminalProgress(const TerminalProgress&) = delete;
   TerminalProgress& operator=(const TerminalProgress&) = delete;
 
-  void update(int done, int total);
+  // `detail`: what is being done now ("grid 1024"), shown after the count.
+  void update(int done, int total, std::string_view detail = {});
   void finish();
 
  private:
