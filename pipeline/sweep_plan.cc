@@ -132,8 +132,12 @@ std::vector<Variation> full_variations(const Scene& scene) {
                    interpolant,
                    {std::string("terrain.interpolant=") + interpolant}});
   }
-  // Texture filtering: the line below runs once the scene has shading.texture_filter.
-  // out.push_back({"bilinear", "texture_filter", "bilinear", {"shading.texture_filter=bilinear"}});
+  for (const char* filter : {"trilinear", "bilinear"}) {
+    out.push_back({std::string(filter) + " filtering",
+                   "texture_filter",
+                   filter,
+                   {std::string("shading.texture_filter=") + filter}});
+  }
   for (int n : {1, 2, 3}) {
     out.push_back(supersample_variation(n));
   }
@@ -150,6 +154,10 @@ std::vector<Variation> full_variations(const Scene& scene) {
   out.push_back(combined(grid_variation(scene, side * 2), supersample_variation(2)));
   out.push_back(combined(grid_variation(scene, side / 2), supersample_variation(2)));
   out.push_back(combined(bias_variation(1), supersample_variation(2)));
+  const Variation bilinear{
+      "bilinear filtering", "texture_filter", "bilinear", {"shading.texture_filter=bilinear"}};
+  out.push_back(combined(bias_variation(2), bilinear));
+  out.push_back(combined(combined(grid_variation(scene, side * 2), bias_variation(1)), bilinear));
   return out;
 }
 
