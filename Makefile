@@ -4,6 +4,8 @@
 #                 no tests, benchmarks or OpenGL), render the default scene to relief.png
 #   make test     install what is missing, build everything, run the whole test suite (ctest),
 #                 then build again with ASan + UBSan and run the suite once more
+#   make fuzz     build the libFuzzer targets with clang (build-fuzz/) and run each for
+#                 FUZZ_SECONDS on a copy of its seed corpus; fails if any of them finds a crash
 #
 # Dependencies come only from Debian's packages (see DEVELOPERS.md); apt-get is run only
 # for the packages that are not installed yet.
@@ -11,6 +13,8 @@
 BUILD        ?= build
 ASAN_BUILD   ?= build-asan
 RENDER_BUILD ?= build-render
+FUZZ_BUILD   ?= build-fuzz
+FUZZ_SECONDS ?= 60
 JOBS         ?= $(shell nproc)
 SCENE        ?= default
 PREFIX       ?= /usr/local
@@ -27,18 +31,25 @@ RENDER_PACKAGES := cmake make g++ pkg-config \
 PACKAGES := $(RENDER_PACKAGES) catch2 libbenchmark-dev \
             libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri gnuplot-nox
 
+# make fuzz alone: libFuzzer comes with clang (Debian's clang is clang 14; its runtime
+# libraries, libFuzzer among them, are libclang-rt-14-dev). Not needed by make test.
+FUZZ_PACKAGES := $(RENDER_PACKAGES) clang libclang-rt-14-dev
+FUZZ_TARGETS  := scene override soup texture
+
 # Every part on (the options' defaults, spelled out so that a cache configured otherwise is
 # corrected), and every part off for make render.
 ALL_PARTS  := -DRELIEF_BUILD_TESTS=ON -DRELIEF_BUILD_BENCHMARKS=ON -DRELIEF_WITH_GL=ON
 NO_PARTS   := -DRELIEF_BUILD_TESTS=OFF -DRELIEF_BUILD_BENCHMARKS=OFF -DRELIEF_WITH_GL=OFF
 
-.PHONY: all deps deps-render build render install test test-release test-sanitize format clean
+.PHONY: all deps deps-render deps-fuzz build render install test test-release test-sanitize \
+        fuzz format clean
 
 all: build
 
 deps: DEPS := $(PACKAGES)
 deps-render: DEPS := $(RENDER_PACKAGES)
-deps deps-render:
+deps-fuzz: DEPS := $(FUZZ_PACKAGES)
+deps deps-render deps-fuzz:
 	@missing=""; \
 	for p in $(DEPS); do \
 	  dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q '^install ok installed' \
@@ -73,8 +84,33 @@ test-sanitize: deps
 
 test: test-release test-sanitize
 
+# Each fuzzer runs in $(FUZZ_BUILD)/fuzz/run/TARGET on a fresh copy of fuzz/corpus/TARGET (the
+# repository's seeds stay as they are), one process on one core, with its dictionary; a crash,
+# sanitizer report, uncaught exception, timeout (10 s an input) or more than 2 GiB leaves its
+# input there as crash-*, timeout-*, oom-* or leak-* and fails the target.
+fuzz: deps-fuzz
+	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DRELIEF_WERROR=ON -DRELIEF_BUILD_FUZZERS=ON $(NO_PARTS)
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target relief_fuzzers
+	@failed=""; \
+	for t in $(FUZZ_TARGETS); do \
+	  run=$(FUZZ_BUILD)/fuzz/run/$$t; rm -rf $$run; mkdir -p $$run/corpus; \
+	  cp fuzz/corpus/$$t/* $$run/corpus/; \
+	  echo "relief: fuzzing $$t for $(FUZZ_SECONDS) s (output in $$run/fuzz.log)"; \
+	  (cd $$run && ../../relief_fuzz_$$t corpus -dict=$(CURDIR)/fuzz/$$t.dict \
+	     -max_total_time=$(FUZZ_SECONDS) -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 \
+	     >fuzz.log 2>&1) && ok=1 || ok=0; \
+	  grep -E '^#[0-9]+[[:space:]]+DONE' $$run/fuzz.log || true; \
+	  if ls $$run | grep -Eq '^(crash|timeout|oom|leak)-'; then ok=0; fi; \
+	  [ $$ok = 1 ] || failed="$$failed $$t"; \
+	done; \
+	if [ -n "$$failed" ]; then \
+	  echo "relief: the fuzzers found problems in:$$failed (see $(FUZZ_BUILD)/fuzz/run/*/fuzz.log)" >&2; \
+	  exit 1; \
+	fi
+
 format:
 	git ls-files '*.h' '*.cc' | xargs clang-format -i
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) $(RENDER_BUILD)
+	rm -rf $(BUILD) $(ASAN_BUILD) $(RENDER_BUILD) $(FUZZ_BUILD)

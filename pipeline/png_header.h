@@ -14,6 +14,7 @@ struct PngHeader {
   std::uint32_t height = 0;
   int bit_depth = 0;    // bits per channel (per palette index for colour type 3)
   int colour_type = 0;  // 0 grey, 2 RGB, 3 palette, 4 grey + alpha, 6 RGBA
+  int interlace = 0;    // 0 none, 1 Adam7 (§8.2)
 };
 
 // The first kPngHeaderBytes bytes of a file.
@@ -38,7 +39,7 @@ inline std::optional<PngHeader> parse_png_header(const unsigned char* bytes, std
       bytes[15] != 'R') {
     return std::nullopt;
   }
-  return PngHeader{big_endian(16), big_endian(20), bytes[24], bytes[25]};
+  return PngHeader{big_endian(16), big_endian(20), bytes[24], bytes[25], bytes[28]};
 }
 
 }  // namespace relief

@@ -3,6 +3,7 @@
 // checked), each with the variance-reduced mip chain of §4.2.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "core/lattice.h"
@@ -20,7 +21,17 @@ struct SceneResources {
 // is not square with a power-of-two side from 4 to 4096.
 SceneResources load_scene_resources(const Scene& scene);
 
-// The proto-texture image of one layer, linear RGB (PNG files are sRGB-decoded).
+// The proto-texture image of one layer, linear RGB (PNG files are sRGB-decoded). A file's PNG
+// header is checked before the rest of it is read; then decode_texture_png.
 RgbImage load_layer_texture(const MaterialLayer& layer, int builtin_size, const std::string& path);
+
+// A texture PNG already in memory, checked as load_layer_texture checks a file (signature,
+// square power-of-two side from 4 to 4096, 8 bits per channel, at most
+// limits::kMaxTextureFileBytes, every chunk within the file, image data that inflates to no
+// more than the header's size: pipeline/png_layout.h) and decoded to linear RGB. `field` names
+// the texture in messages (`shading.layers[2].texture = "a.png"`), `path` is the SceneError's
+// JSON path. Throws SceneError. The texture fuzzer (fuzz/fuzz_inputs.h) calls it.
+RgbImage decode_texture_png(const std::vector<unsigned char>& png, const std::string& field,
+                            const std::string& path);
 
 }  // namespace relief

@@ -138,17 +138,63 @@ TriangleSoup SoupParser::finish() {
   return std::move(soup_);
 }
 
+// The bytes of a soup, in pieces of any size, cut into lines for SoupParser: a UTF-8 byte
+// order mark at the start is skipped, CRs are whitespace, a NUL byte and a line longer than
+// limits::kMaxSoupLineBytes are errors. The file and the in-memory entry point share it, so
+// the same bytes give the same soup or the same message.
+class SoupText {
+ public:
+  explicit SoupText(const std::string& name) : name_(name), parser_(name) {}
+
+  void feed(std::string_view bytes) {
+    std::size_t k = 0;
+    // A UTF-8 byte order mark, as some editors write, is not part of the text.
+    if (at_start_ && bytes.substr(0, 3) == "\xef\xbb\xbf") {
+      k = 3;
+    }
+    at_start_ = at_start_ && bytes.empty();
+    for (; k < bytes.size(); ++k) {
+      const char c = bytes[k];
+      if (c == '\r') {
+        continue;  // CRLF line ends (and stray CRs) are whitespace
+      }
+      if (c == '\n') {
+        parser_.line(std::move(line_));
+        line_.clear();
+        ++line_number_;
+      } else if (c == '\0') {
+        throw SoupError(name_ + ":" + std::to_string(line_number_) +
+                        ": a NUL byte; a soup is text");
+      } else if (line_.size() < limits::kMaxSoupLineBytes) {
+        line_ += c;
+      } else {
+        throw SoupError(name_ + ":" + std::to_string(line_number_) + ": longer than " +
+                        std::to_string(limits::kMaxSoupLineBytes) + " bytes");
+      }
+    }
+  }
+
+  TriangleSoup finish() {
+    if (!line_.empty()) {
+      parser_.line(std::move(line_));
+    }
+    return parser_.finish();
+  }
+
+ private:
+  std::string name_;
+  SoupParser parser_;
+  std::string line_;
+  int line_number_ = 1;
+  bool at_start_ = true;
+};
+
 }  // namespace
 
 TriangleSoup parse_triangle_soup(std::string_view text, const std::string& name) {
-  SoupParser parser(name);
-  std::size_t start = 0;
-  while (start < text.size()) {
-    const std::size_t end = std::min(text.find('\n', start), text.size());
-    parser.line(std::string(text.substr(start, end - start)));
-    start = end + 1;
-  }
-  return parser.finish();
+  SoupText soup(brief_text(name));
+  soup.feed(text);
+  return soup.finish();
 }
 
 TriangleSoup read_triangle_soup(const std::string& path,
@@ -157,41 +203,12 @@ TriangleSoup read_triangle_soup(const std::string& path,
   try {
     InputFile file(path, limits::kMaxSoupFileBytes);
     check_size(file.size());
-    SoupParser parser(name);
-    std::string line;
+    SoupText soup(name);
     char chunk[1 << 16];
-    int line_number = 1;
-    bool at_start = true;
     while (const std::size_t n = file.read(chunk, sizeof chunk)) {
-      std::size_t k = 0;
-      // A UTF-8 byte order mark, as some editors write, is not part of the text.
-      if (at_start && n >= 3 && std::string_view(chunk, 3) == "\xef\xbb\xbf") {
-        k = 3;
-      }
-      at_start = false;
-      for (; k < n; ++k) {
-        if (chunk[k] == '\r') {
-          continue;  // CRLF line ends (and stray CRs) are whitespace
-        }
-        if (chunk[k] == '\n') {
-          parser.line(std::move(line));
-          line.clear();
-          ++line_number;
-        } else if (chunk[k] == '\0') {
-          throw SoupError(name + ":" + std::to_string(line_number) +
-                          ": a NUL byte; a soup is text");
-        } else if (line.size() < limits::kMaxSoupLineBytes) {
-          line += chunk[k];
-        } else {
-          throw SoupError(name + ":" + std::to_string(line_number) + ": longer than " +
-                          std::to_string(limits::kMaxSoupLineBytes) + " bytes");
-        }
-      }
+      soup.feed(std::string_view(chunk, n));
     }
-    if (!line.empty()) {
-      parser.line(std::move(line));
-    }
-    return parser.finish();
+    return soup.finish();
   } catch (const InputFileError& e) {
     throw SoupError(name + ": " + e.what());
   }

@@ -39,7 +39,9 @@ struct TriangleSoup {
 TriangleSoup read_triangle_soup(const std::string& path,
                                 const std::function<void(std::uintmax_t)>& check_size);
 
-// Parses soup text; `name` starts every message.
+// Parses a soup's bytes exactly as read_triangle_soup parses a file holding them (byte order
+// mark, CRs, NUL bytes, line length; no file size limit); `name` starts every message. Throws
+// SoupError. The soup fuzzer (fuzz/fuzz_inputs.h) calls it.
 TriangleSoup parse_triangle_soup(std::string_view text, const std::string& name);
 
 }  // namespace relief

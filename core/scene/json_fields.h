@@ -77,7 +77,10 @@ class LayerReader {
       fail(path, (path.empty() ? std::string("the scene") : path) + " must be a JSON object, got " +
                      brief(value));
     }
-    for (const auto& [key, item] : value.items()) {
+    // Named references, not a structured binding: clang before 16 cannot capture one.
+    for (const auto& entry : value.items()) {
+      const std::string& key = entry.key();
+      const json& item = entry.value();
       const auto handler = std::find_if(handlers.begin(), handlers.end(),
                                         [&](const auto& h) { return h.first == key; });
       if (handler == handlers.end()) {

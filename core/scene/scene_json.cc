@@ -35,13 +35,12 @@ bool looks_non_finite(std::string text) {
   return text == "nan" || text == "inf" || text == "infinity";
 }
 
-json read_scene_file(const std::filesystem::path& file) {
-  const std::string source = "scene file " + brief_text(file.string());
+std::string read_scene_file(const std::filesystem::path& file) {
   try {
     InputFile in(file, limits::kMaxSceneFileBytes);
-    return parse_json_strictly(in.read_rest(), source);
+    return in.read_rest();
   } catch (const InputFileError& e) {
-    throw SceneError("", source + ": " + e.what());
+    throw SceneError("", "scene file " + brief_text(file.string()) + ": " + e.what());
   }
 }
 
@@ -59,6 +58,36 @@ DirectionForms direction_forms(const json& layer) {
     forms.angles = camera.contains("yaw_deg") || camera.contains("pitch_deg");
   }
   return forms;
+}
+
+// The --set overrides in order, then validate_scene (resolve_scene, resolve_scene_text).
+void apply_overrides_and_validate(Scene& scene, const std::vector<std::string>& overrides) {
+  // The overrides together are one source, like a file: they may give the view direction in
+  // one form only. A look_at among them is resolved against the final camera.position, as it
+  // is within a file, whatever the order of the --set options.
+  const std::string* look_at_override = nullptr;
+  const std::string* angles_override = nullptr;
+  json look_at_layer;
+  for (const std::string& assignment : overrides) {
+    json layer = parse_override(assignment);
+    const DirectionForms forms = direction_forms(layer);
+    if (forms.look_at) {  // applied once the position is final, below
+      look_at_override = &assignment;
+      look_at_layer = json{{"camera", {{"look_at", layer["camera"]["look_at"]}}}};
+      layer["camera"].erase("look_at");
+    }
+    angles_override = forms.angles ? &assignment : angles_override;
+    if (look_at_override && angles_override) {
+      throw SceneError("camera.look_at", "--set " + brief_text(*look_at_override) + " and --set " +
+                                             brief_text(*angles_override) +
+                                             " both set the view direction; give one or the other");
+    }
+    apply_scene_layer(scene, layer, "--set " + brief_text(assignment));
+  }
+  if (look_at_override) {
+    apply_scene_layer(scene, look_at_layer, "--set " + brief_text(*look_at_override));
+  }
+  validate_scene(scene);
 }
 
 }  // namespace
@@ -375,7 +404,6 @@ bool is_preset(std::string_view name) {
 }
 
 Scene resolve_scene(std::string_view scene_arg, const std::vector<std::string>& overrides) {
-  Scene scene;
   const std::string name = scene_arg.empty() ? std::string("default") : std::string(scene_arg);
   const std::filesystem::path file(name);
   std::error_code ec;
@@ -383,9 +411,10 @@ Scene resolve_scene(std::string_view scene_arg, const std::vector<std::string>& 
   // the name (a directory, a FIFO, a device) is refused by read_scene_file with the reason.
   if (std::filesystem::is_regular_file(file, ec) ||
       (!is_preset(name) && std::filesystem::exists(file, ec))) {
-    apply_scene_layer(scene, read_scene_file(file), "scene file " + brief_text(name),
-                      file.parent_path());
-  } else if (name == "default") {
+    return resolve_scene_text(read_scene_file(file), name, file.parent_path(), overrides);
+  }
+  Scene scene;
+  if (name == "default") {
     // The defaults are the member initialisers of scene.h.
   } else if (is_preset(name)) {
     for (const ScenePreset& preset : scene_presets()) {
@@ -399,32 +428,17 @@ Scene resolve_scene(std::string_view scene_arg, const std::vector<std::string>& 
                              "' is neither a readable file nor a preset; presets: " +
                              join(preset_names(), ", "));
   }
-  // The overrides together are one source, like a file: they may give the view direction in
-  // one form only. A look_at among them is resolved against the final camera.position, as it
-  // is within a file, whatever the order of the --set options.
-  const std::string* look_at_override = nullptr;
-  const std::string* angles_override = nullptr;
-  json look_at_layer;
-  for (const std::string& assignment : overrides) {
-    json layer = parse_override(assignment);
-    const DirectionForms forms = direction_forms(layer);
-    if (forms.look_at) {  // applied once the position is final, below
-      look_at_override = &assignment;
-      look_at_layer = json{{"camera", {{"look_at", layer["camera"]["look_at"]}}}};
-      layer["camera"].erase("look_at");
-    }
-    angles_override = forms.angles ? &assignment : angles_override;
-    if (look_at_override && angles_override) {
-      throw SceneError("camera.look_at", "--set " + brief_text(*look_at_override) + " and --set " +
-                                             brief_text(*angles_override) +
-                                             " both set the view direction; give one or the other");
-    }
-    apply_scene_layer(scene, layer, "--set " + brief_text(assignment));
-  }
-  if (look_at_override) {
-    apply_scene_layer(scene, look_at_layer, "--set " + brief_text(*look_at_override));
-  }
-  validate_scene(scene);
+  apply_overrides_and_validate(scene, overrides);
+  return scene;
+}
+
+Scene resolve_scene_text(std::string_view text, std::string_view file_name,
+                         const std::filesystem::path& base_dir,
+                         const std::vector<std::string>& overrides) {
+  const std::string source = "scene file " + brief_text(file_name);
+  Scene scene;
+  apply_scene_layer(scene, parse_json_strictly(text, source), source, base_dir);
+  apply_overrides_and_validate(scene, overrides);
   return scene;
 }
 

@@ -61,4 +61,12 @@ bool is_preset(std::string_view name);
 // names the field.
 Scene resolve_scene(std::string_view scene_arg, const std::vector<std::string>& overrides);
 
+// resolve_scene for a scene file already in memory: `text` is the file's bytes, `file_name`
+// names it in messages ("scene file NAME: ...") and relative texture paths are taken relative
+// to `base_dir`. resolve_scene reads a file and calls this; the fuzzers (fuzz/) call it
+// directly. Throws SceneError for any bad input.
+Scene resolve_scene_text(std::string_view text, std::string_view file_name,
+                         const std::filesystem::path& base_dir,
+                         const std::vector<std::string>& overrides);
+
 }  // namespace relief

@@ -1,0 +1,12 @@
+// libFuzzer target: A triangle soup's bytes, as `relief raster FILE` reads them.
+// The input's format and the properties checked: fuzz/fuzz_inputs.h, soup_input.
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+#include "fuzz/fuzz_inputs.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  relief::fuzz::soup_input(std::string_view(reinterpret_cast<const char*>(data), size));
+  return 0;
+}
