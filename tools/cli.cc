@@ -181,15 +181,19 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   add_threads(crosscheck_cmd, threads);
   add_max_memory(crosscheck_cmd, max_memory);
 
+  StressOptions stress;
+  CLI::App* stress_cmd = add_stress_command(app, stress);
+  add_scene_args(stress_cmd, scene_args);
+  add_threads(stress_cmd, threads);
+
   // CLI11 answers an unknown command with "A subcommand is required"; say what is wrong.
-  const std::vector<std::string> commands = {"scene", "stages",  "render",    "raster",
-                                             "info",  "compare", "crosscheck"};
+  const std::vector<std::string> commands = {"scene", "stages",  "render",     "raster",
+                                             "info",  "compare", "crosscheck", "stress"};
   if (args.size() > 1 && !args[1].empty() && args[1][0] != '-' &&
       std::find(commands.begin(), commands.end(), args[1]) == commands.end()) {
     err << "relief: error: unknown command '" << brief_text(args[1])
-        << "'; commands: scene, stages, render, raster, info, compare, crosscheck\nRun 'relief "
-           "--help' for "
-           "usage.\n";
+        << "'; commands: scene, stages, render, raster, info, compare, crosscheck, stress\n"
+           "Run 'relief --help' for usage.\n";
     return kExitBadInput;
   }
   // compare exits as idiff does, where 2 means the images differ: its bad options are 4.
@@ -232,7 +236,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     err << "relief: error: FILE is empty; give the triangle soup's file name\n";
     return kExitBadInput;
   }
-  for (CLI::App* command : {scene_cmd, stages_cmd, render_cmd, crosscheck_cmd}) {
+  for (CLI::App* command : {scene_cmd, stages_cmd, render_cmd, crosscheck_cmd, stress_cmd}) {
     if (command->parsed() && given_empty(command->get_option("SCENE"), scene_args.scene)) {
       err << "relief: error: SCENE is empty; give a scene file or a preset name, or leave it "
              "out for the default scene\n";
@@ -323,6 +327,9 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     }
     if (crosscheck_cmd->parsed()) {
       return run_crosscheck_command(scene, crosscheck, out);
+    }
+    if (stress_cmd->parsed()) {
+      return run_stress_command(scene, stress, out, err);
     }
     if (render_cmd->parsed()) {
       const std::string& o = render.output;
