@@ -63,7 +63,7 @@ void* allocate_frame_buffer(std::size_t bytes, std::size_t align) {
   if (bytes < kMinMappedBytes) {
     return ::operator new(bytes, std::align_val_t(align));
   }
-  const std::size_t size = round_up(bytes, kHugePageBytes);
+  const std::size_t size = round_up(bytes, kPageBytes);
   BlockCache& c = cache();
   {
     const std::lock_guard<std::mutex> lock(c.mutex);
@@ -91,7 +91,7 @@ void free_frame_buffer(void* block, std::size_t bytes, std::size_t align) noexce
     ::operator delete(block, std::align_val_t(align));
     return;
   }
-  const std::size_t size = round_up(bytes, kHugePageBytes);
+  const std::size_t size = round_up(bytes, kPageBytes);
   BlockCache& c = cache();
   {
     const std::lock_guard<std::mutex> lock(c.mutex);
@@ -106,6 +106,16 @@ void free_frame_buffer(void* block, std::size_t bytes, std::size_t align) noexce
   munmap(block, size);
 }
 
+void release_cached_frame_buffers() noexcept {
+  BlockCache& c = cache();
+  const std::lock_guard<std::mutex> lock(c.mutex);
+  for (int k = 0; k < c.count; ++k) {
+    munmap(c.block[k], c.size[k]);
+  }
+  c.count = 0;
+  c.bytes = 0;
+}
+
 #else
 
 void* allocate_frame_buffer(std::size_t bytes, std::size_t align) {
@@ -115,6 +125,8 @@ void* allocate_frame_buffer(std::size_t bytes, std::size_t align) {
 void free_frame_buffer(void* block, std::size_t /*bytes*/, std::size_t align) noexcept {
   ::operator delete(block, std::align_val_t(align));
 }
+
+void release_cached_frame_buffers() noexcept {}
 
 #endif
 

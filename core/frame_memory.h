@@ -25,10 +25,15 @@
 namespace relief {
 
 inline constexpr std::size_t kHugePageBytes = std::size_t{2} << 20;
+// Mappings are whole pages, not whole huge pages: a block of 1 MiB + 1 byte rounded up to 2 MiB
+// became resident in full (its one huge page faults in whole), twice what the buffer holds and
+// what the memory estimates count (pipeline/job_memory.h). Huge pages still back every aligned
+// 2 MiB of a block; its tail is ordinary pages.
+inline constexpr std::size_t kPageBytes = std::size_t{4} << 10;
 inline constexpr std::size_t kMinMappedBytes = std::size_t{1} << 20;
 inline constexpr std::size_t kMaxCachedBytes = std::size_t{256} << 20;
 
-// `bytes` (a multiple of kHugePageBytes) aligned to `align` (a power of two, at least the
+// `bytes` (a multiple of kPageBytes) aligned to `align` (a power of two, at least the
 // page size), zero-filled, huge pages advised. Throws std::bad_alloc when the system refuses.
 // Only on RELIEF_FRAME_MAPPINGS systems.
 void* map_aligned(std::size_t bytes, std::size_t align);
@@ -38,5 +43,9 @@ void unmap(void* block, std::size_t bytes);
 // `align` the same in both calls. Throws std::bad_alloc.
 void* allocate_frame_buffer(std::size_t bytes, std::size_t align);
 void free_frame_buffer(void* block, std::size_t bytes, std::size_t align) noexcept;
+
+// Returns the kept blocks to the system, so that a measurement of the process's resident
+// memory (pipeline/process_memory.h) sees every buffer of the next frame mapped afresh.
+void release_cached_frame_buffers() noexcept;
 
 }  // namespace relief

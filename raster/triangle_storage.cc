@@ -56,7 +56,7 @@ std::size_t round_up(std::size_t n, std::size_t multiple) {
 void* allocate_triangle_storage(std::size_t bytes) {
 #ifdef RELIEF_FRAME_MAPPINGS
   if (bytes > kLargestSlabBlock) {
-    return map_aligned(round_up(bytes, kHugePage), kHugePage);
+    return map_aligned(round_up(bytes, kPageBytes), kHugePage);
   }
   if (bytes >= kSmallBytes) {
     const std::size_t size = round_up(bytes, kBlockAlign);
@@ -81,7 +81,7 @@ void* allocate_triangle_storage(std::size_t bytes) {
 void free_triangle_storage(void* block, [[maybe_unused]] std::size_t bytes) noexcept {
 #ifdef RELIEF_FRAME_MAPPINGS
   if (bytes > kLargestSlabBlock) {
-    unmap(block, round_up(bytes, kHugePage));
+    unmap(block, round_up(bytes, kPageBytes));
     return;
   }
   if (bytes >= kSmallBytes) {
@@ -103,6 +103,17 @@ void free_triangle_storage(void* block, [[maybe_unused]] std::size_t bytes) noex
   }
 #endif
   ::operator delete(block);
+}
+
+void release_spare_triangle_storage() noexcept {
+#ifdef RELIEF_FRAME_MAPPINGS
+  Slabs& s = slabs();
+  const std::lock_guard<std::mutex> lock(s.mutex);
+  for (std::size_t k = 0; k < s.spare_count; ++k) {
+    unmap(s.spare[k], kSlabBytes);
+  }
+  s.spare_count = 0;
+#endif
 }
 
 }  // namespace relief::raster

@@ -199,15 +199,21 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   add_threads(sweep_cmd, threads);
   add_max_memory(sweep_cmd, max_memory);
 
+  // The stability stress suite (stress_command.cc).
+  StressOptions stress;
+  CLI::App* stress_cmd = add_stress_command(app, stress);
+  add_scene_args(stress_cmd, scene_args);
+  add_threads(stress_cmd, threads);
+
   // CLI11 answers an unknown command with "A subcommand is required"; say what is wrong.
   const std::vector<std::string> commands = {"scene", "stages",  "render",     "raster",
                                              "info",  "compare", "crosscheck", "reference",
-                                             "error", "sweep"};
+                                             "error", "sweep",   "stress"};
   if (args.size() > 1 && !args[1].empty() && args[1][0] != '-' &&
       std::find(commands.begin(), commands.end(), args[1]) == commands.end()) {
     err << "relief: error: unknown command '" << brief_text(args[1])
         << "'; commands: scene, stages, render, raster, info, compare, crosscheck, reference, "
-           "error, sweep\nRun 'relief --help' for usage.\n";
+           "error, sweep, stress\nRun 'relief --help' for usage.\n";
     return kExitBadInput;
   }
   // compare exits as idiff does, where 2 means the images differ: its bad options are 4.
@@ -251,7 +257,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     return kExitBadInput;
   }
   for (CLI::App* command :
-       {scene_cmd, stages_cmd, render_cmd, crosscheck_cmd, reference_cmd, sweep_cmd}) {
+       {scene_cmd, stages_cmd, render_cmd, crosscheck_cmd, reference_cmd, sweep_cmd, stress_cmd}) {
     if (command->parsed() && given_empty(command->get_option("SCENE"), scene_args.scene)) {
       err << "relief: error: SCENE is empty; give a scene file or a preset name, or leave it "
              "out for the default scene\n";
@@ -352,6 +358,9 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     }
     if (sweep_cmd->parsed()) {
       return run_sweep_command(scene, sweep, out, err);
+    }
+    if (stress_cmd->parsed()) {
+      return run_stress_command(scene, stress, out, err);
     }
     if (render_cmd->parsed()) {
       const std::string& o = render.output;

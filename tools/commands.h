@@ -100,4 +100,21 @@ struct CrosscheckOptions {
 // 2 failure, 3 size mismatch). Throws GlBackendError when there is no GL.
 int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options, std::ostream& out);
 
+struct StressOptions {
+  std::vector<int> viewport = {640, 512};  // the base scene's size for the cases
+  int grid_side = 256;
+  std::vector<std::string> backends;  // empty: every backend of this build
+  std::vector<std::string> axes;      // empty: every axis (stress_cases.h)
+  std::string max_memory = "1G";      // the budget of the largest cases
+  std::string sheet;                  // PNG of one thumbnail per case (empty: none)
+};
+
+// `relief stress`: the stability stress suite (pipeline/stress_run.h) on the scene, as a table.
+// Returns 0 when every check holds, 1 when one does not.
+int run_stress_command(const Scene& scene, const StressOptions& options, std::ostream& out,
+                       std::ostream& err);
+
+// Adds the command and its own options to `app` (stress_command.cc).
+CLI::App* add_stress_command(CLI::App& app, StressOptions& options);
+
 }  // namespace relief
