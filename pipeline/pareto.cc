@@ -8,6 +8,12 @@ bool dominates(const ParetoPoint& a, const ParetoPoint& b) {
   return a.time <= b.time && a.error <= b.error && (a.time < b.time || a.error < b.error);
 }
 
+bool dominates_beyond(const ParetoPoint& a, const ParetoPoint& b, double time_tolerance,
+                      double error_tolerance) {
+  return dominates(a, b) && (b.time - a.time > time_tolerance * b.time ||
+                             b.error - a.error > error_tolerance * b.error);
+}
+
 // Quadratic in the number of points: a sweep has a few dozen.
 std::vector<bool> pareto_front(std::span<const ParetoPoint> points) {
   std::vector<bool> on_front(points.size(), true);

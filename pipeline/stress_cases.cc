@@ -22,12 +22,17 @@ std::string num(double v) {
   return std::string(text, std::to_chars(text, text + sizeof text, v).ptr);
 }
 
+// Built by appending: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string here.
 std::string vec(double x, double y, double z) {
-  return "[" + num(x) + "," + num(y) + "," + num(z) + "]";
+  std::string out(1, '[');
+  out.append(num(x)).append(1, ',').append(num(y)).append(1, ',').append(num(z)).append(1, ']');
+  return out;
 }
 
 std::string position(const Scene& base, double x, double y, double z) {
-  return "camera.position=" + vec(base.camera.position[0] + x, y, base.camera.position[2] + z);
+  std::string out("camera.position=");
+  out.append(vec(base.camera.position[0] + x, y, base.camera.position[2] + z));
+  return out;
 }
 
 // The terrain's period in x and z: P lattice cells of octave 0. With an integer lacunarity

@@ -44,6 +44,16 @@ void require_pareto_properties(const std::vector<ParetoPoint>& points) {
   }
 }
 
+TEST_CASE("aPointDominatedByLessThanTheMeasurementResolvesIsNotClearlyDominated", "[sweep]") {
+  const ParetoPoint base{100.0, 0.2};
+  CHECK(dominates_beyond({90.0, 0.2}, base, 0.03, 0.005));           // 10 % faster
+  CHECK(dominates_beyond({100.0, 0.19}, base, 0.03, 0.005));         // 5 % less error
+  CHECK_FALSE(dominates_beyond({99.0, 0.1999}, base, 0.03, 0.005));  // within both
+  CHECK(dominates({99.0, 0.1999}, base));
+  CHECK_FALSE(dominates_beyond({90.0, 0.21}, base, 0.03, 0.005));  // faster but worse
+  CHECK_FALSE(dominates_beyond(base, base, 0.0, 0.0));             // equal points
+}
+
 TEST_CASE("paretoFrontKeepsExactlyTheUndominatedPoints", "[sweep]") {
   // Hand-made: (1, 5) (2, 3) (4, 1) on the front; (3, 4) dominated by (2, 3); (2, 6) by (1, 5)
   // and (2, 3); (4, 2) by (4, 1) (equal time, lower error); (5, 1) by (4, 1).
