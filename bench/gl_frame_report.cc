@@ -56,8 +56,10 @@ int run(int argc, char** argv) {
     median_frame(scene, resources, Backend::kSimd, repeat, all, cpu_all);
     const Frame gl = median_frame(scene, resources, Backend::kGl, repeat, all, gl_ms);
     const GridDifference grid =
-        compare_grids(run_terrain_stages<float>(scene, resources.lattice).grid,
-                      gl_terrain_stages(scene, resources.lattice));
+        compare_grids(run_terrain_stages<float>(scene, resources.lattice, Backend::kReference,
+                                                resources.sketch_or_null())
+                          .grid,
+                      gl_terrain_stages(scene, resources.lattice, resources.sketch_or_null()));
     const PixelDifference pixels = compare_pixels(cpu.image, gl.image);
     std::printf(
         "%-8s %9.2f %9.2f %9.2f %7.2f | %8llu %10.3g %10.3g %9.3g | %9.4f %9.3g %9.3g %6.0f "

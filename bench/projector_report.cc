@@ -86,12 +86,12 @@ void report(const Case& c, int grid) {
   const Scene scene = resolve_scene(c.preset, overrides);
   const SceneResources resources = load_scene_resources(scene);
   const auto start = std::chrono::steady_clock::now();
-  const FramePlan plan = make_frame_plan(scene, resources.lattice);
+  const FramePlan plan = make_frame_plan(scene, resources.lattice, resources.sketch_or_null());
   const double plan_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   const Frame frame = render_frame(scene, resources, FrameRequest{});
   const raster::RasterStats& s = frame.stats.raster;
-  const TerrainFrame f = rasterize_terrain(scene, resources.lattice);
+  const TerrainFrame f = rasterize_terrain(scene, resources);
   constexpr int kBands = 8;
   std::uint64_t drawn[kBands] = {}, total[kBands] = {};
   const raster::GridTriangles triangles = f.triangles();

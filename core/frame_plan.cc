@@ -1,6 +1,7 @@
 #include "core/frame_plan.h"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "core/limits.h"
 
@@ -30,7 +31,7 @@ LodPlan make_lod_plan(const TerrainSettings& terrain) {
 }
 
 TerrainPlan make_terrain_plan(const TerrainSettings& terrain, const NoiseLattice& lattice,
-                              const Vec3d& camera_position) {
+                              const Vec3d& camera_position, const HeightSketch* sketch) {
   TerrainPlan plan;
   plan.lattice = &lattice;
   plan.interpolant = terrain.interpolant;
@@ -55,16 +56,26 @@ TerrainPlan make_terrain_plan(const TerrainSettings& terrain, const NoiseLattice
   warp.roughness0 = std::pow(terrain.r, terrain.H);
   warp.lacunarity = terrain.r;
   warp.guard_sq = limits::kRoughnessGuard * limits::kRoughnessGuard;
+  if (terrain.sketch && sketch != nullptr) {
+    plan.sketch = sketch;
+    plan.sketch_plan =
+        make_sketch_plan(*terrain.sketch, *sketch, camera_position[0], camera_position[2]);
+  }
   return plan;
 }
 
-FramePlan make_frame_plan(const Scene& scene, const NoiseLattice& lattice) {
+FramePlan make_frame_plan(const Scene& scene, const NoiseLattice& lattice,
+                          const HeightSketch* sketch) {
+  if (scene.terrain.sketch && sketch == nullptr) {
+    throw std::invalid_argument(
+        "make_frame_plan: the scene has a terrain.sketch but no sketch was loaded for it");
+  }
   FramePlan plan;
   plan.camera = make_camera_frame(scene.camera, scene.viewport);
-  plan.bounds = derive_height_bounds(lattice, scene.terrain);
+  plan.bounds = derive_height_bounds(lattice, scene.terrain, sketch);
   plan.layout = make_grid_layout(scene.grid.width, scene.grid.height);
   plan.lod = make_lod_plan(scene.terrain);
-  plan.terrain = make_terrain_plan(scene.terrain, lattice, scene.camera.position);
+  plan.terrain = make_terrain_plan(scene.terrain, lattice, scene.camera.position, sketch);
   // After the terrain plan: the projector refines the slab by its regional height bound.
   plan.projector =
       make_projector(plan.camera, plan.bounds, scene.terrain.base_height, &plan.terrain);

@@ -6,6 +6,7 @@
 #include "core/camera.h"
 #include "core/grid_buffers.h"
 #include "core/height_bounds.h"
+#include "core/height_sketch.h"
 #include "core/lattice.h"
 #include "core/octaves.h"
 #include "core/projector.h"
@@ -47,6 +48,9 @@ struct TerrainPlan {
   double inv_horizontal_scale = 1;  // world units to octave-0 lattice cells
   double relative_base_height = 0;  // terrain.base_height - camera y, formed in double
   double amplitude = 1;
+  // §3's low-frequency base, added to the fractal (height_sketch.h); null: none.
+  const HeightSketch* sketch = nullptr;
+  SketchPlan sketch_plan;
 };
 
 struct FramePlan {
@@ -65,11 +69,14 @@ struct FramePlan {
 };
 
 // Precondition: the scene passed validate_scene and the lattice was built from its seed and
-// lattice_size.
-FramePlan make_frame_plan(const Scene& scene, const NoiseLattice& lattice);
+// lattice_size; `sketch` was loaded from scene.terrain.sketch (pipeline/scene_resources.h).
+// Throws std::invalid_argument when the scene has a sketch and `sketch` is null (a caller
+// that forgot it would otherwise render another terrain).
+FramePlan make_frame_plan(const Scene& scene, const NoiseLattice& lattice,
+                          const HeightSketch* sketch = nullptr);
 
 TerrainPlan make_terrain_plan(const TerrainSettings& terrain, const NoiseLattice& lattice,
-                              const Vec3d& camera_position);
+                              const Vec3d& camera_position, const HeightSketch* sketch = nullptr);
 
 LodPlan make_lod_plan(const TerrainSettings& terrain);
 

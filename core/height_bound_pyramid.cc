@@ -259,8 +259,20 @@ ValueRange RegionalHeightBound::bound(double x0, double x1, double z0, double z1
       radius = w.lacunarity * grow * (radius * grow + c3 * h_max * g * grow);
     }
   }
-  return {terrain_.relative_base_height + terrain_.amplitude * lowest - height_slack_,
-          terrain_.relative_base_height + terrain_.amplitude * highest + height_slack_};
+  return with_sketch({terrain_.relative_base_height + terrain_.amplitude * lowest - height_slack_,
+                      terrain_.relative_base_height + terrain_.amplitude * highest + height_slack_},
+                     x0, x1, z0, z1);
+}
+
+ValueRange RegionalHeightBound::with_sketch(ValueRange fractal, double x0, double x1, double z0,
+                                            double z1) const {
+  if (terrain_.sketch == nullptr) {
+    return fractal;
+  }
+  // §3's sketch: the region's texels (height_sketch.h), exact but for float's rounding.
+  const SketchRange s = sketch_range(terrain_.sketch_plan, *terrain_.sketch, x0, x1, z0, z1);
+  const double slack = limits::kHeightBoundSlack * std::max(std::abs(s.lo), std::abs(s.hi));
+  return {fractal.lo + s.lo - slack, fractal.hi + s.hi + slack};
 }
 
 ValueRange RegionalHeightBound::global() const {
@@ -273,8 +285,15 @@ ValueRange RegionalHeightBound::global() const {
     lowest = std::min(lowest, lo);
     highest = std::max(highest, hi);
   }
-  return {terrain_.relative_base_height + terrain_.amplitude * lowest - height_slack_,
-          terrain_.relative_base_height + terrain_.amplitude * highest + height_slack_};
+  ValueRange fractal{terrain_.relative_base_height + terrain_.amplitude * lowest - height_slack_,
+                     terrain_.relative_base_height + terrain_.amplitude * highest + height_slack_};
+  if (terrain_.sketch != nullptr) {
+    const double s_lo = terrain_.sketch->min_height, s_hi = terrain_.sketch->max_height;
+    const double slack = limits::kHeightBoundSlack * std::max(std::abs(s_lo), std::abs(s_hi));
+    fractal.lo += s_lo - slack;
+    fractal.hi += s_hi + slack;
+  }
+  return fractal;
 }
 
 }  // namespace relief

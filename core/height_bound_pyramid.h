@@ -35,6 +35,9 @@
 // like r^n in octave n's own cells, so the fine octaves of a warped terrain get their global
 // extremes, the coarse ones stay regional.
 //
+// §3's sketch (height_sketch.h) adds the extremes of the texels the region's points can read
+// (a region spanning more than 4096 texels gets the sketch's global extremes).
+//
 // Float: the stage forms p = offset + f u + W in float (fbm.cc) and rounds each interpolation
 // step; the rectangle is widened by kHeightBoundSlack of the coordinates' magnitude (a thousand
 // times float's rounding) and the heights by kHeightBoundSlack of their magnitude, as
@@ -93,6 +96,8 @@ class RegionalHeightBound {
   // The extremes of octave n's S over the sample points of the box, its warp displacement
   // within `radius` (lattice cells of octave n).
   ValueRange octave_range(int n, double radius, double x0, double x1, double z0, double z1) const;
+  // The fractal's bound plus §3's sketch over the box (height_sketch.h), when there is one.
+  ValueRange with_sketch(ValueRange fractal, double x0, double x1, double z0, double z1) const;
 
   const TerrainPlan& terrain_;
   const LatticeRangePyramid& pyramid_;

@@ -5,9 +5,12 @@
 // [Lmin, Lmax]. The LOD weights of the octaves lie in [0, 1] and the amplitudes r^(-kH) are
 // positive, hence
 //   sum_k a_k min(Lmin, 0) <= fBm <= sum_k a_k max(Lmax, 0),   k = k0 .. k1.
+// §3's sketch adds a convex combination of its texels (height_sketch.h): the world bounds grow
+// by the texels' extremes, widened by kHeightBoundSlack of their magnitude for float's rounding.
 // Domain warping moves where S is sampled, never its range, so the bound holds warped too.
 #pragma once
 
+#include "core/height_sketch.h"
 #include "core/lattice.h"
 #include "core/scene/scene.h"
 
@@ -20,6 +23,7 @@ struct HeightBounds {
   double world_max = 0;
 };
 
-HeightBounds derive_height_bounds(const NoiseLattice& lattice, const TerrainSettings& terrain);
+HeightBounds derive_height_bounds(const NoiseLattice& lattice, const TerrainSettings& terrain,
+                                  const HeightSketch* sketch = nullptr);
 
 }  // namespace relief

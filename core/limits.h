@@ -88,6 +88,16 @@ inline constexpr std::size_t kMaxMaterialLayers = 8;
 // Loaded proto-textures: square powers of two (the mip chain halves them exactly).
 inline constexpr int kMinTextureSize = 4;
 inline constexpr int kMaxTextureSize = 4096;
+// §3's height sketch (terrain.sketch): at least 2 texels a side (the interpolation blends two),
+// at most 4096 (64 MiB of float heights; a sketch is the coarse part of the terrain, the
+// fractal the detail). Its file obeys kMaxTextureFileBytes (a 4096^2 16-bit grey PNG stored
+// uncompressed is 32 MiB and change).
+inline constexpr int kMinSketchSize = 2;
+inline constexpr int kMaxSketchSize = 4096;
+// Its extent's coordinates lie within the camera's range, and a side spans at least 1e-3 units:
+// then the per-frame texel offset, (camera - x0) x texels / side <= 2e12 x 4096 / 1e-3 = 8e18,
+// and its float rounding stay finite (docs/scene-limits.md).
+inline constexpr double kMinSketchSpan = 1e-3;
 
 // --- Scene fields: ranges that keep the float pipeline meaningful --------------------------
 //

@@ -89,6 +89,7 @@ TerrainParams<Real> make_terrain_params(const FramePlan& plan) {
   TerrainParams<Real> p{make_domain_params<Real>(plan),
                         make_domain_rows<Real>(plan),
                         make_fbm_params<Real>(plan.terrain),
+                        make_sketch_params<Real>(plan.terrain.sketch_plan, plan.terrain.sketch),
                         {},
                         {}};
   SurfaceParams<Real>& s = p.surface;

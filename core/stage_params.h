@@ -161,6 +161,7 @@ struct TerrainParams {
   DomainParams<Real> domain;
   DomainRows<Real> domain_rows;  // stage 2's per-row table
   FbmParams<Real> fbm;
+  SketchParams<Real> sketch;  // stage 3, after the fractal: §3's low-frequency base
   SurfaceParams<Real> surface;
   TransformParams<Real> transform;
 };

@@ -7,6 +7,7 @@
 #include "core/fbm.h"
 #include "core/frame_plan.h"
 #include "core/grid_buffers.h"
+#include "core/height_sketch.h"
 #include "core/octave_coordinates.h"
 #include "core/projected_domain.h"
 #include "core/stage_params.h"
@@ -29,6 +30,18 @@ FbmWork evaluate_fbm_rows(const FbmParams<Real>& params, const NoiseLattice& lat
                             buffers.height);
 }
 
+// Stage 3's second part, §3's sketch, over whole rows where `mask` is non-zero (empty: all);
+// nothing when the frame has none.
+template <class Real>
+void add_sketch_rows(const SketchParams<Real>& params, const HeightSketch* sketch, RowRange rows,
+                     GridBuffers<Real>& buffers, std::span<const std::uint8_t> mask = {}) {
+  if (params.enabled == 0 || sketch == nullptr) {
+    return;
+  }
+  const IndexRange range{buffers.layout.index(0, rows.begin), buffers.layout.index(0, rows.end)};
+  add_sketch<Real>(params, sketch->heights, range, buffers.dx, buffers.dz, mask, buffers.height);
+}
+
 // Stages 2, 3 and 4 over the whole grid, with parameters derived from `plan` for this call:
 // every valid vertex, none culled (heights of invalid vertices 0, as the frame leaves them).
 template <class Real>
@@ -41,6 +54,7 @@ void run_terrain_stages(const FramePlan& plan, GridBuffers<Real>& buffers) {
                                              buffers.dz, buffers.nu, buffers.valid),
                           params.fbm);
   evaluate_fbm_rows<Real>(params.fbm, *plan.terrain.lattice, all, buffers, buffers.valid);
+  add_sketch_rows<Real>(params.sketch, plan.terrain.sketch, all, buffers, buffers.valid);
   surface_pass<Real>(params.surface, all, surface_inputs(buffers), buffers.surface());
 }
 

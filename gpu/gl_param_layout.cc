@@ -16,11 +16,13 @@ namespace {
 
 using Domain = DomainParams<float>;
 using Fbm = FbmParams<float>;
+using Sketch = SketchParams<float>;
 using Surface = SurfaceParams<float>;
 
 // The structs are uploaded as bytes: no pointers, no padding a GLSL struct would not have.
 static_assert(std::is_standard_layout_v<Domain> && std::is_trivially_copyable_v<Domain>);
 static_assert(std::is_standard_layout_v<Fbm> && std::is_trivially_copyable_v<Fbm>);
+static_assert(std::is_standard_layout_v<Sketch> && std::is_trivially_copyable_v<Sketch>);
 static_assert(std::is_standard_layout_v<Surface> && std::is_trivially_copyable_v<Surface>);
 static_assert(std::is_standard_layout_v<GlLatticeHeader>);
 
@@ -107,6 +109,22 @@ GlBlockLayout fbm_params_layout() {
   pieces("scale_piece_hi", offsetof(Fbm, scale_piece_hi));
   pieces("scale_piece_lo", offsetof(Fbm, scale_piece_lo));
   return layout;
+}
+
+GlBlockLayout sketch_params_layout() {
+  return {"SketchParamsBlock",
+          sizeof(Sketch),
+          {
+              RELIEF_SCALAR(Sketch, "sketch.", enabled),
+              RELIEF_SCALAR(Sketch, "sketch.", width),
+              RELIEF_SCALAR(Sketch, "sketch.", height),
+              RELIEF_SCALAR(Sketch, "sketch.", offset_x),
+              RELIEF_SCALAR(Sketch, "sketch.", offset_z),
+              RELIEF_SCALAR(Sketch, "sketch.", inv_cell_x),
+              RELIEF_SCALAR(Sketch, "sketch.", inv_cell_z),
+              RELIEF_SCALAR(Sketch, "sketch.", max_x),
+              RELIEF_SCALAR(Sketch, "sketch.", max_z),
+          }};
 }
 
 GlBlockLayout surface_params_layout() {

@@ -48,6 +48,7 @@ struct GlBlockLayout {
 
 GlBlockLayout domain_params_layout();   // DomainParamsBlock { DomainParams domain; }
 GlBlockLayout fbm_params_layout();      // FbmParamsBlock { FbmParams fbm; }
+GlBlockLayout sketch_params_layout();   // SketchParamsBlock { SketchParams sketch; }
 GlBlockLayout surface_params_layout();  // SurfaceParamsBlock { SurfaceParams surface; }
 GlBlockLayout lattice_layout();         // LatticeBlock: GlLatticeHeader, then the values
 

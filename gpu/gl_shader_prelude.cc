@@ -63,6 +63,7 @@ std::string shader_prelude() {
   s += define("RELIEF_BINDING_LATTICE", kBindingLattice);
   s += define("RELIEF_BINDING_MASK", kBindingMask);
   s += define("RELIEF_BINDING_REACH", kBindingReach);
+  s += define("RELIEF_BINDING_SKETCH", kBindingSketch);
   for (const GlStream stream : kGlStreams) {
     std::string name(gl_stream_name(stream));
     for (char& c : name) {

@@ -18,7 +18,8 @@ inline constexpr int kBindingFirstStream = 2;  // + GlStream
 inline constexpr int kBindingLattice = kBindingFirstStream + kGlStreamCount;
 inline constexpr int kBindingMask = kBindingLattice + 1;  // need flags, or valid
 inline constexpr int kBindingReach = kBindingMask + 1;    // octave_reach per finest octave
-inline constexpr int kBindingCount = kBindingReach + 1;
+inline constexpr int kBindingSketch = kBindingReach + 1;  // the sketch's texel heights
+inline constexpr int kBindingCount = kBindingSketch + 1;
 
 inline constexpr int stream_binding(GlStream stream) {
   return kBindingFirstStream + static_cast<int>(stream);

@@ -49,7 +49,8 @@ void upload_bytes(const GlName& buffer, std::size_t offset, const void* data, st
 
 }  // namespace
 
-GlTerrain::GlTerrain(GridLayout layout, const NoiseLattice& lattice) : layout_(layout) {
+GlTerrain::GlTerrain(GridLayout layout, const NoiseLattice& lattice, const HeightSketch* sketch)
+    : layout_(layout) {
   require_gl45("GlTerrain");
   context_ = current_egl_context();
   clear_gl_errors();
@@ -92,6 +93,12 @@ GlTerrain::GlTerrain(GridLayout layout, const NoiseLattice& lattice) : layout_(l
                   " bindings; this GL offers " + std::to_string(blocks) + " and " +
                   std::to_string(bindings));
   }
+  const std::size_t sketch_bytes = sketch ? sketch->heights.size() * sizeof(float) : 0;
+  if (static_cast<GLint64>(sketch_bytes) > max_block_bytes) {
+    throw GlError("GlTerrain: the sketch (" + std::to_string(sketch_bytes) +
+                  " bytes) exceeds this GL's largest storage block (" +
+                  std::to_string(max_block_bytes) + " bytes)");
+  }
   if (static_cast<GLint64>(std::max(stream_bytes, lattice_bytes)) > max_block_bytes) {
     throw GlError("GlTerrain: a stream of grid " + dims(layout.width, layout.height, layout.pitch) +
                   " (" + std::to_string(stream_bytes) + " bytes) or the lattice (" +
@@ -125,6 +132,22 @@ GlTerrain::GlTerrain(GridLayout layout, const NoiseLattice& lattice) : layout_(l
   upload_bytes(lattice_, sizeof header, lattice.values.data(),
                lattice.values.size() * sizeof(float));
   check_gl("uploading the noise lattice");
+  sketch_params_ = make_storage_buffer(padded_block_size(sizeof(SketchParams<float>)),
+                                       "the sketch's parameters");
+  if (sketch != nullptr) {
+    if (sketch->width < 2 || sketch->height < 2 ||
+        sketch->heights.size() != std::size_t(sketch->width) * std::size_t(sketch->height)) {
+      throw std::invalid_argument("GlTerrain: the sketch (" + std::to_string(sketch->width) +
+                                  " x " + std::to_string(sketch->height) + ", " +
+                                  std::to_string(sketch->heights.size()) +
+                                  " heights) is not a make_height_sketch one");
+    }
+    sketch_width_ = sketch->width;
+    sketch_height_ = sketch->height;
+    sketch_ = make_storage_buffer(sketch_bytes, "the sketch");
+    upload_bytes(sketch_, 0, sketch->heights.data(), sketch_bytes);
+    check_gl("uploading the sketch");
+  }
 }
 
 void GlTerrain::require_context(const char* who) const {
@@ -152,6 +175,7 @@ void GlTerrain::dispatch(unsigned int program, int groups_x, int groups_y,
 void GlTerrain::run(const TerrainParams<float>& params) {
   project_domain(params.domain, params.domain_rows);
   evaluate_fbm(params.fbm, OctaveForms::kFromReach);
+  add_sketch(params.sketch);
   surface_pass(params.surface);
 }
 
@@ -221,6 +245,33 @@ void GlTerrain::evaluate_fbm(const FbmParams<float>& params, OctaveForms forms) 
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingMask,
                    use_need_ ? need_.get() : buffer(GlStream::kValid));
   dispatch(programs_.fbm.get(), groups_x, layout_.height, "stage 3 (fbm.comp)");
+}
+
+void GlTerrain::add_sketch(const SketchParams<float>& params) {
+  require_context("add_sketch");
+  if (params.enabled == 0) {
+    return;
+  }
+  const char* who = "GlTerrain::add_sketch";
+  if (sketch_.get() == 0) {
+    throw std::invalid_argument(std::string(who) +
+                                ": SketchParams::enabled is 1 but this GlTerrain has no sketch");
+  }
+  require_equal(who, "SketchParams::width", params.width, sketch_width_);
+  require_equal(who, "SketchParams::height", params.height, sketch_height_);
+  upload_bytes(sketch_params_, 0, &params, sizeof params);
+  check_gl("uploading the sketch's parameters");
+  const GLuint program = programs_.sketch.get();
+  glProgramUniform1i(program, glGetUniformLocation(program, "grid_pitch"), layout_.pitch);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingParams, sketch_params_.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingSketch, sketch_.get());
+  for (const GlStream s : {GlStream::kDx, GlStream::kDz, GlStream::kHeight}) {
+    bind_stream(s);
+  }
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingMask,
+                   use_need_ ? need_.get() : buffer(GlStream::kValid));
+  dispatch(program, (layout_.pitch + kGroupSize - 1) / kGroupSize, layout_.height,
+           "stage 3's sketch (sketch.comp)");
 }
 
 void GlTerrain::surface_pass(const SurfaceParams<float>& params) {

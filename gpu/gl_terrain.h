@@ -19,6 +19,7 @@
 #include <string>
 
 #include "core/grid_buffers.h"
+#include "core/height_sketch.h"
 #include "core/lattice.h"
 #include "core/stage_params.h"
 #include "gpu/gl_objects.h"
@@ -41,7 +42,9 @@ class GlTerrain {
   // uploads `lattice`. Throws GlError if no GL 4.5 context is current, a limit of this GL is
   // too small for the grid or the lattice, or a program fails to build or to match the C++
   // structs; std::invalid_argument if the layout is not a make_grid_layout one.
-  GlTerrain(GridLayout layout, const NoiseLattice& lattice);
+  // `sketch`: §3's low-frequency base of the scene (core/height_sketch.h), uploaded here; null:
+  // none (add_sketch then accepts only disabled parameters).
+  GlTerrain(GridLayout layout, const NoiseLattice& lattice, const HeightSketch* sketch = nullptr);
   ~GlTerrain() = default;
   GlTerrain(const GlTerrain&) = delete;
   GlTerrain& operator=(const GlTerrain&) = delete;
@@ -54,6 +57,10 @@ class GlTerrain {
   // The stages one by one, in this order (each reads what the previous ones wrote).
   void project_domain(const DomainParams<float>& params, const DomainRows<float>& rows);
   void evaluate_fbm(const FbmParams<float>& params, OctaveForms forms = OctaveForms::kFromReach);
+  // Stage 3's second part: adds the sketch to the heights evaluate_fbm wrote (where stage 3
+  // evaluated). Nothing when params.enabled is 0; throws std::invalid_argument when the
+  // parameters do not match the sketch given to the constructor.
+  void add_sketch(const SketchParams<float>& params);
   void surface_pass(const SurfaceParams<float>& params);
 
   // The frame's need flags (core/vertex_culling.h: kEvaluate, kDraw), one byte per vertex:
@@ -93,11 +100,13 @@ class GlTerrain {
   void* context_ = nullptr;  // the EGL context the objects belong to
   int lattice_size_ = 0;
   GlTerrainPrograms programs_;
-  GlName domain_params_, fbm_params_, surface_params_;  // the structs' bytes
-  GlName rows_;                                         // DomainRows: descent, x0, step_x
-  GlName lattice_;                                      // GlLatticeHeader, then the values
-  GlName reach_;  // octave_reach's extents per finest octave (float bits)
-  GlName need_;   // the need flags, when set
+  GlName domain_params_, fbm_params_, sketch_params_, surface_params_;  // the structs' bytes
+  GlName sketch_;  // the sketch's texel heights, when there is one
+  int sketch_width_ = 0, sketch_height_ = 0;
+  GlName rows_;     // DomainRows: descent, x0, step_x
+  GlName lattice_;  // GlLatticeHeader, then the values
+  GlName reach_;    // octave_reach's extents per finest octave (float bits)
+  GlName need_;     // the need flags, when set
   bool use_need_ = false;
   GlName streams_[kGlStreamCount];
 };

@@ -104,6 +104,10 @@ GridBuffers<float> staged_reference(const FramePlan& plan, const GridBuffers<flo
                           params.fbm);
   evaluate_fbm<float>(params.fbm, *plan.terrain.lattice, all, gl.dx, gl.dz, gl.nu, gl.valid,
                       staged.height);
+  if (params.sketch.enabled != 0) {  // §3's sketch, stage 3's second part
+    add_sketch<float>(params.sketch, plan.terrain.sketch->heights, all, gl.dx, gl.dz, gl.valid,
+                      staged.height);
+  }
   // Stage 4 on the GL's stages 2 and 3.
   const SurfaceInputs<float> inputs{gl.dx, gl.dz, gl.height, gl.valid, {}};
   surface_pass<float>(params.surface, RowRange{0, layout.height}, inputs, staged.surface());

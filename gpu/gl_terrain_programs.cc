@@ -24,9 +24,9 @@ GlName build(const std::string& prelude, const std::string& name,
 
 std::vector<GlProgramBlocks> terrain_program_blocks() {
   return {
-      {"domain", {domain_params_layout()}},   {"reach", {}},
-      {"forms", {fbm_params_layout()}},       {"fbm", {fbm_params_layout(), lattice_layout()}},
-      {"surface", {surface_params_layout()}},
+      {"domain", {domain_params_layout()}}, {"reach", {}},
+      {"forms", {fbm_params_layout()}},     {"fbm", {fbm_params_layout(), lattice_layout()}},
+      {"sketch", {sketch_params_layout()}}, {"surface", {surface_params_layout()}},
   };
 }
 
@@ -43,6 +43,9 @@ unsigned int program_named(const GlTerrainPrograms& programs, std::string_view n
   if (name == "fbm") {
     return programs.fbm.get();
   }
+  if (name == "sketch") {
+    return programs.sketch.get();
+  }
   if (name == "surface") {
     return programs.surface.get();
   }
@@ -57,6 +60,7 @@ GlTerrainPrograms build_terrain_programs() {
   p.forms = build(prelude, "forms.comp (coordinate forms)", {"forms.comp"});
   p.fbm =
       build(prelude, "fbm.comp (stage 3)", {"lattice.glsl", "octave_coordinates.glsl", "fbm.comp"});
+  p.sketch = build(prelude, "sketch.comp (stage 3, sketch)", {"sketch.comp"});
   p.surface = build(prelude, "surface.comp (stage 4)", {"surface.comp"});
   for (const GlProgramBlocks& entry : terrain_program_blocks()) {
     std::string problems;

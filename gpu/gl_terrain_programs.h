@@ -16,6 +16,7 @@ struct GlTerrainPrograms {
   GlName reach;    // octave_reach: reach.comp
   GlName forms;    // choose_coordinate_forms: forms.comp
   GlName fbm;      // stage 3: fbm.comp
+  GlName sketch;   // stage 3, §3's sketch: sketch.comp
   GlName surface;  // stage 4: surface.comp
 };
 

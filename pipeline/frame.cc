@@ -60,7 +60,7 @@ Frame render_with(const Scene& scene, const SceneResources& resources,
     backend = make_gl_backend(scene, resources, request);
   } else {
     backend = std::make_unique<ReferenceBackend<Real>>(scene, resources.lattice, resources.textures,
-                                                       request);
+                                                       request, resources.sketch_or_null());
   }
   Frame frame;
   frame.stats.stages.push_back({"frame plan", milliseconds_since(start), true, {}});
@@ -114,7 +114,8 @@ FrameStats render_bands_with(const Scene& scene, const SceneResources& resources
                              const FrameRequest& request, int band_rows,
                              const std::function<void(const FrameImage&, int)>& consume) {
   const Clock::time_point start = Clock::now();
-  ReferenceBackend<Real> backend(scene, resources.lattice, resources.textures, request);
+  ReferenceBackend<Real> backend(scene, resources.lattice, resources.textures, request,
+                                 resources.sketch_or_null());
   FrameStats stats;
   stats.stages.push_back({"frame plan", milliseconds_since(start), true, {}});
   run_table(backend, StageId::kBinning, stats.stages);
@@ -176,27 +177,30 @@ Frame render_frame_repeated(const Scene& scene, const SceneResources& resources,
 }
 
 template <class Real>
-TerrainRun<Real> run_terrain_stages(const Scene& scene, const NoiseLattice& lattice, Backend kind) {
+TerrainRun<Real> run_terrain_stages(const Scene& scene, const NoiseLattice& lattice, Backend kind,
+                                    const HeightSketch* sketch) {
   const Clock::time_point start = Clock::now();
   // The whole grid, seen or not: relief stages writes every vertex.
   if constexpr (std::is_same_v<Real, float>) {
     if (kind == Backend::kGl) {
-      GridBuffers<float> grid = gl_terrain_stages(scene, lattice);
+      GridBuffers<float> grid = gl_terrain_stages(scene, lattice, sketch);
       std::vector<StageTime> times{
           {"GL stages 1-4, read back", milliseconds_since(start), true, {}}};
-      return {make_frame_plan(scene, lattice), std::move(grid), std::move(times)};
+      return {make_frame_plan(scene, lattice, sketch), std::move(grid), std::move(times)};
     }
   }
   FrameRequest request;
   request.backend = kind;
   request.skips.unseen_vertices = false;
-  ReferenceBackend<Real> backend(scene, lattice, {}, request);
+  ReferenceBackend<Real> backend(scene, lattice, {}, request, sketch);
   std::vector<StageTime> times{{"frame plan", milliseconds_since(start), true, {}}};
   run_table(backend, StageId::kSurface, times);
   return {backend.plan(), backend.take_grid(), std::move(times)};
 }
 
-template TerrainRun<float> run_terrain_stages<float>(const Scene&, const NoiseLattice&, Backend);
-template TerrainRun<double> run_terrain_stages<double>(const Scene&, const NoiseLattice&, Backend);
+template TerrainRun<float> run_terrain_stages<float>(const Scene&, const NoiseLattice&, Backend,
+                                                     const HeightSketch*);
+template TerrainRun<double> run_terrain_stages<double>(const Scene&, const NoiseLattice&, Backend,
+                                                       const HeightSketch*);
 
 }  // namespace relief

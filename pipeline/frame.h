@@ -140,6 +140,7 @@ template <class Real>
 TerrainRun<Real> run_terrain_stages(const Scene& scene, const NoiseLattice& lattice,
                                     Backend backend = std::is_same_v<Real, float>
                                                           ? Backend::kReference
-                                                          : Backend::kReferenceDouble);
+                                                          : Backend::kReferenceDouble,
+                                    const HeightSketch* sketch = nullptr);
 
 }  // namespace relief

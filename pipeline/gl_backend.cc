@@ -74,10 +74,11 @@ class GlBackend final : public FrameBackend {
         scene_(scene),
         resources_(resources),
         request_(request),
-        plan_(make_frame_plan(scene, resources.lattice)),
+        plan_(make_frame_plan(scene, resources.lattice, resources.sketch_or_null())),
         params_(make_terrain_params<float>(plan_)) {
     with_context(session(), "set-up", [&] {
-      terrain_ = std::make_unique<gpu::GlTerrain>(plan_.layout, resources_.lattice);
+      terrain_ = std::make_unique<gpu::GlTerrain>(plan_.layout, resources_.lattice,
+                                                  resources_.sketch_or_null());
     });
   }
 
@@ -116,7 +117,10 @@ class GlBackend final : public FrameBackend {
                      [&] { terrain_->project_domain(params_.domain, params_.domain_rows); });
         return;
       case StageId::kFractal:
-        with_context(s, "fractal", [&] { terrain_->evaluate_fbm(params_.fbm); });
+        with_context(s, "fractal", [&] {
+          terrain_->evaluate_fbm(params_.fbm);
+          terrain_->add_sketch(params_.sketch);  // §3's low-frequency base (none: no pass)
+        });
         return;
       case StageId::kSurface:
         with_context(s, "surface pass", [&] { terrain_->surface_pass(params_.surface); });
@@ -221,17 +225,18 @@ std::unique_ptr<FrameBackend> make_gl_backend(const Scene& scene, const SceneRes
   return std::make_unique<GlBackend>(scene, resources, request);
 }
 
-GridBuffers<float> gl_terrain_stages(const Scene& scene, const NoiseLattice& lattice) {
+GridBuffers<float> gl_terrain_stages(const Scene& scene, const NoiseLattice& lattice,
+                                     const HeightSketch* sketch) {
   GlSession& s = session();
   const std::lock_guard<std::mutex> lock(s.mutex);
-  const FramePlan plan = make_frame_plan(scene, lattice);
+  const FramePlan plan = make_frame_plan(scene, lattice, sketch);
   const TerrainParams<float> params = make_terrain_params<float>(plan);
   GridBuffers<float> grid(plan.layout);
   if (params.domain.terrain_visible == 0) {
     return grid;
   }
   with_context(s, "terrain stages", [&] {
-    gpu::GlTerrain terrain(plan.layout, lattice);
+    gpu::GlTerrain terrain(plan.layout, lattice, sketch);
     terrain.run(params);
     terrain.read_all(grid);
   });
@@ -253,7 +258,7 @@ std::unique_ptr<FrameBackend> make_gl_backend(const Scene&, const SceneResources
   throw GlBackendError("this build of Relief has no GL side (configured with RELIEF_WITH_GL=OFF)");
 }
 
-GridBuffers<float> gl_terrain_stages(const Scene&, const NoiseLattice&) {
+GridBuffers<float> gl_terrain_stages(const Scene&, const NoiseLattice&, const HeightSketch*) {
   throw GlBackendError("this build of Relief has no GL side (configured with RELIEF_WITH_GL=OFF)");
 }
 

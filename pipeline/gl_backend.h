@@ -43,6 +43,7 @@ std::unique_ptr<FrameBackend> make_gl_backend(const Scene& scene, const SceneRes
 
 // Stages 1-4 on the GL side with every vertex evaluated (as relief stages and
 // run_terrain_stages do on the CPU): the grid's buffers read back.
-GridBuffers<float> gl_terrain_stages(const Scene& scene, const NoiseLattice& lattice);
+GridBuffers<float> gl_terrain_stages(const Scene& scene, const NoiseLattice& lattice,
+                                     const HeightSketch* sketch = nullptr);
 
 }  // namespace relief

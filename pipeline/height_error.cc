@@ -10,8 +10,8 @@
 namespace relief {
 
 VertexHeightError vertex_height_error(const Scene& scene, const NoiseLattice& lattice,
-                                      Backend backend) {
-  const TerrainRun<float> run = run_terrain_stages<float>(scene, lattice, backend);
+                                      Backend backend, const HeightSketch* sketch) {
+  const TerrainRun<float> run = run_terrain_stages<float>(scene, lattice, backend, sketch);
   const GridLayout& layout = run.plan.layout;
   GridBuffers<double> exact(layout);
   for (std::size_t k = 0; k < layout.size(); ++k) {
@@ -27,6 +27,8 @@ VertexHeightError vertex_height_error(const Scene& scene, const NoiseLattice& la
       octave_reach<double>(IndexRange{0, layout.size()}, exact.dx, exact.dz, exact.nu, exact.valid),
       params.fbm);
   evaluate_fbm_rows<double>(params.fbm, lattice, RowRange{0, layout.height}, exact, exact.valid);
+  add_sketch_rows<double>(params.sketch, run.plan.terrain.sketch, RowRange{0, layout.height}, exact,
+                          exact.valid);
 
   VertexHeightError out;
   out.amplitude = scene.terrain.amplitude;

@@ -23,6 +23,7 @@ struct VertexHeightError {
 // `backend`: a float backend (reference, simd or gl). Every valid vertex of the scene's grid,
 // none culled.
 VertexHeightError vertex_height_error(const Scene& scene, const NoiseLattice& lattice,
-                                      Backend backend = Backend::kSimd);
+                                      Backend backend = Backend::kSimd,
+                                      const HeightSketch* sketch = nullptr);
 
 }  // namespace relief

@@ -17,6 +17,7 @@
 #include "pipeline/simd_setup.h"
 #include "simd/fbm.h"
 #include "simd/projected_domain.h"
+#include "simd/sketch.h"
 #include "simd/surface.h"
 #include "simd/vertex_outcodes.h"
 #include "simd/vertex_transform.h"
@@ -37,12 +38,12 @@ raster::RasterState frame_raster_state(const Scene& scene) {
 template <class Real>
 ReferenceBackend<Real>::ReferenceBackend(const Scene& scene, const NoiseLattice& lattice,
                                          std::span<const ProtoTexture> textures,
-                                         const FrameRequest& request)
+                                         const FrameRequest& request, const HeightSketch* sketch)
     : scene_(scene),
       lattice_(lattice),
       textures_(textures),
       request_(request),
-      plan_(make_frame_plan(scene, lattice)),
+      plan_(make_frame_plan(scene, lattice, sketch)),
       params_(make_terrain_params<Real>(plan_)),
       grid_(plan_.layout),
       cull_(make_cull_params<Real>(plan_)),
@@ -151,10 +152,15 @@ void ReferenceBackend<Real>::run(StageId id, std::size_t begin, std::size_t end)
                                  plan_.layout.index(0, rows.end)};
           tally_fbm(simd::evaluate_fbm(params_.fbm, lattice_, range, grid_.dx, grid_.dz, grid_.nu,
                                        need_, grid_.height));
+          if (params_.sketch.enabled != 0) {  // §3's low-frequency base
+            simd::add_sketch(params_.sketch, plan_.terrain.sketch->heights, range, grid_.dx,
+                             grid_.dz, need_, grid_.height);
+          }
           return;
         }
       }
       tally_fbm(evaluate_fbm_rows<Real>(params_.fbm, lattice_, rows, grid_, need_));
+      add_sketch_rows<Real>(params_.sketch, plan_.terrain.sketch, rows, grid_, need_);
       return;
     case StageId::kSurface:
       if constexpr (std::is_same_v<Real, float>) {

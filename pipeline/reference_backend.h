@@ -30,9 +30,11 @@ namespace relief {
 template <class Real>
 class ReferenceBackend final : public FrameBackend {
  public:
-  // `textures` may be empty when only stages 1-4 are run (relief stages).
+  // `textures` may be empty when only stages 1-4 are run (relief stages); `sketch` is the
+  // scene's terrain.sketch as loaded (null: the scene has none).
   ReferenceBackend(const Scene& scene, const NoiseLattice& lattice,
-                   std::span<const ProtoTexture> textures, const FrameRequest& request);
+                   std::span<const ProtoTexture> textures, const FrameRequest& request,
+                   const HeightSketch* sketch = nullptr);
 
   void prepare(StageId id) override;
   std::size_t units(StageId id) const override;

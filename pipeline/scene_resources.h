@@ -3,9 +3,11 @@
 // checked), each with the variance-reduced mip chain of §4.2.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "core/height_sketch.h"
 #include "core/lattice.h"
 #include "core/proto_texture.h"
 #include "core/scene/scene.h"
@@ -15,11 +17,19 @@ namespace relief {
 struct SceneResources {
   NoiseLattice lattice;
   std::vector<ProtoTexture> textures;  // one per scene.shading.layers entry
+  std::optional<HeightSketch> sketch;  // terrain.sketch's texels, when the scene has one
+
+  const HeightSketch* sketch_or_null() const { return sketch ? &*sketch : nullptr; }
 };
 
 // Throws SceneError naming the layer for a texture file that cannot be read, is not a PNG, or
-// is not square with a power-of-two side from 4 to 4096.
+// is not square with a power-of-two side from 4 to 4096; and naming terrain.sketch.image for a
+// sketch that cannot be read, is not a PNG, has more than one channel or a depth other than 8
+// or 16 bits, or is not 2 to kMaxSketchSize texels on a side.
 SceneResources load_scene_resources(const Scene& scene);
+
+// terrain.sketch's texels (nullopt when the scene has none), with load_scene_resources' checks.
+std::optional<HeightSketch> load_height_sketch(const Scene& scene);
 
 // The proto-texture image of one layer, linear RGB (PNG files are sRGB-decoded). A file's PNG
 // header is checked before the rest of it is read; then decode_texture_png.

@@ -13,9 +13,15 @@
 
 namespace relief {
 
-TerrainFrame rasterize_terrain(const Scene& scene, const NoiseLattice& lattice,
+TerrainFrame rasterize_terrain(const Scene& scene, const SceneResources& resources,
                                const raster::RasterLimits& limits) {
-  TerrainRun<float> terrain = run_terrain_stages<float>(scene, lattice);
+  return rasterize_terrain(scene, resources.lattice, limits, resources.sketch_or_null());
+}
+
+TerrainFrame rasterize_terrain(const Scene& scene, const NoiseLattice& lattice,
+                               const raster::RasterLimits& limits, const HeightSketch* sketch) {
+  TerrainRun<float> terrain =
+      run_terrain_stages<float>(scene, lattice, Backend::kReference, sketch);
   TerrainFrame frame{std::move(terrain.plan),
                      std::move(terrain.grid),
                      {},
@@ -78,7 +84,7 @@ ShadingInputs shading_inputs(const TerrainFrame& frame, const raster::ResolvedFr
 }
 
 FrameImage render_whole_frame(const Scene& scene, const SceneResources& resources) {
-  const TerrainFrame frame = rasterize_terrain(scene, resources.lattice);
+  const TerrainFrame frame = rasterize_terrain(scene, resources);
   const raster::ResolvedFrame resolved = resolve_for_shading(frame);
   const ShadingPlan plan = make_shading_plan(scene, frame.plan, resources.lattice.size);
   const ShadeParams<float> params = make_shade_params<float>(plan);

@@ -32,7 +32,13 @@ struct TerrainFrame {
 };
 
 // Throws MemoryLimitError (memory_budget.h) when the rasteriser's bins exceed `limits`.
+// `sketch`: the scene's terrain.sketch as loaded (null: none).
 TerrainFrame rasterize_terrain(const Scene& scene, const NoiseLattice& lattice,
+                               const raster::RasterLimits& limits = {},
+                               const HeightSketch* sketch = nullptr);
+
+// The same with the scene's resources (the lattice and the sketch).
+TerrainFrame rasterize_terrain(const Scene& scene, const SceneResources& resources,
                                const raster::RasterLimits& limits = {});
 
 // Stage 7 as stage 8 reads it: eight streams (dx, dz, height, nx, ny, nz, slope, water

@@ -62,7 +62,7 @@ TEST_CASE("requestedOutputsAreThoseOfTheStagesAndNothingElseIsAllocated", "[fram
   const Frame frame = render_frame(scene, resources, with_all_outputs());
   const FrameImage& image = frame.image;
   CHECK(image.srgb == plain.image.srgb);
-  const TerrainFrame terrain = rasterize_terrain(scene, resources.lattice);
+  const TerrainFrame terrain = rasterize_terrain(scene, resources);
   const raster::ResolvedFrame resolved = resolve_for_shading(terrain);
   const double camera_y = scene.camera.position[1];
   const float nu_max = float(scene.terrain.last_octave - scene.terrain.first_octave + 1);

@@ -46,7 +46,7 @@ struct FrameInputs {
 };
 
 FrameInputs frame_inputs(const Scene& scene, const SceneResources& resources) {
-  FrameInputs in{rasterize_terrain(scene, resources.lattice), {}, {}, 0.0};
+  FrameInputs in{rasterize_terrain(scene, resources), {}, {}, 0.0};
   in.shade =
       make_shade_params<float>(make_shading_plan(scene, in.terrain.plan, resources.lattice.size));
   in.transform = make_terrain_params<float>(in.terrain.plan).transform;

@@ -42,6 +42,9 @@ std::size_t cpp_size(std::string_view block) {
   if (block == "FbmParamsBlock") {
     return sizeof(FbmParams<float>);
   }
+  if (block == "SketchParamsBlock") {
+    return sizeof(SketchParams<float>);
+  }
   if (block == "SurfaceParamsBlock") {
     return sizeof(SurfaceParams<float>);
   }
@@ -87,7 +90,7 @@ TEST_CASE("glParameterBlocksMirrorTheCppStructsMemberByMember", "[gl]") {
       ++blocks_checked;
     }
   }
-  CHECK(blocks_checked == 5);
+  CHECK(blocks_checked == 6);
 }
 
 TEST_CASE("glStreamBlocksAreTightArraysAtOffsetZero", "[gl]") {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <utility>
 
 #include <catch2/catch.hpp>
@@ -13,6 +14,7 @@
 #include "core/terrain_stages.h"
 #include "gl_test_context.h"
 #include "gpu/gl_terrain.h"
+#include "pipeline/scene_resources.h"
 
 namespace relief::test {
 
@@ -150,8 +152,11 @@ GlTerrainRun run_cpu_and_gl(const std::string& preset, std::vector<std::string> 
   const Scene scene = resolve_scene(preset, overrides);
   auto lattice = std::make_unique<NoiseLattice>(
       make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size));
-  const FramePlan plan = make_frame_plan(scene, *lattice);
+  std::optional<HeightSketch> loaded = load_height_sketch(scene);
+  auto sketch = loaded ? std::make_unique<HeightSketch>(std::move(*loaded)) : nullptr;
+  const FramePlan plan = make_frame_plan(scene, *lattice, sketch.get());
   GlTerrainRun run{std::move(lattice),
+                   std::move(sketch),
                    plan,
                    GridBuffers<float>(plan.layout),
                    GridBuffers<float>(plan.layout),
@@ -164,7 +169,7 @@ GlTerrainRun run_cpu_and_gl(const std::string& preset, std::vector<std::string> 
                           octave_reach<float>(IndexRange{0, plan.layout.size()}, run.cpu.dx,
                                               run.cpu.dz, run.cpu.nu, run.cpu.valid),
                           run.cpu_fbm);
-  gpu::GlTerrain terrain(plan.layout, *run.lattice);
+  gpu::GlTerrain terrain(plan.layout, *run.lattice, run.sketch.get());
   terrain.run(make_terrain_params<float>(plan));
   terrain.read_all(run.gl);
   run.gl_fbm = terrain.fbm_params();

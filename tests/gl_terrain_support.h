@@ -10,6 +10,7 @@
 
 #include "core/frame_plan.h"
 #include "core/grid_buffers.h"
+#include "core/height_sketch.h"
 #include "core/lattice.h"
 #include "core/stage_params.h"
 #include "gpu/gl_terrain_differences.h"
@@ -22,6 +23,7 @@ bool gl_is_exact(const std::string& renderer);
 
 struct GlTerrainRun {
   std::unique_ptr<NoiseLattice> lattice;  // on the heap: the plan points at it
+  std::unique_ptr<HeightSketch> sketch;   // terrain.sketch's texels, or null; the same
   FramePlan plan;
   GridBuffers<float> cpu, gl;
   FbmParams<float> cpu_fbm, gl_fbm;     // as stage 3 ran: the octaves' forms chosen

@@ -36,7 +36,7 @@ bool exact() {
 }
 
 TEST_CASE("glTerrainStagesMatchTheCpuOnEveryPreset", "[gl]") {
-  for (const char* preset : {"default", "alpine", "dunes", "lake", "lava", "plain"}) {
+  for (const char* preset : {"default", "alpine", "dunes", "island", "lake", "lava", "plain"}) {
     const test::GlTerrainRun run = test::run_cpu_and_gl(preset, {}, kWidth, kHeight);
     test::check_gl_terrain(run, exact(), preset);
   }
@@ -55,6 +55,11 @@ TEST_CASE("glTerrainStagesMatchTheCpuWhereFloatIsStressed", "[gl]") {
       {"alpine", {"terrain.interpolant=\"linear\"", "camera.pitch_deg=-35"}},
       {"dunes", {"terrain.interpolant=\"cubic\"", "camera.pitch_deg=12"}},
       {"default", {"terrain.lod.fractional=false", "terrain.lod.bias=0.37"}},
+      // §3's sketch far from the origin, seen from outside its extent and over it.
+      {"island",
+       {"camera.position=[1004000,1400,1014500]",
+        "terrain.sketch.extent=[986000,986000,1014000,1014000]"}},
+      {"island", {"camera.position=[-20000,300,-25000]", "camera.pitch_deg=-20"}},
   };
   int exact_octaves = 0;
   for (const auto& [preset, overrides] : cases) {

@@ -117,7 +117,7 @@ TEST_CASE("everyPresetRendersWithoutNanOrInfinity", "[render]") {
       REQUIRE(std::isfinite(image.linear[k]));
       REQUIRE(image.linear[k] >= 0.0f);
     }
-    const TerrainFrame frame = rasterize_terrain(scene, resources.lattice);
+    const TerrainFrame frame = rasterize_terrain(scene, resources);
     for (std::uint32_t p : frame.visibility.primitive) {
       covered += p != raster::kNoPrimitive;
     }
@@ -129,7 +129,7 @@ TEST_CASE("waterCoversOnlyPixelsBelowTheWaterLevel", "[render]") {
   const Scene scene = resolve_scene(
       "lake", {"viewport.width=160", "viewport.height=120", "grid.width=96", "grid.height=96"});
   const SceneResources resources = load_scene_resources(scene);
-  const TerrainFrame frame = rasterize_terrain(scene, resources.lattice);
+  const TerrainFrame frame = rasterize_terrain(scene, resources);
   const raster::ResolvedFrame r = resolve_for_shading(frame);
   const ShadingInputs in = shading_inputs(frame, r);
   const ShadeParams<float> with_water =

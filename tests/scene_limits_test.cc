@@ -301,7 +301,7 @@ FrameCheck render_scene(const Scene& scene) {
   FrameRequest request;
   request.outputs.linear = true;
   const FrameImage image = render_frame(scene, resources, request).image;
-  const TerrainFrame terrain = rasterize_terrain(scene, resources.lattice);
+  const TerrainFrame terrain = rasterize_terrain(scene, resources);
   const raster::ResolvedFrame resolved = resolve_for_shading(terrain);
   FrameCheck f;
   f.pixels = terrain.visibility.primitive.size();

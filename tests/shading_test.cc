@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -16,6 +17,7 @@
 #include "core/stage_params.h"
 #include "core/texture_synthesis.h"
 #include "core/water.h"
+#include "pipeline/scene_resources.h"
 #include "raster/rasterize.h"
 #include "raster/resolve.h"
 #include "test_support.h"
@@ -26,6 +28,7 @@ namespace {
 struct PlanFixture {
   Scene scene;
   NoiseLattice lattice;
+  std::optional<HeightSketch> sketch;  // terrain.sketch's texels, where the scene has one
   FramePlan frame;
   std::vector<ProtoTexture> textures;
   ShadingPlan plan;
@@ -34,7 +37,8 @@ struct PlanFixture {
   explicit PlanFixture(Scene s)
       : scene(std::move(s)),
         lattice(make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size)),
-        frame(make_frame_plan(scene, lattice)) {
+        sketch(load_height_sketch(scene)),
+        frame(make_frame_plan(scene, lattice, sketch ? &*sketch : nullptr)) {
     for (const MaterialLayer& layer : scene.shading.layers) {
       (void)layer;
       RgbImage flat{4, std::vector<float>(48, 0.5f)};

@@ -92,8 +92,10 @@ int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options,
   double cpu_ms = 0, gl_ms = 0;
   const Frame cpu = timed_frame(scene, resources, options.cpu_backend, options.repeat, cpu_ms);
   const Frame gl = timed_frame(scene, resources, Backend::kGl, options.repeat, gl_ms);
-  const TerrainRun<float> cpu_terrain = run_terrain_stages<float>(scene, resources.lattice);
-  const GridBuffers<float> gl_grid = gl_terrain_stages(scene, resources.lattice);
+  const TerrainRun<float> cpu_terrain = run_terrain_stages<float>(
+      scene, resources.lattice, Backend::kReference, resources.sketch_or_null());
+  const GridBuffers<float> gl_grid =
+      gl_terrain_stages(scene, resources.lattice, resources.sketch_or_null());
   const GridDifference grid = compare_grids(cpu_terrain.grid, gl_grid);
   const FrameDifference frame = compare_frames(cpu.image, gl.image, options.thresholds);
 

@@ -3,6 +3,7 @@
 // files; the render is the pipeline's.
 #include <chrono>
 #include <iomanip>
+#include <optional>
 #include <ostream>
 #include <sstream>
 #include <string>
@@ -16,6 +17,7 @@
 #include "pipeline/image_io.h"
 #include "pipeline/image_metadata.h"
 #include "pipeline/job_memory.h"
+#include "pipeline/scene_resources.h"
 #include "tools/atomic_file.h"
 #include "tools/cli.h"
 #include "tools/cli_options.h"
@@ -42,7 +44,9 @@ std::string settings_text(const GroundTruthSettings& s) {
 
 void print_height_error(std::ostream& out, const Scene& scene) {
   const NoiseLattice lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
-  const VertexHeightError e = vertex_height_error(scene, lattice, Backend::kSimd);
+  const std::optional<HeightSketch> sketch = load_height_sketch(scene);
+  const VertexHeightError e =
+      vertex_height_error(scene, lattice, Backend::kSimd, sketch ? &*sketch : nullptr);
   out << std::scientific << std::setprecision(3) << "  float heights against double at the same "
       << "domain points (scene's grid " << scene.grid.width << "x" << scene.grid.height << ", "
       << e.vertices << " vertices): max " << e.max << ", rms " << e.rms << " world units ("

@@ -8,6 +8,7 @@
 #include "pipeline/build_info.h"
 #include "pipeline/frame.h"
 #include "pipeline/job_memory.h"
+#include "pipeline/scene_resources.h"
 #include "pipeline/statistics.h"
 #include "tools/cli.h"
 #include "tools/commands.h"
@@ -41,10 +42,11 @@ GridBuffers<float> rounded(const GridBuffers<double>& d) {
 // Runs stages 1-4 `repeat` times; returns the plan and the last run's buffers in float.
 template <class Real>
 std::pair<FramePlan, GridBuffers<float>> run(const Scene& scene, const NoiseLattice& lattice,
-                                             Backend backend, int repeat,
+                                             const HeightSketch* sketch, Backend backend,
+                                             int repeat,
                                              std::vector<std::vector<StageTime>>& times) {
   for (int k = 0;; ++k) {
-    TerrainRun<Real> terrain = run_terrain_stages<Real>(scene, lattice, backend);
+    TerrainRun<Real> terrain = run_terrain_stages<Real>(scene, lattice, backend, sketch);
     times.push_back(std::move(terrain.stages));
     if (k + 1 == repeat) {
       if constexpr (std::is_same_v<Real, float>) {
@@ -62,11 +64,14 @@ int run_stages_command(const Scene& scene, const StagesOptions& options, std::os
   check_memory(estimate_stages_memory(scene, options.backend), options.budget, "relief stages",
                "Lower grid.width/height");
   const NoiseLattice lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
+  const std::optional<HeightSketch> sketch_texels = load_height_sketch(scene);  // checked here
+  const HeightSketch* sketch = sketch_texels ? &*sketch_texels : nullptr;
   std::vector<std::vector<StageTime>> times;
   const Backend backend = options.backend;
-  const auto [plan, buffers] = backend == Backend::kReferenceDouble
-                                   ? run<double>(scene, lattice, backend, options.repeat, times)
-                                   : run<float>(scene, lattice, backend, options.repeat, times);
+  const auto [plan, buffers] =
+      backend == Backend::kReferenceDouble
+          ? run<double>(scene, lattice, sketch, backend, options.repeat, times)
+          : run<float>(scene, lattice, sketch, backend, options.repeat, times);
   const std::string dir = options.out_dir.empty() ? scene.output.stages_dir : options.out_dir;
   write_stage_outputs(dir, scene, plan, buffers, options.raw_format);
   out << std::fixed << std::setprecision(3) << "grid " << plan.layout.width << "x"

@@ -74,6 +74,17 @@ struct WarpSettings {
   Vec2d t0 = {0.0, 0.0};     // initial displacement, base-domain lattice cells
 };
 
+// §3's low-frequency base: a coarse grey-scale height sketch over a world rectangle, added to
+// the fractal (core/height_sketch.h), so that a designer places mountains, valleys and seas and
+// the fractal supplies the detail.
+struct SketchSettings {
+  // A PNG file (1 channel, 8 or 16 bits), absolute or relative to the scene file, or
+  // "builtin:NAME" for a sketch shipped inside the binary (island).
+  std::string image;
+  std::array<double, 4> extent = {-10000.0, -10000.0, 10000.0, 10000.0};  // [x0, z0, x1, z1]
+  Vec2d height = {0.0, 1000.0};  // world heights of black and of white
+};
+
 struct TerrainSettings {
   std::uint64_t seed = 1;
   int lattice_size = 256;  // P
@@ -90,6 +101,8 @@ struct TerrainSettings {
   double amplitude = 360.0;    // world units per unit of fBm (the N(0,1) lattice)
   // Water surface height; nullopt: no water (the water pass is skipped).
   std::optional<double> water_level = 0.0;
+  // The low-frequency base; nullopt: none (the fractal alone).
+  std::optional<SketchSettings> sketch;
 };
 
 // One proto-texture layer (§4.2) with the height/slope ranges of Scape's layers.

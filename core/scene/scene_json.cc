@@ -104,7 +104,9 @@ void apply_scene_layer(Scene& scene, const json& layer, std::string_view source,
            [&](const json& v, const std::string& p) { apply_viewport(in, v, p, scene.viewport); }},
           {"grid", [&](const json& v, const std::string& p) { apply_grid(in, v, p, scene.grid); }},
           {"terrain",
-           [&](const json& v, const std::string& p) { apply_terrain(in, v, p, scene.terrain); }},
+           [&](const json& v, const std::string& p) {
+             apply_terrain(in, v, p, scene.terrain, base_dir);
+           }},
           {"shading",
            [&](const json& v, const std::string& p) {
              apply_shading(in, v, p, scene.shading, base_dir);
@@ -285,7 +287,13 @@ json scene_to_json(const Scene& scene) {
       {"horizontal_scale", t.horizontal_scale},
       {"base_height", t.base_height},
       {"amplitude", t.amplitude},
-      {"water_level", t.water_level ? json(*t.water_level) : json(nullptr)}};
+      {"water_level", t.water_level ? json(*t.water_level) : json(nullptr)},
+      {"sketch", t.sketch
+                     ? json{{"image", t.sketch->image},
+                            {"extent", json::array({t.sketch->extent[0], t.sketch->extent[1],
+                                                    t.sketch->extent[2], t.sketch->extent[3]})},
+                            {"height", vec_json(t.sketch->height)}}
+                     : json(nullptr)}};
   json layers = json::array();
   for (const MaterialLayer& l : scene.shading.layers) {
     layers.push_back({{"name", l.name},

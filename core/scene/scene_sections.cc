@@ -151,7 +151,7 @@ void apply_grid(const LayerReader& in, const json& value, const std::string& pat
 }
 
 void apply_terrain(const LayerReader& in, const json& value, const std::string& path,
-                   TerrainSettings& terrain) {
+                   TerrainSettings& terrain, const std::filesystem::path& base_dir) {
   in.object(
       value, path,
       Handlers{
@@ -217,6 +217,10 @@ void apply_terrain(const LayerReader& in, const json& value, const std::string& 
                terrain.water_level =
                    in.number(v, p, Range{-limits::kMaxBaseHeight, limits::kMaxBaseHeight});
              }
+           }},
+          {"sketch",
+           [&](const json& v, const std::string& p) {
+             apply_sketch(in, v, p, terrain.sketch, base_dir);
            }},
       });
 }

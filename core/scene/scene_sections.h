@@ -19,7 +19,10 @@ void apply_viewport(const LayerReader& in, const json& value, const std::string&
 void apply_grid(const LayerReader& in, const json& value, const std::string& path,
                 GridSettings& grid);
 void apply_terrain(const LayerReader& in, const json& value, const std::string& path,
-                   TerrainSettings& terrain);
+                   TerrainSettings& terrain, const std::filesystem::path& base_dir);
+// terrain.sketch (sketch_section.cc): null removes it, an object patches it.
+void apply_sketch(const LayerReader& in, const json& value, const std::string& path,
+                  std::optional<SketchSettings>& sketch, const std::filesystem::path& base_dir);
 void apply_shading(const LayerReader& in, const json& value, const std::string& path,
                    ShadingSettings& shading, const std::filesystem::path& base_dir);
 void apply_lighting(const LayerReader& in, const json& value, const std::string& path,

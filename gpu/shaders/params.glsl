@@ -45,6 +45,14 @@ struct FbmParams {  // stage 3 (Eq. 1, §2.2, §4.1)
   float roughness0, guard_sq, min_rotation_sq, lacunarity;
 };
 
+struct SketchParams {  // stage 3, §3's low-frequency base (core/height_sketch.h)
+  int enabled;
+  int width, height;
+  float offset_x, offset_z;
+  float inv_cell_x, inv_cell_z;
+  float max_x, max_z;
+};
+
 struct SurfaceParams {  // stage 4 (§4.1, second pass)
   int width, height, pitch;
   int water_enabled;

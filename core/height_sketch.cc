@@ -1,0 +1,144 @@
+#include "core/height_sketch.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/interpolant.h"
+
+namespace relief {
+
+HeightSketch make_height_sketch(const SketchSettings& settings, int width, int height,
+                                std::span<const std::uint16_t> grey, int max_grey) {
+  HeightSketch sketch;
+  sketch.width = width;
+  sketch.height = height;
+  sketch.heights.resize(grey.size());
+  const double lo = settings.height[0], hi = settings.height[1];
+  for (std::size_t k = 0; k < grey.size(); ++k) {
+    sketch.heights[k] = static_cast<float>(lo + (hi - lo) * (double(grey[k]) / double(max_grey)));
+  }
+  const auto [lowest, highest] = std::minmax_element(sketch.heights.begin(), sketch.heights.end());
+  sketch.min_height = *lowest;
+  sketch.max_height = *highest;
+  return sketch;
+}
+
+SketchPlan make_sketch_plan(const SketchSettings& settings, const HeightSketch& sketch,
+                            double camera_x, double camera_z) {
+  const auto& e = settings.extent;
+  SketchPlan plan;
+  plan.enabled = true;
+  plan.inv_cell_x = double(sketch.width) / (e[2] - e[0]);  // x1 > x0: validate_scene
+  plan.inv_cell_z = double(sketch.height) / (e[3] - e[1]);
+  plan.offset_x = (camera_x - e[0]) * plan.inv_cell_x - 0.5;
+  plan.offset_z = (camera_z - e[1]) * plan.inv_cell_z - 0.5;
+  return plan;
+}
+
+template <class Real>
+SketchParams<Real> make_sketch_params(const SketchPlan& plan, const HeightSketch* sketch) {
+  SketchParams<Real> p;
+  if (!plan.enabled || sketch == nullptr) {
+    return p;
+  }
+  p.enabled = 1;
+  p.width = sketch->width;
+  p.height = sketch->height;
+  p.offset_x = Real(plan.offset_x);
+  p.offset_z = Real(plan.offset_z);
+  p.inv_cell_x = Real(plan.inv_cell_x);
+  p.inv_cell_z = Real(plan.inv_cell_z);
+  p.max_x = Real(sketch->width + 1);
+  p.max_z = Real(sketch->height + 1);
+  return p;
+}
+
+template <class Real>
+Real sample_sketch(const SketchParams<Real>& c, std::span<const float> heights, Real sx, Real sz) {
+  // Beyond 2 texels outside the centres every tap is an edge texel already: the clamp changes
+  // no value and keeps the integer conversion in range (and +-inf finite).
+  sx = std::min(std::max(sx, Real(-2)), c.max_x);
+  sz = std::min(std::max(sz, Real(-2)), c.max_z);
+  const Real fx = std::floor(sx), fz = std::floor(sz);
+  Real wx[4], wz[4];
+  bspline_weights(sx - fx, wx);
+  bspline_weights(sz - fz, wz);
+  const int i = static_cast<int>(fx), j = static_cast<int>(fz);
+  int column[4];
+  for (int k = 0; k < 4; ++k) {
+    column[k] = std::min(std::max(i + k - 1, 0), c.width - 1);  // clamp to the edge
+  }
+  Real sum = Real(0);
+  for (int m = 0; m < 4; ++m) {
+    const float* row =
+        heights.data() + std::size_t(std::min(std::max(j + m - 1, 0), c.height - 1)) * c.width;
+    const Real r = ((wx[0] * Real(row[column[0]]) + wx[1] * Real(row[column[1]])) +
+                    wx[2] * Real(row[column[2]])) +
+                   wx[3] * Real(row[column[3]]);
+    sum = m == 0 ? wz[0] * r : sum + wz[m] * r;
+  }
+  return sum;
+}
+
+template <class Real>
+void add_sketch(const SketchParams<Real>& c, std::span<const float> heights, IndexRange range,
+                std::span<const Real> dx, std::span<const Real> dz,
+                std::span<const std::uint8_t> mask, std::span<Real> height) {
+  for (std::size_t k = range.begin; k < range.end; ++k) {
+    if (!mask.empty() && !mask[k]) {
+      continue;  // not evaluated: evaluate_fbm left 0, no consumer reads it
+    }
+    const Real sx = c.offset_x + dx[k] * c.inv_cell_x;
+    const Real sz = c.offset_z + dz[k] * c.inv_cell_z;
+    height[k] = height[k] + sample_sketch<Real>(c, heights, sx, sz);
+  }
+}
+
+SketchRange sketch_range(const SketchPlan& plan, const HeightSketch& sketch, double x0, double x1,
+                         double z0, double z1) {
+  // The texel coordinates the stage can form there, widened for float's rounding of the
+  // offset and the product (a thousandth of a texel plus 1e-6 relative, far more than
+  // float's 2^-24 relative per operation).
+  const auto texels = [](double offset, double inv_cell, double a, double b, int count, int& lo,
+                         int& hi) {
+    const double s0 = offset + a * inv_cell, s1 = offset + b * inv_cell;
+    const double margin = 1e-3 + 1e-6 * (std::abs(offset) + std::abs(s0) + std::abs(s1));
+    // Taps floor(s) - 1 .. floor(s) + 2, clamped to the edges (coordinates clamped as the
+    // stage clamps them first).
+    const double c0 = std::clamp(s0 - margin, -2.0, count + 1.0);
+    const double c1 = std::clamp(s1 + margin, -2.0, count + 1.0);
+    lo = std::clamp(static_cast<int>(std::floor(c0)) - 1, 0, count - 1);
+    hi = std::clamp(static_cast<int>(std::floor(c1)) + 2, 0, count - 1);
+  };
+  int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
+  texels(plan.offset_x, plan.inv_cell_x, x0, x1, sketch.width, i0, i1);
+  texels(plan.offset_z, plan.inv_cell_z, z0, z1, sketch.height, j0, j1);
+  // A region covering most of the sketch gets its global extremes (no scan of a large block).
+  if (std::int64_t(i1 - i0 + 1) * (j1 - j0 + 1) > 4096) {
+    return {sketch.min_height, sketch.max_height};
+  }
+  float lo = sketch.heights[std::size_t(j0) * sketch.width + i0], hi = lo;
+  for (int j = j0; j <= j1; ++j) {
+    for (int i = i0; i <= i1; ++i) {
+      const float v = sketch.heights[std::size_t(j) * sketch.width + i];
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+  }
+  return {lo, hi};
+}
+
+template SketchParams<float> make_sketch_params<float>(const SketchPlan&, const HeightSketch*);
+template SketchParams<double> make_sketch_params<double>(const SketchPlan&, const HeightSketch*);
+template float sample_sketch<float>(const SketchParams<float>&, std::span<const float>, float,
+                                    float);
+template double sample_sketch<double>(const SketchParams<double>&, std::span<const float>, double,
+                                      double);
+template void add_sketch<float>(const SketchParams<float>&, std::span<const float>, IndexRange,
+                                std::span<const float>, std::span<const float>,
+                                std::span<const std::uint8_t>, std::span<float>);
+template void add_sketch<double>(const SketchParams<double>&, std::span<const float>, IndexRange,
+                                 std::span<const double>, std::span<const double>,
+                                 std::span<const std::uint8_t>, std::span<double>);
+
+}  // namespace relief

@@ -1,0 +1,110 @@
+// §3's low-frequency base: "a coarse sketch of the terrain ... to which the fractal adds the
+// fine-scale detail". A grey-scale image over a world rectangle [x0, x1] x [z0, z1], its texels
+// holding world heights (black: height[0], white: height[1]), added to the fractal's height in
+// stage 3 (docs/terrain-spec.md, section 11).
+//
+// Interpolation: texel (i, j) sits at its centre, x0 + (i + 1/2) (x1 - x0) / W, z0 + (j + 1/2)
+// (z1 - z0) / H (PNG row 0 at z0: the image seen from above with -z up, a map with north up).
+// The sketch is the uniform cubic B-spline of the texels (4 x 4 taps, weights bspline_weights):
+//   - C2 everywhere, and it reproduces linear ramps exactly, so a sloping sketch gives a
+//     uniform slope. (A quintic-weighted bilinear, the lattice's S, is C2 too but has zero
+//     gradient at every texel centre: on a coarse sketch's long slopes that shows as terraces,
+//     one per texel, which the first renders of the island showed plainly.)
+//   - a convex combination of its 16 taps (every weight >= 0): it never leaves [min, max] of
+//     the texels it reads, so the height bounds are the texels' extremes, exact (Catmull-Rom,
+//     interpolating, overshoots by up to 28% of the step and would need a looser bound).
+//   - the price: it approximates rather than interpolates (at a texel centre it is (v_-1 + 4 v_0
+//     + v_1) / 6 along each axis), a smoothing of a coarse sketch's steps (an 8-bit sketch's
+//     quantisation included) that a low-frequency base wants anyway.
+// Outside the rectangle the taps are clamped to the edge texels (GL_CLAMP_TO_EDGE): a sketch
+// does not tile; from one texel beyond the edge centres (half a texel outside the rectangle)
+// on, it is constant outwards along that axis.
+//
+// Camera-relative, as the fractal's lattice (docs/architecture.md): the texel coordinate of a
+// vertex is offset + d inv_cell, with offset = (C - x0) inv_cell - 1/2 formed once per frame in
+// double and rounded once, and inv_cell = W / (x1 - x0); the per-vertex product is small near
+// the camera, so a sketch a million units out is as accurate as one at the origin.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/grid_buffers.h"
+#include "core/scene/scene.h"
+
+namespace relief {
+
+// The texels, decoded once per scene (pipeline/scene_resources.h).
+struct HeightSketch {
+  int width = 0;   // texels along x (>= 2)
+  int height = 0;  // texels along z (>= 2)
+  // World heights, row j (along z) at j * width: lo + (hi - lo) grey / max_grey formed in
+  // double and rounded once to float (exact in double: both precisions read the same values).
+  std::vector<float> heights;
+  float min_height = 0, max_height = 0;  // extremes of `heights`
+};
+
+// heights[k] = lo + (hi - lo) grey[k] / max_grey; grey has width x height values.
+// Precondition: validated settings (lo < hi finite), width, height >= 2, max_grey > 0.
+HeightSketch make_height_sketch(const SketchSettings& settings, int width, int height,
+                                std::span<const std::uint16_t> grey, int max_grey);
+
+// The frame's sketch values in double (per frame, from the camera position).
+struct SketchPlan {
+  bool enabled = false;
+  double offset_x = 0, offset_z = 0;      // texel coordinate of the camera
+  double inv_cell_x = 1, inv_cell_z = 1;  // texels per world unit
+};
+
+SketchPlan make_sketch_plan(const SketchSettings& settings, const HeightSketch& sketch,
+                            double camera_x, double camera_z);
+
+// Stage 3's sketch parameters, each plan value rounded once to Real (stage_params.h).
+template <class Real>
+struct SketchParams {
+  std::int32_t enabled = 0;
+  std::int32_t width = 0, height = 0;  // texels
+  Real offset_x = 0, offset_z = 0;
+  Real inv_cell_x = 1, inv_cell_z = 1;
+  Real max_x = 0, max_z = 0;  // width + 1, height + 1: the coordinate clamp (with -2)
+};
+
+// The uniform cubic B-spline's weights of the taps floor(s) - 1 .. floor(s) + 2 at t = s -
+// floor(s) in [0, 1), in this operation order (docs/terrain-spec.md, section 11): each is >= 0
+// and they sum to 1 (to a few ulps).
+template <class Real>
+inline void bspline_weights(Real t, Real w[4]) {
+  const Real s = Real(1) - t;
+  w[0] = ((s * s) * s) / Real(6);
+  w[1] = ((((t * Real(3)) - Real(6)) * t) * t + Real(4)) / Real(6);
+  w[2] = ((((Real(3) - t * Real(3)) * t + Real(3)) * t) + Real(1)) / Real(6);
+  w[3] = ((t * t) * t) / Real(6);
+}
+
+template <class Real>
+SketchParams<Real> make_sketch_params(const SketchPlan& plan, const HeightSketch* sketch);
+
+// The sketch at texel coordinate (sx, sz) (texel centres at integers). Finite for any non-NaN
+// input (infinities clamp to the edges).
+template <class Real>
+Real sample_sketch(const SketchParams<Real>& c, std::span<const float> heights, Real sx, Real sz);
+
+// height[k] = height[k] + sketch at camera-relative (dx[k], dz[k]), for k in range where mask
+// is non-zero (empty: everywhere). Run after evaluate_fbm in stage 3 when c.enabled.
+// Precondition: finite dx, dz.
+template <class Real>
+void add_sketch(const SketchParams<Real>& c, std::span<const float> heights, IndexRange range,
+                std::span<const Real> dx, std::span<const Real> dz,
+                std::span<const std::uint8_t> mask, std::span<Real> height);
+
+// Extremes of the sketch over camera-relative base points dx in [x0, x1], dz in [z0, z1]
+// (world heights, exact: the texels the interpolation can read there). Precondition: finite,
+// x0 <= x1, z0 <= z1.
+struct SketchRange {
+  double lo = 0, hi = 0;
+};
+SketchRange sketch_range(const SketchPlan& plan, const HeightSketch& sketch, double x0, double x1,
+                         double z0, double z1);
+
+}  // namespace relief

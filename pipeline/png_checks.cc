@@ -1,0 +1,70 @@
+#include "pipeline/png_checks.h"
+
+#include <cstdint>
+#include <string_view>
+
+#include <stb_image.h>
+
+#include "core/scene/scene_json.h"
+#include "pipeline/png_header.h"
+#include "pipeline/png_layout.h"
+
+namespace relief {
+
+// stb says why it failed through a global that some failures leave as it was (an invalid
+// deflate block sets nothing), so a reason left by an earlier texture could be reported. This
+// sets it to a known value first: stb_info on no bytes fails with "unknown image type".
+namespace {
+constexpr std::string_view kNoStbReason = "unknown image type";
+}  // namespace
+
+void reset_stb_failure_reason() {
+  static constexpr unsigned char kNothing[1] = {0};
+  int unused = 0;
+  stbi_info_from_memory(kNothing, 0, &unused, &unused, &unused);
+}
+
+// Why stb failed, or `fallback` when it did not say.
+std::string stb_failure_reason_or(const char* fallback) {
+  const char* reason = stbi_failure_reason();
+  return reason && *reason && reason != kNoStbReason ? reason : fallback;
+}
+
+void check_png_image_data(const std::vector<unsigned char>& png, const std::string& field,
+                          const std::string& path) {
+  const PngLayout layout = png_layout(png.data(), png.size());
+  if (!layout.problem.empty()) {
+    throw SceneError(path, "scene: " + field + " could not be decoded: " + layout.problem);
+  }
+  const PngHeader header = *parse_png_header(png.data(), png.size());
+  const std::uint64_t filtered_bytes = png_filtered_image_bytes(header, header.interlace != 0);
+  if (filtered_bytes == 0) {
+    throw SceneError(path, "scene: " + field + " has bit depth " +
+                               std::to_string(header.bit_depth) + " with colour type " +
+                               std::to_string(header.colour_type) +
+                               ", a combination PNG does not allow");
+  }
+  // Inflated once into a buffer one byte larger than the header needs (at most 4096 x 16385
+  // bytes, 8-bit RGBA): stb's own inflate grows its buffer for as long as the stream goes on,
+  // so a small file could make it allocate gigabytes. Costs a second inflate of the data.
+  std::vector<char> inflated(filtered_bytes + 1);
+  reset_stb_failure_reason();
+  const int inflated_bytes =
+      stbi_zlib_decode_buffer(inflated.data(), static_cast<int>(inflated.size()),
+                              reinterpret_cast<const char*>(layout.image_data.data()),
+                              static_cast<int>(layout.image_data.size()));
+  const std::string inflate_error = inflated_bytes < 0 ? stb_failure_reason_or("") : "";
+  if ((inflated_bytes >= 0 && std::uint64_t(inflated_bytes) > filtered_bytes) ||
+      inflate_error == "output buffer limit") {
+    throw SceneError(path, "scene: " + field + " could not be decoded: its image data inflates " +
+                               "to more than the " + std::to_string(filtered_bytes) +
+                               " bytes its " + std::to_string(header.width) + "x" +
+                               std::to_string(header.height) + " header gives");
+  }
+  if (inflated_bytes < 0) {
+    throw SceneError(path, "scene: " + field + " could not be decoded: corrupt image data" +
+                               (inflate_error.empty() ? "" : " (" + inflate_error + ")"));
+  }
+}
+
+}  // namespace relief

@@ -1,0 +1,112 @@
+// terrain.sketch's image (§3's low-frequency base, core/height_sketch.h): a grey PNG of 8 or
+// 16 bits, from a file or built in, checked as the layer textures are (png_checks.h) before
+// stb_image decodes it.
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <stb_image.h>
+
+#include "core/input_file.h"
+#include "core/limits.h"
+#include "core/scene/json_input.h"
+#include "core/scene/scene_json.h"
+#include "pipeline/builtin_sketches.h"
+#include "pipeline/png_checks.h"
+#include "pipeline/png_header.h"
+#include "pipeline/scene_resources.h"
+
+namespace relief {
+
+namespace {
+
+// Refuses a sketch from its header: one grey channel of 8 or 16 bits, 2 to kMaxSketchSize
+// texels on a side.
+void check_sketch_header(const std::vector<unsigned char>& bytes, const std::string& field,
+                         const std::string& path) {
+  const std::optional<PngHeader> png = parse_png_header(bytes.data(), bytes.size());
+  if (!png) {
+    throw SceneError(path, "scene: " + field + " is not a PNG image (no PNG signature and header)");
+  }
+  if (png->colour_type != 0) {
+    static constexpr const char* kTypes[] = {"grey",         "?", "RGB", "palette",
+                                             "grey + alpha", "?", "RGBA"};
+    const char* type = png->colour_type <= 6 ? kTypes[png->colour_type] : "unknown";
+    throw SceneError(path, "scene: " + field + " has colour type " +
+                               std::to_string(png->colour_type) + " (" + type +
+                               "); allowed: a grey PNG with one channel (colour type 0)");
+  }
+  if (png->bit_depth != 8 && png->bit_depth != 16) {
+    throw SceneError(path, "scene: " + field + " has " + std::to_string(png->bit_depth) +
+                               " bits per channel; allowed: 8 or 16");
+  }
+  const std::uint32_t lo = limits::kMinSketchSize, hi = limits::kMaxSketchSize;
+  if (png->width < lo || png->width > hi || png->height < lo || png->height > hi) {
+    throw SceneError(path, "scene: " + field + " is " + std::to_string(png->width) + "x" +
+                               std::to_string(png->height) + " texels; allowed " +
+                               std::to_string(lo) + " to " + std::to_string(hi) + " on each side");
+  }
+}
+
+}  // namespace
+
+std::optional<HeightSketch> load_height_sketch(const Scene& scene) {
+  if (!scene.terrain.sketch) {
+    return std::nullopt;
+  }
+  const SketchSettings& settings = *scene.terrain.sketch;
+  const std::string path = "terrain.sketch.image";
+  const std::string field = path + " = \"" + brief_text(settings.image) + "\"";
+  std::vector<unsigned char> bytes;
+  static constexpr std::string_view kBuiltin = "builtin:";
+  if (settings.image.rfind(kBuiltin, 0) == 0) {
+    const std::span<const unsigned char> png =
+        builtin_sketch_png(std::string_view(settings.image).substr(kBuiltin.size()));
+    if (png.empty()) {
+      throw SceneError(path, "scene: " + field + " names no built-in sketch; allowed: " +
+                                 "builtin:island, or a PNG file");
+    }
+    bytes.assign(png.begin(), png.end());
+    check_sketch_header(bytes, field, path);
+  } else {
+    try {
+      InputFile file(settings.image, limits::kMaxTextureFileBytes);
+      bytes.resize(kPngHeaderBytes);
+      bytes.resize(file.read(bytes.data(), bytes.size()));
+      check_sketch_header(bytes, field, path);
+      const std::string rest = file.read_rest();
+      bytes.insert(bytes.end(), rest.begin(), rest.end());
+    } catch (const InputFileError& e) {
+      throw SceneError(path, "scene: " + field + " " + e.what());
+    }
+  }
+  // 16-bit samples whatever the file's depth (stb scales 8-bit values by 257, so v / 65535 is
+  // v8 / 255 exactly).
+  if (bytes.size() > limits::kMaxTextureFileBytes) {  // stb takes an int size
+    throw SceneError(path, "scene: " + field + " is larger than " +
+                               std::to_string(limits::kMaxTextureFileBytes) + " bytes");
+  }
+  // The chunks and the inflated size checked before stb sees the file (png_checks.h).
+  check_png_image_data(bytes, field, path);
+  int width = 0, height = 0, channels = 0;
+  reset_stb_failure_reason();
+  stbi_us* grey = stbi_load_16_from_memory(bytes.data(), static_cast<int>(bytes.size()), &width,
+                                           &height, &channels, 1);
+  const std::optional<PngHeader> png = parse_png_header(bytes.data(), bytes.size());
+  if (!grey || std::uint32_t(width) != png->width || std::uint32_t(height) != png->height) {
+    stbi_image_free(grey);
+    throw SceneError(path, "scene: " + field + " could not be decoded: " +
+                               (grey ? std::string("its header and data disagree")
+                                     : stb_failure_reason_or("corrupt image data")));
+  }
+  const HeightSketch sketch = make_height_sketch(
+      settings, width, height,
+      std::span<const std::uint16_t>(grey, std::size_t(width) * std::size_t(height)), 65535);
+  stbi_image_free(grey);
+  return sketch;
+}
+
+}  // namespace relief
