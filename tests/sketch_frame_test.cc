@@ -17,6 +17,7 @@
 #include "core/terrain_stages.h"
 #include "pipeline/height_error.h"
 #include "pipeline/scene_resources.h"
+#include "test_support.h"
 
 namespace relief {
 namespace {
@@ -149,8 +150,9 @@ TEST_CASE("regionalHeightBoundsHoldTheSketchedHeightsOfTheirRegions", "[sketch]"
   const LatticeRangePyramid pyramid = make_lattice_range_pyramid(lattice);
   const RegionalHeightBound regional(plan.terrain, pyramid);
   const ValueRange global = regional.global();
-  std::mt19937 rng(41);
-  std::uniform_real_distribution<double> corner(-16000.0, 16000.0), size(10.0, 6000.0);
+  test::TestRandom rng(41);
+  const auto corner = [](test::TestRandom& r) { return r.uniform(-16000.0, 16000.0); };
+  const auto size = [](test::TestRandom& r) { return r.uniform(10.0, 6000.0); };
   std::size_t checked = 0, outside = 0;
   double narrowest = 1e300;
   for (int box = 0; box < 200; ++box) {

@@ -200,8 +200,8 @@ TEST_CASE("sketchBsplineReproducesRampsNeverOvershootsIsC2AndClampsOutside", "[s
   }
   // Random texels: within the texels' extremes everywhere, far outside and at infinity too.
   const HeightSketch s = sketch_of(kW, kH, random_grey(kW * kH, 5));
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> coordinate(-6.0, kW + 5.0);
+  test::TestRandom rng(11);
+  const auto coordinate = [&](test::TestRandom& random) { return random.uniform(-6.0, kW + 5.0); };
   for (int k = 0; k < 20000; ++k) {
     const double sx = coordinate(rng), sz = coordinate(rng);
     const float f = sample_at<float>(s, float(sx), float(sz));
@@ -239,8 +239,9 @@ TEST_CASE("sketchRangeBoundsEveryValueItsRegionCanTake", "[sketch]") {
   const SketchSettings settings = settings_of(-200, 800);
   const SketchPlan plan = make_sketch_plan(settings, s, 12.5, -7.0);
   const SketchParams<float> p = make_sketch_params<float>(plan, &s);
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<double> corner(-160.0, 160.0), size(0.0, 30.0);
+  test::TestRandom rng(3);
+  const auto corner = [](test::TestRandom& r) { return r.uniform(-160.0, 160.0); };
+  const auto size = [](test::TestRandom& r) { return r.uniform(0.0, 30.0); };
   for (int box = 0; box < 300; ++box) {
     const double x0 = corner(rng), z0 = corner(rng), x1 = x0 + size(rng), z1 = z0 + size(rng);
     const SketchRange range = sketch_range(plan, s, x0, x1, z0, z1);
@@ -263,9 +264,11 @@ TEST_CASE("simdSketchIsBitIdenticalToTheReferenceOnEveryTarget", "[sketch][simd]
   const SketchPlan plan = make_sketch_plan(settings_of(-200, 800), s, 1e6 + 3.25, -2e5);
   const SketchParams<float> p = make_sketch_params<float>(plan, &s);
   // Points inside, outside and far outside the extent; a mask; odd counts for the tails.
-  std::mt19937 rng(29);
-  std::uniform_real_distribution<float> near_x(-1e6f - 150.0f, -1e6f + 150.0f);
-  std::uniform_real_distribution<float> near_z(2e5f - 80.0f, 2e5f + 80.0f);
+  test::TestRandom rng(29);
+  const auto near_x = [](test::TestRandom& r) {
+    return float(r.uniform(-1e6 - 150.0, -1e6 + 150.0));
+  };
+  const auto near_z = [](test::TestRandom& r) { return float(r.uniform(2e5 - 80.0, 2e5 + 80.0)); };
   constexpr std::size_t kCount = 1003;
   std::vector<float> dx(kCount), dz(kCount), base(kCount);
   std::vector<std::uint8_t> mask(kCount);
