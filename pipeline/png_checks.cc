@@ -1,10 +1,13 @@
 #include "pipeline/png_checks.h"
 
 #include <cstdint>
+#include <optional>
 #include <string_view>
 
 #include <stb_image.h>
 
+#include "core/input_file.h"
+#include "core/limits.h"
 #include "core/scene/scene_json.h"
 #include "pipeline/png_header.h"
 #include "pipeline/png_layout.h"
@@ -28,6 +31,32 @@ void reset_stb_failure_reason() {
 std::string stb_failure_reason_or(const char* fallback) {
   const char* reason = stbi_failure_reason();
   return reason && *reason && reason != kNoStbReason ? reason : fallback;
+}
+
+PngHeader png_header_or_throw(const std::vector<unsigned char>& bytes, const std::string& field,
+                              const std::string& path) {
+  const std::optional<PngHeader> png = parse_png_header(bytes.data(), bytes.size());
+  if (!png) {
+    throw SceneError(path, "scene: " + field + " is not a PNG image (no PNG signature and header)");
+  }
+  return *png;
+}
+
+std::vector<unsigned char> read_png_file(
+    const std::string& file_name, const std::string& field, const std::string& path,
+    const std::function<void(const std::vector<unsigned char>&)>& check_header) {
+  std::vector<unsigned char> bytes;
+  try {
+    InputFile file(file_name, limits::kMaxTextureFileBytes);
+    bytes.resize(kPngHeaderBytes);
+    bytes.resize(file.read(bytes.data(), bytes.size()));
+    check_header(bytes);  // before the rest of the file is read
+    const std::string rest = file.read_rest();
+    bytes.insert(bytes.end(), rest.begin(), rest.end());
+  } catch (const InputFileError& e) {
+    throw SceneError(path, "scene: " + field + " " + e.what());
+  }
+  return bytes;
 }
 
 void check_png_image_data(const std::vector<unsigned char>& png, const std::string& field,

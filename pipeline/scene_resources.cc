@@ -25,21 +25,18 @@ namespace {
 // Refuses, from its first bytes alone, a file that is no PNG or a PNG Relief cannot use.
 void check_texture_header(const std::vector<unsigned char>& bytes, const std::string& field,
                           const std::string& path) {
-  const std::optional<PngHeader> png = parse_png_header(bytes.data(), bytes.size());
-  if (!png) {
-    throw SceneError(path, "scene: " + field + " is not a PNG image (no PNG signature and header)");
-  }
-  const std::uint32_t side = png->width;
-  if (png->width != png->height || side < std::uint32_t(limits::kMinTextureSize) ||
+  const PngHeader png = png_header_or_throw(bytes, field, path);
+  const std::uint32_t side = png.width;
+  if (png.width != png.height || side < std::uint32_t(limits::kMinTextureSize) ||
       side > std::uint32_t(limits::kMaxTextureSize) || !std::has_single_bit(side)) {
-    throw SceneError(path, "scene: " + field + " is " + std::to_string(png->width) + "x" +
-                               std::to_string(png->height) +
+    throw SceneError(path, "scene: " + field + " is " + std::to_string(png.width) + "x" +
+                               std::to_string(png.height) +
                                " pixels; allowed: square, a power of two from " +
                                std::to_string(limits::kMinTextureSize) + " to " +
                                std::to_string(limits::kMaxTextureSize));
   }
-  if (png->bit_depth > 8) {
-    throw SceneError(path, "scene: " + field + " has " + std::to_string(png->bit_depth) +
+  if (png.bit_depth > 8) {
+    throw SceneError(path, "scene: " + field + " has " + std::to_string(png.bit_depth) +
                                " bits per channel; allowed: 8-bit PNG");
   }
 }
@@ -89,17 +86,9 @@ RgbImage load_layer_texture(const MaterialLayer& layer, int builtin_size, const 
                               builtin_size);
   }
   const std::string field = texture_field(layer, path);
-  std::vector<unsigned char> bytes;
-  try {
-    InputFile file(layer.texture, limits::kMaxTextureFileBytes);
-    bytes.resize(kPngHeaderBytes);
-    bytes.resize(file.read(bytes.data(), bytes.size()));
-    check_texture_header(bytes, field, path);  // before the rest of the file is read
-    const std::string rest = file.read_rest();
-    bytes.insert(bytes.end(), rest.begin(), rest.end());
-  } catch (const InputFileError& e) {
-    throw SceneError(path, "scene: " + field + " " + e.what());
-  }
+  const std::vector<unsigned char> bytes = read_png_file(
+      layer.texture, field, path,
+      [&](const std::vector<unsigned char>& header) { check_texture_header(header, field, path); });
   return decode_texture_png(bytes, field, path);
 }
 

@@ -27,26 +27,23 @@ namespace {
 // texels on a side.
 void check_sketch_header(const std::vector<unsigned char>& bytes, const std::string& field,
                          const std::string& path) {
-  const std::optional<PngHeader> png = parse_png_header(bytes.data(), bytes.size());
-  if (!png) {
-    throw SceneError(path, "scene: " + field + " is not a PNG image (no PNG signature and header)");
-  }
-  if (png->colour_type != 0) {
+  const PngHeader png = png_header_or_throw(bytes, field, path);
+  if (png.colour_type != 0) {
     static constexpr const char* kTypes[] = {"grey",         "?", "RGB", "palette",
                                              "grey + alpha", "?", "RGBA"};
-    const char* type = png->colour_type <= 6 ? kTypes[png->colour_type] : "unknown";
+    const char* type = png.colour_type <= 6 ? kTypes[png.colour_type] : "unknown";
     throw SceneError(path, "scene: " + field + " has colour type " +
-                               std::to_string(png->colour_type) + " (" + type +
+                               std::to_string(png.colour_type) + " (" + type +
                                "); allowed: a grey PNG with one channel (colour type 0)");
   }
-  if (png->bit_depth != 8 && png->bit_depth != 16) {
-    throw SceneError(path, "scene: " + field + " has " + std::to_string(png->bit_depth) +
+  if (png.bit_depth != 8 && png.bit_depth != 16) {
+    throw SceneError(path, "scene: " + field + " has " + std::to_string(png.bit_depth) +
                                " bits per channel; allowed: 8 or 16");
   }
   const std::uint32_t lo = limits::kMinSketchSize, hi = limits::kMaxSketchSize;
-  if (png->width < lo || png->width > hi || png->height < lo || png->height > hi) {
-    throw SceneError(path, "scene: " + field + " is " + std::to_string(png->width) + "x" +
-                               std::to_string(png->height) + " texels; allowed " +
+  if (png.width < lo || png.width > hi || png.height < lo || png.height > hi) {
+    throw SceneError(path, "scene: " + field + " is " + std::to_string(png.width) + "x" +
+                               std::to_string(png.height) + " texels; allowed " +
                                std::to_string(lo) + " to " + std::to_string(hi) + " on each side");
   }
 }
@@ -72,16 +69,10 @@ std::optional<HeightSketch> load_height_sketch(const Scene& scene) {
     bytes.assign(png.begin(), png.end());
     check_sketch_header(bytes, field, path);
   } else {
-    try {
-      InputFile file(settings.image, limits::kMaxTextureFileBytes);
-      bytes.resize(kPngHeaderBytes);
-      bytes.resize(file.read(bytes.data(), bytes.size()));
-      check_sketch_header(bytes, field, path);
-      const std::string rest = file.read_rest();
-      bytes.insert(bytes.end(), rest.begin(), rest.end());
-    } catch (const InputFileError& e) {
-      throw SceneError(path, "scene: " + field + " " + e.what());
-    }
+    bytes =
+        read_png_file(settings.image, field, path, [&](const std::vector<unsigned char>& header) {
+          check_sketch_header(header, field, path);
+        });
   }
   // 16-bit samples whatever the file's depth (stb scales 8-bit values by 257, so v / 65535 is
   // v8 / 255 exactly).
@@ -91,12 +82,12 @@ std::optional<HeightSketch> load_height_sketch(const Scene& scene) {
   }
   // The chunks and the inflated size checked before stb sees the file (png_checks.h).
   check_png_image_data(bytes, field, path);
+  const PngHeader png = png_header_or_throw(bytes, field, path);
   int width = 0, height = 0, channels = 0;
   reset_stb_failure_reason();
   stbi_us* grey = stbi_load_16_from_memory(bytes.data(), static_cast<int>(bytes.size()), &width,
                                            &height, &channels, 1);
-  const std::optional<PngHeader> png = parse_png_header(bytes.data(), bytes.size());
-  if (!grey || std::uint32_t(width) != png->width || std::uint32_t(height) != png->height) {
+  if (!grey || std::uint32_t(width) != png.width || std::uint32_t(height) != png.height) {
     stbi_image_free(grey);
     throw SceneError(path, "scene: " + field + " could not be decoded: " +
                                (grey ? std::string("its header and data disagree")
