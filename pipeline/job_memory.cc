@@ -8,6 +8,7 @@
 #include "core/grid_buffers.h"
 #include "core/input_file.h"
 #include "core/limits.h"
+#include "pipeline/builtin_sketches.h"
 #include "pipeline/png_header.h"
 #include "raster/triangle_setup.h"
 
@@ -61,6 +62,38 @@ std::optional<std::uintmax_t> png_layer_bytes(const std::string& path) {
   return std::nullopt;
 }
 
+// A height sketch's memory (§3's low-frequency base): its PNG bytes, held whole while they are
+// decoded, the decoded 16-bit texels and their float heights; 0 when its header is unreadable
+// or too large (loading the scene reports why).
+std::uintmax_t sketch_bytes(const SketchSettings& sketch) {
+  static constexpr std::string_view kBuiltin = "builtin:";
+  std::vector<unsigned char> header(kPngHeaderBytes);
+  std::uintmax_t file_bytes = 0;
+  std::size_t header_bytes = 0;
+  if (sketch.image.rfind(kBuiltin, 0) == 0) {
+    const std::span<const unsigned char> png =
+        builtin_sketch_png(std::string_view(sketch.image).substr(kBuiltin.size()));
+    header_bytes = std::min(png.size(), header.size());
+    std::copy_n(png.begin(), header_bytes, header.begin());
+    file_bytes = png.size();
+  } else {
+    try {
+      InputFile file(sketch.image, limits::kMaxTextureFileBytes);
+      header_bytes = file.read(header.data(), header.size());
+      file_bytes = file.size();
+    } catch (const InputFileError&) {
+      return 0;
+    }
+  }
+  const std::optional<PngHeader> png = parse_png_header(header.data(), header_bytes);
+  if (!png || png->width > std::uint32_t(limits::kMaxSketchSize) ||
+      png->height > std::uint32_t(limits::kMaxSketchSize)) {
+    return 0;
+  }
+  const std::uintmax_t texels = std::uintmax_t(png->width) * png->height;
+  return file_bytes + texels * (sizeof(std::uint16_t) + sizeof(float));
+}
+
 void add_resources(const Scene& scene, MemoryEstimate& estimate) {
   const std::uintmax_t lattice = std::uintmax_t(scene.terrain.lattice_size);
   estimate.add("noise lattice " + size_text(scene.terrain.lattice_size, scene.terrain.lattice_size),
@@ -75,6 +108,9 @@ void add_resources(const Scene& scene, MemoryEstimate& estimate) {
     }
   }
   estimate.add("textures", textures);
+  if (scene.terrain.sketch) {
+    estimate.add("height sketch", sketch_bytes(*scene.terrain.sketch));
+  }
 }
 
 std::uintmax_t grid_vertices(const Scene& scene) {
@@ -143,6 +179,9 @@ MemoryEstimate estimate_stages_memory(const Scene& scene, Backend backend) {
   MemoryEstimate estimate;
   const std::uintmax_t lattice = std::uintmax_t(scene.terrain.lattice_size);
   estimate.add("noise lattice", lattice * lattice * sizeof(float));
+  if (scene.terrain.sketch) {
+    estimate.add("height sketch", sketch_bytes(*scene.terrain.sketch));
+  }
   const std::uintmax_t grid_bytes =
       backend != Backend::kReferenceDouble ? kGridVertexBytes : 10 * 8 + 1;
   estimate.add("grid " + size_text(scene.grid.width, scene.grid.height),

@@ -16,6 +16,7 @@
 #include "core/scene/scene_json.h"
 #include "core/terrain_stages.h"
 #include "pipeline/height_error.h"
+#include "pipeline/job_memory.h"
 #include "pipeline/scene_resources.h"
 #include "test_support.h"
 
@@ -200,6 +201,31 @@ TEST_CASE("sketchFloatErrorFarFromTheOriginIsNoWorseThanWithout", "[sketch]") {
   CHECK(e_far.max <= 1.5 * e_plain.max + 1e-3);
   CHECK(e_far.max <= 1.5 * e_origin.max + 1e-3);
   CHECK(e_far.rms <= 1.5 * e_origin.rms + 1e-4);
+}
+
+}  // namespace
+}  // namespace relief
+
+namespace relief {
+namespace {
+
+// The memory estimate checked before a render counts the sketch: its file, 16-bit texels and
+// float heights (pipeline/job_memory.h).
+TEST_CASE("theRenderMemoryEstimateCountsTheSketch", "[sketch]") {
+  const auto sketch_part = [](const Scene& scene) -> std::uintmax_t {
+    for (const auto& [name, bytes] : estimate_render_memory(scene, Backend::kSimd, {}).parts) {
+      if (name == "height sketch") {
+        return bytes;
+      }
+    }
+    return 0;
+  };
+  const Scene island = resolve_scene("island", {});
+  const std::optional<HeightSketch> sketch = load_height_sketch(island);
+  REQUIRE(sketch);
+  const std::uintmax_t texels = std::uintmax_t(sketch->width) * std::uintmax_t(sketch->height);
+  CHECK(sketch_part(island) >= texels * (sizeof(std::uint16_t) + sizeof(float)));
+  CHECK(sketch_part(resolve_scene("default", {})) == 0);
 }
 
 }  // namespace
