@@ -8,6 +8,7 @@
 #include "core/grid_buffers.h"
 #include "core/input_file.h"
 #include "core/limits.h"
+#include "pipeline/basis_resources.h"
 #include "pipeline/png_header.h"
 #include "raster/triangle_setup.h"
 
@@ -75,6 +76,9 @@ void add_resources(const Scene& scene, MemoryEstimate& estimate) {
     }
   }
   estimate.add("textures", textures);
+  if (scene.terrain.basis) {
+    estimate.add("basis images and their composed grid", basis_memory_bytes(scene));
+  }
 }
 
 std::uintmax_t grid_vertices(const Scene& scene) {
@@ -143,6 +147,9 @@ MemoryEstimate estimate_stages_memory(const Scene& scene, Backend backend) {
   MemoryEstimate estimate;
   const std::uintmax_t lattice = std::uintmax_t(scene.terrain.lattice_size);
   estimate.add("noise lattice", lattice * lattice * sizeof(float));
+  if (scene.terrain.basis) {
+    estimate.add("basis images and their composed grid", basis_memory_bytes(scene));
+  }
   const std::uintmax_t grid_bytes =
       backend != Backend::kReferenceDouble ? kGridVertexBytes : 10 * 8 + 1;
   estimate.add("grid " + size_text(scene.grid.width, scene.grid.height),
