@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/height_sketch.h"
 #include "core/periodic_gaussian.h"
 #include "core/scene/scene_json.h"
 
@@ -91,13 +92,51 @@ void filter_basis_image(GreyGrid& image, const BasisImageSettings& settings,
   }
 }
 
-NoiseLattice compose_basis(std::span<const BasisTerm> terms, int source_side) {
+GreyGrid bspline_refine(const GreyGrid& grid, int factor) {
+  const int side = grid.side;
+  const int fine = side * factor;
+  // Per fine position X: the first coarse tap floor(X / factor) - 1 and the four weights.
+  std::vector<int> first(std::size_t(fine) * 1);
+  std::vector<double> weights(std::size_t(fine) * 4);
+  for (int x = 0; x < fine; ++x) {
+    const int cell = x / factor;
+    first[std::size_t(x)] = cell - 1;
+    bspline_weights<double>(double(x - cell * factor) / double(factor),
+                            &weights[4 * std::size_t(x)]);
+  }
+  const auto wrap = [side](int i) { return ((i % side) + side) % side; };
+  // Along x: side rows of fine values; then along y.
+  std::vector<double> rows(std::size_t(side) * std::size_t(fine));
+  for (int y = 0; y < side; ++y) {
+    for (int x = 0; x < fine; ++x) {
+      double sum = 0.0;
+      for (int k = 0; k < 4; ++k) {
+        sum += weights[4 * std::size_t(x) + k] * grid.at(wrap(first[std::size_t(x)] + k), y);
+      }
+      rows[std::size_t(y) * std::size_t(fine) + x] = sum;
+    }
+  }
+  GreyGrid out;
+  out.side = fine;
+  out.values.resize(std::size_t(fine) * std::size_t(fine));
+  for (int y = 0; y < fine; ++y) {
+    for (int x = 0; x < fine; ++x) {
+      double sum = 0.0;
+      for (int k = 0; k < 4; ++k) {
+        sum += weights[4 * std::size_t(y) + k] *
+               rows[std::size_t(wrap(first[std::size_t(y)] + k)) * std::size_t(fine) + x];
+      }
+      out.values[std::size_t(y) * std::size_t(fine) + x] = sum;
+    }
+  }
+  return out;
+}
+
+NoiseLattice compose_basis(std::span<const BasisTerm> terms, int source_side, int upsample) {
   const int side = terms.front().image->side;
-  NoiseLattice grid;
-  grid.seed = 0;
-  grid.size = side;
-  grid.mask = side - 1;
-  grid.values.resize(std::size_t(side) * std::size_t(side));
+  GreyGrid composed;
+  composed.side = side;
+  composed.values.resize(std::size_t(side) * std::size_t(side));
   for (int y = 0; y < side; ++y) {
     for (int x = 0; x < side; ++x) {
       const std::size_t t = std::size_t(y) * std::size_t(side) + x;
@@ -117,9 +156,19 @@ NoiseLattice compose_basis(std::span<const BasisTerm> terms, int source_side) {
                              "weights (constants or weight images) whose sum is > 0 at every "
                              "texel");
       }
-      grid.values[t] = static_cast<float>(weighted / weights);
+      composed.values[t] = weighted / weights;
     }
   }
+  if (upsample > 1) {
+    composed = bspline_refine(composed, upsample);
+  }
+  NoiseLattice grid;
+  grid.seed = 0;
+  grid.size = composed.side;
+  grid.mask = composed.side - 1;
+  grid.values.resize(composed.values.size());
+  std::transform(composed.values.begin(), composed.values.end(), grid.values.begin(),
+                 [](double v) { return static_cast<float>(v); });
   const auto [lo, hi] = std::minmax_element(grid.values.begin(), grid.values.end());
   grid.min_value = *lo;
   grid.max_value = *hi;

@@ -57,11 +57,25 @@ struct BasisTerm {
   double weight = 0;
 };
 
-// The composed grid as a NoiseLattice (seed 0, size P, extremes set). `source_side`: the side
-// of the images before mirroring (P when not mirrored), to name a texel in messages. Throws
+// The grid refined `factor` times per side by the periodic uniform cubic B-spline of its
+// values: fine texel X sits at coarse coordinate X / factor, and takes the B-spline weights
+// (core/height_sketch.h, bspline_weights) of the four coarse texels around it, along x then
+// along y, in double. A convex combination, so it stays within the grid's extremes; it
+// reproduces constants, and at a coarse texel it is (v[-1] + 4 v[0] + v[1]) / 6 along each
+// axis (the spline approximates). Why: every interpolant of stage 3 has zero slope at the
+// texels (core/interpolant.h) but the linear one, so a smooth image shows one terrace per
+// texel; the refined grid is C2-smooth at the coarse scale and the linear interpolant's kinks
+// between its fine texels are `factor`^2 times smaller than over the coarse grid's.
+// Precondition: factor >= 1, side >= 1.
+GreyGrid bspline_refine(const GreyGrid& grid, int factor);
+
+// The composed grid as a NoiseLattice (seed 0, size P x upsample, extremes set), refined by
+// bspline_refine when upsample > 1 and rounded once to float. `source_side`: the side of the
+// images before mirroring (P when not mirrored), to name a texel in messages. Throws
 // SceneError("terrain.basis.images") naming the texel (x, y) where the weights sum to zero.
-// Preconditions: at least one term, every grid of side P a power of two, weights >= 0.
-NoiseLattice compose_basis(std::span<const BasisTerm> terms, int source_side);
+// Preconditions: at least one term, every grid of side P a power of two, weights >= 0,
+// upsample a power of two with P x upsample <= kMaxLatticeSize.
+NoiseLattice compose_basis(std::span<const BasisTerm> terms, int source_side, int upsample = 1);
 
 // The terrain settings stage 3 runs with: with basis images, the composed grid's side P as
 // lattice_size and tile_size / P as horizontal_scale; otherwise `terrain` unchanged.

@@ -106,6 +106,7 @@ inline constexpr double kMinSketchSpan = 1e-3;
 // ratios matter; a bound keeps their double sum exact enough). Filter sigmas at most half
 // the image's side (a wider Gaussian is the mean alone, to float precision).
 inline constexpr int kMaxBasisImages = 4;
+inline constexpr int kMaxBasisUpsample = 8;  // terrain.basis.upsample: 1, 2, 4 or 8
 inline constexpr double kMinBasisTileSize = 1e-11;
 inline constexpr double kMaxBasisTileSize = 1e9;
 inline constexpr double kMaxBasisWeight = 1e6;

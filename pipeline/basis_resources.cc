@@ -1,5 +1,6 @@
 #include "pipeline/basis_resources.h"
 
+#include <algorithm>
 #include <bit>
 #include <cstdio>
 #include <span>
@@ -156,6 +157,15 @@ std::optional<NoiseLattice> load_basis_grid(const Scene& scene, std::vector<std:
   std::vector<GreyGrid> grids = decode_basis_files(basis, files);
   const int source_side = grids.front().side;
   const int side = mirror ? 2 * source_side : source_side;
+  if (side * basis.upsample > limits::kMaxLatticeSize) {
+    throw SceneError(
+        "terrain.basis.upsample",
+        "scene: terrain.basis.upsample = " + std::to_string(basis.upsample) + " refines the " +
+            std::to_string(side) + "-texel grid to " + std::to_string(side * basis.upsample) +
+            " texels a side, more than " + std::to_string(limits::kMaxLatticeSize) +
+            "; allowed terrain.basis.upsample <= " +
+            std::to_string(std::max(1, limits::kMaxLatticeSize / side)) + " for this grid");
+  }
   std::vector<BasisTerm> terms;
   std::size_t at = 0;
   for (std::size_t k = 0; k < basis.images.size(); ++k) {
@@ -205,7 +215,7 @@ std::optional<NoiseLattice> load_basis_grid(const Scene& scene, std::vector<std:
         std::to_string(side) + " = " + measure_text(basis.tile_size / double(side), 9) +
         " world units");
   }
-  return compose_basis(terms, source_side);
+  return compose_basis(terms, source_side, basis.upsample);
 }
 
 std::vector<double> basis_seam_measures(const Scene& scene) {
@@ -253,9 +263,13 @@ std::uintmax_t basis_memory_bytes(const Scene& scene) {
   }
   const std::uintmax_t texels = side * side;
   const std::uintmax_t grid = (mirror ? 4 : 1) * texels;
+  const std::uintmax_t factor = std::uintmax_t(scene.terrain.basis->upsample);
+  const std::uintmax_t fine = grid * factor * factor;
   // Per file: its bytes, stb's 16-bit decode (2 a texel) and the doubles (8 a grid texel);
-  // one filter at a time: the FFT's complex grid (16) and the blurred copy (8); the float grid.
-  return files_bytes + count * (2 * texels + 8 * grid) + grid * (16 + 8) + 4 * grid;
+  // one filter at a time: the FFT's complex grid (16) and the blurred copy (8); the composed
+  // doubles, their refinement along x and then y (8 each), and the float grid.
+  return files_bytes + count * (2 * texels + 8 * grid) + grid * (16 + 8) +
+         8 * (grid + grid * factor + fine) + 4 * fine;
 }
 
 }  // namespace relief

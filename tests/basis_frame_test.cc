@@ -71,7 +71,7 @@ TEST_CASE("aBasisSceneRendersItsImagesWhileTheShadingKeepsTheNoiseLattice", "[ba
   const SceneResources resources = load_scene_resources(craters);
   // The noise lattice is still there, built from the scene's seed and lattice_size.
   CHECK(resources.lattice.size == craters.terrain.lattice_size);
-  CHECK(resources.basis->size == 256);
+  CHECK(resources.basis->size == 256 * craters.terrain.basis->upsample);
   FrameRequest request;
   request.backend = Backend::kReference;
   const Frame with = render_frame(craters, resources, request);

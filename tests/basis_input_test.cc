@@ -91,6 +91,9 @@ TEST_CASE("basisFieldsAreCheckedNamingTheFieldAndTheRange", "[basis]") {
           "terrain.basis.images[0].weight = -0.5 is out of range; allowed 0 <= "
           "terrain.basis.images[0].weight <= ");
   refused(one_image("builtin:basis/craters", "true"), "terrain.basis.images[0].weight");
+  refused({"terrain.basis.upsample=3"},
+          "terrain.basis.upsample = 3 is not a power of two; allowed 1, 2, 4 or 8");
+  refused({"terrain.basis.upsample=16"}, "terrain.basis.upsample = 16 is out of range");
   refused(one_image("builtin:basis/craters", "0"), "every terrain.basis.images[k].weight is 0");
   refused(one_image("builtin:basis/craters", "1", ", \"low_pass\": -1"),
           "terrain.basis.images[0].low_pass = -1 is out of range");
@@ -123,6 +126,11 @@ TEST_CASE("badBasisImagesAreRefusedNamingTheFieldWithNothingWritten", "[basis]")
   REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
   refused(weight(fifo), "terrain.basis.images[0].weight");
   refused(image("/dev/zero"), "is a character device, not a regular file");
+  const std::string large = write_ramp(dir.path() / "large.png", 1024);
+  refused(
+      {concat({"terrain.basis={\"upsample\": 8, \"images\": [{\"image\": ", quoted(large), "}]}"})},
+      "terrain.basis.upsample = 8 refines the 1024-texel grid to 8192 texels a side, more "
+      "than 4096; allowed terrain.basis.upsample <= 4 for this grid");
   refused(image(test::write_file(dir.path() / "text.png", "not a png at all, but long enough!")),
           "terrain.basis.images[0].image = ");
   refused(image(test::write_file(dir.path() / "text.png", "not a png at all, but long enough!")),

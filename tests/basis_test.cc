@@ -1,9 +1,11 @@
 // §3 Eq. 2's basis images (core/basis_images.h, core/periodic_gaussian.h): the composition,
 // the filters, the seam measure. The scene field and the image files: basis_input_test.cc;
 // whole frames: basis_frame_test.cc.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,6 +13,7 @@
 #include <catch2/catch.hpp>
 
 #include "core/basis_images.h"
+#include "core/interpolant.h"
 #include "core/periodic_gaussian.h"
 #include "core/scene/scene_json.h"
 #include "pipeline/basis_resources.h"
@@ -220,6 +223,92 @@ TEST_CASE("oneImageOfWeightOneIsTheAuxiliaryFunctionItself", "[basis]") {
   CHECK(t.lattice_size == n);
   CHECK(t.horizontal_scale == scene.terrain.basis->tile_size / n);
   CHECK(stage3_terrain(Scene{}.terrain, 99).horizontal_scale == Scene{}.terrain.horizontal_scale);
+}
+
+}  // namespace
+}  // namespace relief
+
+namespace relief {
+namespace {
+
+// The B-spline refinement of the composed grid (terrain.basis.upsample): a convex combination
+// that keeps constants, reproduces the spline's (1, 4, 1) / 6 at the coarse texels, stays
+// periodic, and removes the terraces a smooth image gets from stage 3's interpolants.
+TEST_CASE("theBsplineRefinementIsPeriodicConvexAndRemovesTheTerraces", "[basis]") {
+  const GreyGrid coarse = random_grid(16, 7);
+  for (const int factor : {1, 2, 4, 8}) {
+    INFO("factor " << factor);
+    const GreyGrid fine = bspline_refine(coarse, factor);
+    REQUIRE(fine.side == 16 * factor);
+    const auto [lo, hi] = std::minmax_element(coarse.values.begin(), coarse.values.end());
+    for (const double v : fine.values) {
+      CHECK((v >= *lo - 1e-15 && v <= *hi + 1e-15));
+    }
+    // At coarse texel (x, y): the tensor product of (1, 4, 1) / 6, wrapping.
+    for (const auto& [x, y] : {std::pair{0, 0}, std::pair{15, 3}, std::pair{7, 15}}) {
+      double expected = 0.0;
+      for (int j = -1; j <= 1; ++j) {
+        for (int i = -1; i <= 1; ++i) {
+          const double w = (i == 0 ? 4.0 : 1.0) * (j == 0 ? 4.0 : 1.0) / 36.0;
+          expected += w * coarse.at((x + i + 16) % 16, (y + j + 16) % 16);
+        }
+      }
+      CHECK(fine.at(x * factor, y * factor) == Approx(expected).epsilon(1e-12));
+    }
+    // The mean of a periodic grid is kept (every coarse texel's weights sum to 1 over a period).
+    CHECK(mean_of(fine) == Approx(mean_of(coarse)).epsilon(1e-12));
+  }
+  GreyGrid flat;
+  flat.side = 8;
+  flat.values.assign(64, 0.375);
+  for (const double v : bspline_refine(flat, 4).values) {
+    CHECK(v == Approx(0.375).epsilon(1e-15));
+  }
+  // A smooth image: one period of a sine over 64 texels along x. Sampled with the quintic fade
+  // the slope falls to 0 at every texel (a terrace per texel); refined 4x and sampled linearly
+  // it follows the sine's slope to a few percent.
+  GreyGrid wave;
+  wave.side = 64;
+  for (int y = 0; y < 64; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      wave.values.push_back(std::sin(2.0 * std::numbers::pi * x / 64.0));
+    }
+  }
+  const GreyGrid refined = bspline_refine(wave, 4);
+  double worst_quintic = 0.0, worst_refined = 0.0;
+  for (int s = 0; s < 64 * 16; ++s) {
+    const double x = s / 16.0 + 1.0 / 32.0;  // texel units of the coarse grid
+    const double true_slope =
+        2.0 * std::numbers::pi / 64.0 * std::cos(2.0 * std::numbers::pi * x / 64.0);
+    const int i = int(std::floor(x));
+    const double t = x - i;
+    const double quintic_slope =
+        (wave.at((i + 1) % 64, 0) - wave.at(i % 64, 0)) * fade_slope<Interpolant::kQuintic>(t);
+    const double fx = x * 4.0;
+    const int fi = int(std::floor(fx));
+    const double linear_slope = (refined.at((fi + 1) % 256, 0) - refined.at(fi % 256, 0)) * 4.0;
+    worst_quintic = std::max(worst_quintic, std::abs(quintic_slope - true_slope));
+    worst_refined = std::max(worst_refined, std::abs(linear_slope - true_slope));
+  }
+  const double peak_slope = 2.0 * std::numbers::pi / 64.0;
+  INFO("worst slope error: quintic " << worst_quintic / peak_slope << ", refined "
+                                     << worst_refined / peak_slope << " of the peak slope");
+  CHECK(worst_quintic > 0.8 * peak_slope);   // the terraces: slope 0 where the sine's is peak
+  CHECK(worst_refined < 0.03 * peak_slope);  // the smoothing's 1 - pi^2/96/... and the chords
+}
+
+TEST_CASE("anUpsampledBasisGridIsTheRefinedCompositionAndSpansTheSameTile", "[basis]") {
+  const Scene scene = resolve_scene("craters", {"terrain.basis.upsample=1"});
+  const Scene refined_scene = resolve_scene("craters", {"terrain.basis.upsample=4"});
+  const std::optional<NoiseLattice> plain = load_basis_grid(scene);
+  const std::optional<NoiseLattice> refined = load_basis_grid(refined_scene);
+  REQUIRE((plain && refined));
+  REQUIRE(refined->size == 4 * plain->size);
+  CHECK(refined->min_value >= plain->min_value);
+  CHECK(refined->max_value <= plain->max_value);
+  // The tile's world size is the same: 4x the texels, a quarter the cell.
+  CHECK(stage3_terrain(refined_scene.terrain, refined->size).horizontal_scale ==
+        stage3_terrain(scene.terrain, plain->size).horizontal_scale / 4.0);
 }
 
 }  // namespace

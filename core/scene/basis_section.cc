@@ -1,6 +1,7 @@
 // terrain.basis (§3 Eq. 2's basis images, core/basis_images.h): the field's strict reading.
 // Whether the images can be read, and their sizes, are checked when they are loaded
 // (pipeline/basis_resources.cc).
+#include <bit>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -74,6 +75,15 @@ void apply_basis(const LayerReader& in, const json& value, const std::string& pa
              b.wrap = in.choice<BasisWrap>(
                  v, p, {{"repeat", BasisWrap::kRepeat}, {"mirror", BasisWrap::kMirror}});
            }},
+          {"upsample",
+           [&](const json& v, const std::string& p) {
+             const long long factor = in.integer(v, p, 1, limits::kMaxBasisUpsample);
+             if (!std::has_single_bit(static_cast<unsigned long long>(factor))) {
+               in.fail(p, p + " = " + brief(v) + " is not a power of two; allowed 1, 2, 4 or " +
+                              std::to_string(limits::kMaxBasisUpsample));
+             }
+             b.upsample = static_cast<int>(factor);
+           }},
           {"images",
            [&](const json& v, const std::string& p) {
              if (!v.is_array() || v.empty() || v.size() > std::size_t(limits::kMaxBasisImages)) {
@@ -131,6 +141,7 @@ json basis_to_json(const BasisSettings& basis) {
   }
   return {{"tile_size", basis.tile_size},
           {"wrap", basis.wrap == BasisWrap::kRepeat ? "repeat" : "mirror"},
+          {"upsample", basis.upsample},
           {"images", images}};
 }
 

@@ -107,6 +107,11 @@ enum class BasisWrap {
 struct BasisSettings {
   double tile_size = 24000.0;  // world units one image tile spans at octave 0
   BasisWrap wrap = BasisWrap::kRepeat;
+  // The composed grid refined this many times per side (1, 2, 4 or 8) by the periodic cubic
+  // B-spline (core/basis_images.h): stage 3's interpolants have zero slope at every texel, so
+  // a smooth image shows one terrace per texel; refined and sampled with the linear
+  // interpolant it does not.
+  int upsample = 1;
   std::vector<BasisImageSettings> images;  // 1 to limits::kMaxBasisImages
 };
 
