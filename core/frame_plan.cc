@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/basis_images.h"
 #include "core/limits.h"
 
 namespace relief {
@@ -30,8 +31,10 @@ LodPlan make_lod_plan(const TerrainSettings& terrain) {
   return lod;
 }
 
-TerrainPlan make_terrain_plan(const TerrainSettings& terrain, const NoiseLattice& lattice,
+TerrainPlan make_terrain_plan(const TerrainSettings& settings, const NoiseLattice& lattice,
                               const Vec3d& camera_position, const HeightSketch* sketch) {
+  // With §3's basis images, `lattice` is their composed grid and sets the period and cell.
+  const TerrainSettings terrain = stage3_terrain(settings, lattice.size);
   TerrainPlan plan;
   plan.lattice = &lattice;
   plan.interpolant = terrain.interpolant;
@@ -74,7 +77,7 @@ FramePlan make_frame_plan(const Scene& scene, const NoiseLattice& lattice,
   plan.camera = make_camera_frame(scene.camera, scene.viewport);
   plan.bounds = derive_height_bounds(lattice, scene.terrain, sketch);
   plan.layout = make_grid_layout(scene.grid.width, scene.grid.height);
-  plan.lod = make_lod_plan(scene.terrain);
+  plan.lod = make_lod_plan(stage3_terrain(scene.terrain, lattice.size));
   plan.terrain = make_terrain_plan(scene.terrain, lattice, scene.camera.position, sketch);
   // After the terrain plan: the projector refines the slab by its regional height bound.
   plan.projector =

@@ -68,10 +68,12 @@ struct FramePlan {
   double relative_water_level = 0;  // terrain.water_level - camera y, formed in double
 };
 
-// Precondition: the scene passed validate_scene and the lattice was built from its seed and
-// lattice_size; `sketch` was loaded from scene.terrain.sketch (pipeline/scene_resources.h).
-// Throws std::invalid_argument when the scene has a sketch and `sketch` is null (a caller
-// that forgot it would otherwise render another terrain).
+// Precondition: the scene passed validate_scene and `lattice` is stage 3's grid: the noise
+// lattice built from its seed and lattice_size, or with terrain.basis the composed grid of its
+// images (core/basis_images.h), whose side and tile_size then set the period and the cell; `sketch`
+// was loaded from scene.terrain.sketch (pipeline/scene_resources.h). Throws std::invalid_argument
+// when the scene has a sketch and `sketch` is null (a caller that forgot it would otherwise render
+// another terrain).
 FramePlan make_frame_plan(const Scene& scene, const NoiseLattice& lattice,
                           const HeightSketch* sketch = nullptr);
 

@@ -98,6 +98,22 @@ inline constexpr int kMaxSketchSize = 4096;
 // then the per-frame texel offset, (camera - x0) x texels / side <= 2e12 x 4096 / 1e-3 = 8e18,
 // and its float rounding stay finite (docs/scene-limits.md).
 inline constexpr double kMinSketchSpan = 1e-3;
+// §3 Eq. 2's basis images (terrain.basis): 1 to 4 images, each of one side P, a power of two
+// in the lattice's range (kMinLatticeSize..kMaxLatticeSize, after mirroring too), since the
+// composed grid takes the lattice's place in stage 3. tile_size / P is the octave-0 cell, so
+// the tile spans kMinHorizontalScale x 4 <= tile_size <= kMaxHorizontalScale x 4096 would
+// do; the range is rounded inwards to powers of ten. Constant weights up to 1e6 (only their
+// ratios matter; a bound keeps their double sum exact enough). Filter sigmas at most half
+// the image's side (a wider Gaussian is the mean alone, to float precision).
+inline constexpr int kMaxBasisImages = 4;
+inline constexpr int kMaxBasisUpsample = 8;  // terrain.basis.upsample: 1, 2, 4 or 8
+inline constexpr double kMinBasisTileSize = 1e-11;
+inline constexpr double kMaxBasisTileSize = 1e9;
+inline constexpr double kMaxBasisWeight = 1e6;
+inline constexpr double kMaxBasisSigma = kMaxLatticeSize / 2;
+// The seam measure (core/basis_images.h) above which a repeating image is said not to tile:
+// the steps across its wrap twice as large (RMS) as the steps between neighbours inside it.
+inline constexpr double kMaxBasisSeam = 2.0;
 
 // --- Scene fields: ranges that keep the float pipeline meaningful --------------------------
 //

@@ -60,7 +60,8 @@ Frame render_with(const Scene& scene, const SceneResources& resources,
     backend = make_gl_backend(scene, resources, request);
   } else {
     backend = std::make_unique<ReferenceBackend<Real>>(scene, resources.lattice, resources.textures,
-                                                       request, resources.sketch_or_null());
+                                                       request, resources.sketch_or_null(),
+                                                       resources.basis_or_null());
   }
   Frame frame;
   frame.stats.stages.push_back({"frame plan", milliseconds_since(start), true, {}});
@@ -115,7 +116,7 @@ FrameStats render_bands_with(const Scene& scene, const SceneResources& resources
                              const std::function<void(const FrameImage&, int)>& consume) {
   const Clock::time_point start = Clock::now();
   ReferenceBackend<Real> backend(scene, resources.lattice, resources.textures, request,
-                                 resources.sketch_or_null());
+                                 resources.sketch_or_null(), resources.basis_or_null());
   FrameStats stats;
   stats.stages.push_back({"frame plan", milliseconds_since(start), true, {}});
   run_table(backend, StageId::kBinning, stats.stages);

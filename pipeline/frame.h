@@ -128,7 +128,8 @@ Frame render_frame_repeated(const Scene& scene, const SceneResources& resources,
                             const FrameRequest& request, int repeat, double& median_ms);
 
 // Stages 1-4 alone (relief stages), by `backend` (reference or simd in float, reference-double
-// in double): the frame's plan, the grid buffers and the time of each stage.
+// in double): the frame's plan, the grid buffers and the time of each stage. `lattice` is
+// stage 3's grid: SceneResources::terrain_values() (the basis grid of a terrain.basis scene).
 template <class Real>
 struct TerrainRun {
   FramePlan plan;

@@ -74,10 +74,10 @@ class GlBackend final : public FrameBackend {
         scene_(scene),
         resources_(resources),
         request_(request),
-        plan_(make_frame_plan(scene, resources.lattice, resources.sketch_or_null())),
+        plan_(make_frame_plan(scene, resources.terrain_values(), resources.sketch_or_null())),
         params_(make_terrain_params<float>(plan_)) {
     with_context(session(), "set-up", [&] {
-      terrain_ = std::make_unique<gpu::GlTerrain>(plan_.layout, resources_.lattice,
+      terrain_ = std::make_unique<gpu::GlTerrain>(plan_.layout, resources_.terrain_values(),
                                                   resources_.sketch_or_null());
     });
   }

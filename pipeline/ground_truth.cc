@@ -101,7 +101,7 @@ GroundTruthLod ground_truth_lod(const Scene& scene, const SceneResources& resour
   // A lower bound of a vertex's distance besides its horizontal one: the camera's height above
   // (or depth below) the slab of every possible terrain height.
   const HeightBounds bounds =
-      make_frame_plan(scene, resources.lattice, resources.sketch_or_null()).bounds;
+      make_frame_plan(scene, resources.terrain_values(), resources.sketch_or_null()).bounds;
   const double camera_y = scene.camera.position[1];
   const double gap = std::max({0.0, camera_y - bounds.world_max, bounds.world_min - camera_y});
   // amplitude r^(-kappa H) = epsilon pixel_min d:

@@ -8,6 +8,7 @@
 #include "core/grid_buffers.h"
 #include "core/input_file.h"
 #include "core/limits.h"
+#include "pipeline/basis_resources.h"
 #include "pipeline/builtin_sketches.h"
 #include "pipeline/png_header.h"
 #include "raster/triangle_setup.h"
@@ -111,6 +112,9 @@ void add_resources(const Scene& scene, MemoryEstimate& estimate) {
   if (scene.terrain.sketch) {
     estimate.add("height sketch", sketch_bytes(*scene.terrain.sketch));
   }
+  if (scene.terrain.basis) {
+    estimate.add("basis images and their composed grid", basis_memory_bytes(scene));
+  }
 }
 
 std::uintmax_t grid_vertices(const Scene& scene) {
@@ -181,6 +185,9 @@ MemoryEstimate estimate_stages_memory(const Scene& scene, Backend backend) {
   estimate.add("noise lattice", lattice * lattice * sizeof(float));
   if (scene.terrain.sketch) {
     estimate.add("height sketch", sketch_bytes(*scene.terrain.sketch));
+  }
+  if (scene.terrain.basis) {
+    estimate.add("basis images and their composed grid", basis_memory_bytes(scene));
   }
   const std::uintmax_t grid_bytes =
       backend != Backend::kReferenceDouble ? kGridVertexBytes : 10 * 8 + 1;

@@ -38,12 +38,14 @@ raster::RasterState frame_raster_state(const Scene& scene) {
 template <class Real>
 ReferenceBackend<Real>::ReferenceBackend(const Scene& scene, const NoiseLattice& lattice,
                                          std::span<const ProtoTexture> textures,
-                                         const FrameRequest& request, const HeightSketch* sketch)
+                                         const FrameRequest& request, const HeightSketch* sketch,
+                                         const NoiseLattice* terrain_values)
     : scene_(scene),
       lattice_(lattice),
+      terrain_values_(terrain_values ? *terrain_values : lattice),
       textures_(textures),
       request_(request),
-      plan_(make_frame_plan(scene, lattice, sketch)),
+      plan_(make_frame_plan(scene, terrain_values_, sketch)),
       params_(make_terrain_params<Real>(plan_)),
       grid_(plan_.layout),
       cull_(make_cull_params<Real>(plan_)),
@@ -150,8 +152,8 @@ void ReferenceBackend<Real>::run(StageId id, std::size_t begin, std::size_t end)
         if (request_.backend == Backend::kSimd) {
           const IndexRange range{plan_.layout.index(0, rows.begin),
                                  plan_.layout.index(0, rows.end)};
-          tally_fbm(simd::evaluate_fbm(params_.fbm, lattice_, range, grid_.dx, grid_.dz, grid_.nu,
-                                       need_, grid_.height));
+          tally_fbm(simd::evaluate_fbm(params_.fbm, terrain_values_, range, grid_.dx, grid_.dz,
+                                       grid_.nu, need_, grid_.height));
           if (params_.sketch.enabled != 0) {  // §3's low-frequency base
             simd::add_sketch(params_.sketch, plan_.terrain.sketch->heights, range, grid_.dx,
                              grid_.dz, need_, grid_.height);
@@ -159,7 +161,7 @@ void ReferenceBackend<Real>::run(StageId id, std::size_t begin, std::size_t end)
           return;
         }
       }
-      tally_fbm(evaluate_fbm_rows<Real>(params_.fbm, lattice_, rows, grid_, need_));
+      tally_fbm(evaluate_fbm_rows<Real>(params_.fbm, terrain_values_, rows, grid_, need_));
       add_sketch_rows<Real>(params_.sketch, plan_.terrain.sketch, rows, grid_, need_);
       return;
     case StageId::kSurface:

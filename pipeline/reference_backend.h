@@ -31,10 +31,12 @@ template <class Real>
 class ReferenceBackend final : public FrameBackend {
  public:
   // `textures` may be empty when only stages 1-4 are run (relief stages); `sketch` is the
-  // scene's terrain.sketch as loaded (null: the scene has none).
+  // scene's terrain.sketch as loaded (null: the scene has none); `terrain_values` the grid of
+  // stage 3 when it is not `lattice` (terrain.basis's composed grid; null: the lattice).
   ReferenceBackend(const Scene& scene, const NoiseLattice& lattice,
                    std::span<const ProtoTexture> textures, const FrameRequest& request,
-                   const HeightSketch* sketch = nullptr);
+                   const HeightSketch* sketch = nullptr,
+                   const NoiseLattice* terrain_values = nullptr);
 
   void prepare(StageId id) override;
   std::size_t units(StageId id) const override;
@@ -63,7 +65,8 @@ class ReferenceBackend final : public FrameBackend {
   bool water_in_view() const;
 
   const Scene& scene_;
-  const NoiseLattice& lattice_;
+  const NoiseLattice& lattice_;         // the shading's noise (dithering, waves)
+  const NoiseLattice& terrain_values_;  // stage 3's S: the lattice or the basis grid
   std::span<const ProtoTexture> textures_;
   FrameRequest request_;
   FramePlan plan_;

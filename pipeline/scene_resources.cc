@@ -102,6 +102,7 @@ SceneResources load_scene_resources(const Scene& scene) {
         scene.shading.mip_blend));
   }
   resources.sketch = load_height_sketch(scene);
+  resources.basis = load_basis_grid(scene, &resources.notes);
   return resources;
 }
 

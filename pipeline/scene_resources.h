@@ -11,6 +11,7 @@
 #include "core/lattice.h"
 #include "core/proto_texture.h"
 #include "core/scene/scene.h"
+#include "pipeline/basis_resources.h"
 
 namespace relief {
 
@@ -18,14 +19,24 @@ struct SceneResources {
   NoiseLattice lattice;
   std::vector<ProtoTexture> textures;  // one per scene.shading.layers entry
   std::optional<HeightSketch> sketch;  // terrain.sketch's texels, when the scene has one
+  // terrain.basis's composed grid (§3 Eq. 2, core/basis_images.h), when the scene has one: it
+  // replaces `lattice` in stage 3 alone; the shading's noise keeps the lattice.
+  std::optional<NoiseLattice> basis;
+  // What loading found worth saying that is no error (an image that does not tile, a field
+  // basis mode ignores); the command line prints each once on stderr.
+  std::vector<std::string> notes;
 
   const HeightSketch* sketch_or_null() const { return sketch ? &*sketch : nullptr; }
+  const NoiseLattice* basis_or_null() const { return basis ? &*basis : nullptr; }
+  // Stage 3's grid: the basis grid, or the noise lattice.
+  const NoiseLattice& terrain_values() const { return basis ? *basis : lattice; }
 };
 
 // Throws SceneError naming the layer for a texture file that cannot be read, is not a PNG, or
 // is not square with a power-of-two side from 4 to 4096; and naming terrain.sketch.image for a
 // sketch that cannot be read, is not a PNG, has more than one channel or a depth other than 8
-// or 16 bits, or is not 2 to kMaxSketchSize texels on a side.
+// or 16 bits, or is not 2 to kMaxSketchSize texels on a side; and naming the terrain.basis
+// field of a basis image refused by load_basis_grid (basis_resources.h).
 SceneResources load_scene_resources(const Scene& scene);
 
 // terrain.sketch's texels (nullopt when the scene has none), with load_scene_resources' checks.

@@ -9,6 +9,7 @@
 #include "core/height_bounds.h"
 #include "core/lattice.h"
 #include "core/limits.h"
+#include "pipeline/basis_resources.h"
 #include "pipeline/job_memory.h"
 
 namespace relief {
@@ -250,7 +251,9 @@ void add_size_cases(CaseList& list, const Scene& base, std::uintmax_t budget,
 
 std::vector<StressCase> make_stress_cases(const Scene& base, std::uintmax_t budget_bytes,
                                           const std::vector<Backend>& backends) {
-  const NoiseLattice lattice = make_noise_lattice(base.terrain.seed, base.terrain.lattice_size);
+  const std::optional<NoiseLattice> basis = load_basis_grid(base);  // stage 3's grid
+  const NoiseLattice lattice =
+      basis ? *basis : make_noise_lattice(base.terrain.seed, base.terrain.lattice_size);
   std::vector<StressCase> cases;
   CaseList list(cases);
   add_camera_cases(list, base, lattice);

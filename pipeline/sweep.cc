@@ -1,4 +1,5 @@
 #include "pipeline/sweep.h"
+#include "pipeline/basis_resources.h"
 
 #include <algorithm>
 #include <chrono>
@@ -10,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/scene/scene_json.h"
+#include "pipeline/basis_resources.h"
 #include "pipeline/box_filter.h"
 #include "pipeline/height_error.h"
 #include "pipeline/image_error.h"
@@ -41,8 +43,10 @@ class HeightErrors {
     if (found != cache_.end()) {
       return found->second;
     }
+    const std::optional<NoiseLattice> basis = load_basis_grid(configured);
     const NoiseLattice lattice =
-        make_noise_lattice(configured.terrain.seed, configured.terrain.lattice_size);
+        basis ? *basis
+              : make_noise_lattice(configured.terrain.seed, configured.terrain.lattice_size);
     const VertexHeightError e = vertex_height_error(configured, lattice, arithmetic);
     return cache_.emplace(std::move(key), HeightFigures{e.max, e.rms}).first->second;
   }

@@ -15,7 +15,7 @@ namespace relief {
 
 TerrainFrame rasterize_terrain(const Scene& scene, const SceneResources& resources,
                                const raster::RasterLimits& limits) {
-  return rasterize_terrain(scene, resources.lattice, limits, resources.sketch_or_null());
+  return rasterize_terrain(scene, resources.terrain_values(), limits, resources.sketch_or_null());
 }
 
 TerrainFrame rasterize_terrain(const Scene& scene, const NoiseLattice& lattice,

@@ -150,8 +150,11 @@ GlTerrainRun run_cpu_and_gl(const std::string& preset, std::vector<std::string> 
   overrides.push_back("grid.width=" + std::to_string(width));
   overrides.push_back("grid.height=" + std::to_string(height));
   const Scene scene = resolve_scene(preset, overrides);
+  // Stage 3's grid: terrain.basis's composed images, or the noise lattice.
+  std::optional<NoiseLattice> basis = load_basis_grid(scene);
   auto lattice = std::make_unique<NoiseLattice>(
-      make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size));
+      basis ? std::move(*basis)
+            : make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size));
   std::optional<HeightSketch> loaded = load_height_sketch(scene);
   auto sketch = loaded ? std::make_unique<HeightSketch>(std::move(*loaded)) : nullptr;
   const FramePlan plan = make_frame_plan(scene, *lattice, sketch.get());

@@ -36,7 +36,8 @@ bool exact() {
 }
 
 TEST_CASE("glTerrainStagesMatchTheCpuOnEveryPreset", "[gl]") {
-  for (const char* preset : {"default", "alpine", "dunes", "island", "lake", "lava", "plain"}) {
+  for (const char* preset :
+       {"default", "alpine", "badlands", "craters", "dunes", "island", "lake", "lava", "plain"}) {
     const test::GlTerrainRun run = test::run_cpu_and_gl(preset, {}, kWidth, kHeight);
     test::check_gl_terrain(run, exact(), preset);
   }

@@ -348,10 +348,10 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       return kExitOk;
     }
     if (stages_cmd->parsed()) {
-      return run_stages_command(scene, stages, out);
+      return run_stages_command(scene, stages, out, err);
     }
     if (crosscheck_cmd->parsed()) {
-      return run_crosscheck_command(scene, crosscheck, out);
+      return run_crosscheck_command(scene, crosscheck, out, err);
     }
     if (reference_cmd->parsed()) {
       return run_reference_command(scene, reference, out, err);
@@ -385,7 +385,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
           return kExitBadInput;
         }
       }
-      return run_render_command(scene, render, out);
+      return run_render_command(scene, render, out, err);
     }
   } catch (const SceneError& e) {
     err << "relief: error: " << e.what() << "\n";

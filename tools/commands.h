@@ -26,11 +26,16 @@ struct StagesOptions {
   MemoryBudget budget;
 };
 
+// What loading the scene's resources noted (SceneResources::notes: a basis image that does not
+// tile, a field basis mode ignores), each line once as "relief: note: ...".
+void print_scene_notes(const std::vector<std::string>& notes, std::ostream& err);
+
 // Each command checks its memory estimate (job_memory.h) against options.budget before it
 // starts, and throws MemoryLimitError when the job does not fit.
 
 // `relief stages`: stages 1-4, stage times (median over `repeat` runs), stage outputs.
-int run_stages_command(const Scene& scene, const StagesOptions& options, std::ostream& out);
+int run_stages_command(const Scene& scene, const StagesOptions& options, std::ostream& out,
+                       std::ostream& err);
 
 struct RenderOptions {
   std::string output;        // empty: scene.output.image
@@ -45,7 +50,8 @@ struct RenderOptions {
 };
 
 // `relief render`: the whole frame to an sRGB PNG, with the stage times.
-int run_render_command(const Scene& scene, const RenderOptions& options, std::ostream& out);
+int run_render_command(const Scene& scene, const RenderOptions& options, std::ostream& out,
+                       std::ostream& err);
 
 struct RasterOptions {
   std::string soup;    // triangle soup file (README.md, "Triangle soups")
@@ -98,7 +104,8 @@ struct CrosscheckOptions {
 // `relief crosscheck`: the scene by the CPU backend and by the GL backend, compared stage by
 // stage (crosscheck.h). Returns idiff's exit code for the final images (0 pass, 1 warning,
 // 2 failure, 3 size mismatch). Throws GlBackendError when there is no GL.
-int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options, std::ostream& out);
+int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options, std::ostream& out,
+                           std::ostream& err);
 
 struct StressOptions {
   std::vector<int> viewport = {640, 512};  // the base scene's size for the cases

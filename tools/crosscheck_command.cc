@@ -80,22 +80,23 @@ nlohmann::json figures_json(const CompareResult& r) {
 
 }  // namespace
 
-int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options,
-                           std::ostream& out) {
+int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options, std::ostream& out,
+                           std::ostream& err) {
   // Two frames with every output, and two grids: twice a render's memory.
   MemoryEstimate estimate = estimate_render_memory(
       scene, options.cpu_backend, FrameOutputs{true, true, true, true, true, true});
   estimate.add("the GL frame and the grids", estimate.total());
   check_memory(estimate, options.budget, "relief crosscheck", "Lower the viewport or grid size");
   const SceneResources resources = load_scene_resources(scene);
+  print_scene_notes(resources.notes, err);
   const std::string renderer = gl_renderer();  // GlBackendError (exit 2) when there is no GL
   double cpu_ms = 0, gl_ms = 0;
   const Frame cpu = timed_frame(scene, resources, options.cpu_backend, options.repeat, cpu_ms);
   const Frame gl = timed_frame(scene, resources, Backend::kGl, options.repeat, gl_ms);
   const TerrainRun<float> cpu_terrain = run_terrain_stages<float>(
-      scene, resources.lattice, Backend::kReference, resources.sketch_or_null());
+      scene, resources.terrain_values(), Backend::kReference, resources.sketch_or_null());
   const GridBuffers<float> gl_grid =
-      gl_terrain_stages(scene, resources.lattice, resources.sketch_or_null());
+      gl_terrain_stages(scene, resources.terrain_values(), resources.sketch_or_null());
   const GridDifference grid = compare_grids(cpu_terrain.grid, gl_grid);
   const FrameDifference frame = compare_frames(cpu.image, gl.image, options.thresholds);
 

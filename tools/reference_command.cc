@@ -21,6 +21,7 @@
 #include "tools/atomic_file.h"
 #include "tools/cli.h"
 #include "tools/cli_options.h"
+#include "tools/commands.h"
 #include "tools/float_image_file.h"
 #include "tools/reference_command.h"
 #include "tools/render_report.h"
@@ -43,7 +44,9 @@ std::string settings_text(const GroundTruthSettings& s) {
 }
 
 void print_height_error(std::ostream& out, const Scene& scene) {
-  const NoiseLattice lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
+  const std::optional<NoiseLattice> basis = load_basis_grid(scene);
+  const NoiseLattice lattice =
+      basis ? *basis : make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
   const std::optional<HeightSketch> sketch = load_height_sketch(scene);
   const VertexHeightError e =
       vertex_height_error(scene, lattice, Backend::kSimd, sketch ? &*sketch : nullptr);
@@ -123,6 +126,7 @@ int run_reference_command(const Scene& scene, const ReferenceOptions& options, s
 
   const auto start = std::chrono::steady_clock::now();
   const SceneResources resources = load_scene_resources(scene);  // validates texture files
+  print_scene_notes(resources.notes, err);
   TerminalProgress progress("relief reference", "bands");
   const GroundTruthImage image =
       render_ground_truth(scene, resources, options.settings, memory_left(estimate, options.budget),

@@ -25,7 +25,14 @@ std::span<const unsigned char> bytes_of(const std::vector<std::uint32_t>& values
 
 }  // namespace
 
-int run_render_command(const Scene& scene, const RenderOptions& options, std::ostream& out) {
+void print_scene_notes(const std::vector<std::string>& notes, std::ostream& err) {
+  for (const std::string& note : notes) {
+    err << "relief: note: " << note << "\n";
+  }
+}
+
+int run_render_command(const Scene& scene, const RenderOptions& options, std::ostream& out,
+                       std::ostream& err) {
   const std::string path = options.output.empty() ? scene.output.image : options.output;
   const std::string float_path =
       options.float_output.empty() ? scene.output.float_image.value_or("") : options.float_output;
@@ -44,6 +51,7 @@ int run_render_command(const Scene& scene, const RenderOptions& options, std::os
 
   const auto setup_start = std::chrono::steady_clock::now();
   const SceneResources resources = load_scene_resources(scene);  // validates texture files
+  print_scene_notes(resources.notes, err);
   const double setup_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - setup_start)
           .count();

@@ -127,7 +127,7 @@ void write_stage_outputs(const std::filesystem::path& dir, const Scene& scene,
   OutputDirectory directory(dir);
   OutputSet files;  // every field and stages.json appear together or not at all
   StageWriter out(dir, b, files, raw_format, scene_metadata(scene));
-  const double octave_cell = scene.terrain.horizontal_scale;
+  const double octave_cell = 1.0 / plan.terrain.inv_horizontal_scale;  // basis mode's too
   const glm::dvec3 camera = plan.camera.position;
 
   // Domain: absolute base-domain position as two nested checkers (octave-0 cells in hue,

@@ -60,10 +60,17 @@ std::pair<FramePlan, GridBuffers<float>> run(const Scene& scene, const NoiseLatt
 
 }  // namespace
 
-int run_stages_command(const Scene& scene, const StagesOptions& options, std::ostream& out) {
+int run_stages_command(const Scene& scene, const StagesOptions& options, std::ostream& out,
+                       std::ostream& err) {
   check_memory(estimate_stages_memory(scene, options.backend), options.budget, "relief stages",
                "Lower grid.width/height");
-  const NoiseLattice lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
+  // Stage 3's grid: terrain.basis's composed images, or the noise lattice.
+  std::vector<std::string> notes;
+  std::optional<NoiseLattice> basis = load_basis_grid(scene, &notes);
+  print_scene_notes(notes, err);
+  const NoiseLattice lattice =
+      basis ? std::move(*basis)
+            : make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
   const std::optional<HeightSketch> sketch_texels = load_height_sketch(scene);  // checked here
   const HeightSketch* sketch = sketch_texels ? &*sketch_texels : nullptr;
   std::vector<std::vector<StageTime>> times;

@@ -85,6 +85,36 @@ struct SketchSettings {
   Vec2d height = {0.0, 1000.0};  // world heights of black and of white
 };
 
+// §3 Eq. 2: the auxiliary function S as a convex combination of grey-scale basis images,
+// S = sum_i w_i I_i / sum_i w_i, composed once per scene into the periodic grid that takes the
+// noise lattice's place in stage 3 (core/basis_images.h, docs/terrain-spec.md section 12).
+struct BasisImageSettings {
+  // A grey PNG (8 or 16 bits), absolute or relative to the scene file, or "builtin:basis/NAME"
+  // (craters, ridges, dunes: shipped inside the binary).
+  std::string image;
+  double weight = 1.0;       // the constant weight (>= 0), used when weight_image is empty
+  std::string weight_image;  // a grey PNG of the image's size: the weight per texel instead
+  double low_pass = 0.0;     // Gaussian blur, sigma in texels; 0: off
+  double high_pass = 0.0;    // the image minus its Gaussian blur of this sigma; 0: off
+  bool normalize = false;    // to zero mean and unit variance (the N(0,1) lattice's statistics)
+};
+
+enum class BasisWrap {
+  kRepeat,  // the image tiles as it is
+  kMirror,  // the image mirrored into 2W x 2W first: any image then tiles (C0 at the seams)
+};
+
+struct BasisSettings {
+  double tile_size = 24000.0;  // world units one image tile spans at octave 0
+  BasisWrap wrap = BasisWrap::kRepeat;
+  // The composed grid refined this many times per side (1, 2, 4 or 8) by the periodic cubic
+  // B-spline (core/basis_images.h): stage 3's interpolants have zero slope at every texel, so
+  // a smooth image shows one terrace per texel; refined and sampled with the linear
+  // interpolant it does not.
+  int upsample = 1;
+  std::vector<BasisImageSettings> images;  // 1 to limits::kMaxBasisImages
+};
+
 struct TerrainSettings {
   std::uint64_t seed = 1;
   int lattice_size = 256;  // P
@@ -103,6 +133,10 @@ struct TerrainSettings {
   std::optional<double> water_level = 0.0;
   // The low-frequency base; nullopt: none (the fractal alone).
   std::optional<SketchSettings> sketch;
+  // §3 Eq. 2's basis images in place of the noise lattice in stage 3; nullopt: the lattice.
+  // With them, stage 3's P is the composed grid's side and its octave-0 cell is
+  // basis.tile_size / P: lattice_size sizes only the shading's noise, horizontal_scale is unused.
+  std::optional<BasisSettings> basis;
 };
 
 // One proto-texture layer (§4.2) with the height/slope ranges of Scape's layers.

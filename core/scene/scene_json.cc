@@ -211,7 +211,9 @@ void validate_scene(const Scene& scene) {
   const double coarsest_frequency = std::pow(t.r, t.first_octave);  // <= 2^40 (checked above)
   const double min_horizontal_scale =
       coarsest_frequency * farthest_footprint / (limits::kMaxLatticeCoordinate - period);
-  if (t.horizontal_scale < min_horizontal_scale) {
+  if (t.basis) {
+    validate_basis(*t.basis, coarsest_frequency * farthest_footprint);
+  } else if (t.horizontal_scale < min_horizontal_scale) {
     std::string message = "terrain.horizontal_scale = ";
     message.append(format_number(t.horizontal_scale))
         .append(" with camera.far = ")
@@ -293,7 +295,8 @@ json scene_to_json(const Scene& scene) {
                             {"extent", json::array({t.sketch->extent[0], t.sketch->extent[1],
                                                     t.sketch->extent[2], t.sketch->extent[3]})},
                             {"height", vec_json(t.sketch->height)}}
-                     : json(nullptr)}};
+                     : json(nullptr)},
+      {"basis", t.basis ? basis_to_json(*t.basis) : json(nullptr)}};
   json layers = json::array();
   for (const MaterialLayer& l : scene.shading.layers) {
     layers.push_back({{"name", l.name},

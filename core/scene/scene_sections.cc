@@ -222,6 +222,8 @@ void apply_terrain(const LayerReader& in, const json& value, const std::string& 
            [&](const json& v, const std::string& p) {
              apply_sketch(in, v, p, terrain.sketch, base_dir);
            }},
+          {"basis", [&](const json& v,
+                        const std::string& p) { apply_basis(in, v, p, terrain.basis, base_dir); }},
       });
 }
 

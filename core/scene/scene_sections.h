@@ -23,6 +23,18 @@ void apply_terrain(const LayerReader& in, const json& value, const std::string& 
 // terrain.sketch (sketch_section.cc): null removes it, an object patches it.
 void apply_sketch(const LayerReader& in, const json& value, const std::string& path,
                   std::optional<SketchSettings>& sketch, const std::filesystem::path& base_dir);
+// terrain.basis (basis_section.cc): null removes it, an object patches it.
+void apply_basis(const LayerReader& in, const json& value, const std::string& path,
+                 std::optional<BasisSettings>& basis, const std::filesystem::path& base_dir);
+// terrain.basis's rules across fields (validate_scene): some weight non-zero, and the octave-0
+// cell tile_size / P for the largest P keeps `coarsest_reach` (the coarsest octave's frequency
+// times the farthest footprint, world units) below kMaxLatticeCoordinate. Throws SceneError.
+void validate_basis(const BasisSettings& basis, double coarsest_reach);
+json basis_to_json(const BasisSettings& basis);
+// A file name relative to `base_dir` (the scene file's directory, the current one for --set)
+// made absolute, so that the printed scene loads back from anywhere; "builtin:..." and absolute
+// names unchanged.
+std::string resolve_scene_path(std::string name, const std::filesystem::path& base_dir);
 void apply_shading(const LayerReader& in, const json& value, const std::string& path,
                    ShadingSettings& shading, const std::filesystem::path& base_dir);
 void apply_lighting(const LayerReader& in, const json& value, const std::string& path,

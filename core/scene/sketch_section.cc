@@ -8,23 +8,17 @@
 
 namespace relief {
 
-namespace {
-
-constexpr std::string_view kBuiltinPrefix = "builtin:";
-
 // A file name relative to the scene file's directory (the current one for --set), made
 // absolute so that the printed scene loads back from anywhere; "builtin:..." and absolute
 // names unchanged.
 std::string resolve_scene_path(std::string name, const std::filesystem::path& base_dir) {
-  if (name.rfind(kBuiltinPrefix, 0) == 0 || !std::filesystem::path(name).is_relative()) {
+  if (name.rfind("builtin:", 0) == 0 || !std::filesystem::path(name).is_relative()) {
     return name;
   }
   std::error_code ec;
   const std::filesystem::path absolute = std::filesystem::absolute(base_dir / name, ec);
   return ec ? (base_dir / name).lexically_normal().string() : absolute.lexically_normal().string();
 }
-
-}  // namespace
 
 // terrain.sketch: null removes it; an object patches it (a new one must name its image).
 // Whether the image can be read is checked when it is loaded (pipeline/scene_resources.h).
