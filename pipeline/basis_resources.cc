@@ -6,8 +6,6 @@
 #include <span>
 #include <string_view>
 
-#include <stb_image.h>
-
 #include "core/basis_images.h"
 #include "core/input_file.h"
 #include "core/limits.h"
@@ -104,25 +102,13 @@ std::vector<unsigned char> read_basis_png(const BasisFile& f, bool mirror, std::
 // The grey levels mapped to [0, 1] (exact in double: v / 65535, stb scaling 8-bit values by
 // 257).
 GreyGrid decode_basis_png(const std::vector<unsigned char>& bytes, const BasisFile& f) {
-  check_png_image_data(bytes, f.field, f.path);
-  const PngHeader png = png_header_or_throw(bytes, f.field, f.path);
-  int width = 0, height = 0, channels = 0;
-  reset_stb_failure_reason();
-  stbi_us* grey = stbi_load_16_from_memory(bytes.data(), static_cast<int>(bytes.size()), &width,
-                                           &height, &channels, 1);
-  if (!grey || std::uint32_t(width) != png.width || std::uint32_t(height) != png.height) {
-    stbi_image_free(grey);
-    throw SceneError(f.path, "scene: " + f.field + " could not be decoded: " +
-                                 (grey ? std::string("its header and data disagree")
-                                       : stb_failure_reason_or("corrupt image data")));
-  }
+  const Grey16Image grey = decode_grey16_png(bytes, f.field, f.path);
   GreyGrid image;
-  image.side = width;
-  image.values.resize(std::size_t(width) * std::size_t(height));
+  image.side = grey.width;
+  image.values.resize(grey.levels.size());
   for (std::size_t k = 0; k < image.values.size(); ++k) {
-    image.values[k] = double(grey[k]) / 65535.0;
+    image.values[k] = double(grey.levels[k]) / 65535.0;
   }
-  stbi_image_free(grey);
   return image;
 }
 
@@ -240,21 +226,9 @@ std::uintmax_t basis_memory_bytes(const Scene& scene) {
   const bool mirror = scene.terrain.basis->wrap == BasisWrap::kMirror;
   std::uintmax_t files_bytes = 0, side = 0, count = 0;
   for (const BasisFile& f : basis_files(*scene.terrain.basis)) {
-    std::optional<PngHeader> png;
-    if (f.name.rfind(kBuiltin, 0) == 0) {
-      const std::span<const unsigned char> bytes =
-          builtin_sketch_png(std::string_view(f.name).substr(kBuiltin.size()));
-      png = parse_png_header(bytes.data(), bytes.size());
-      files_bytes += bytes.size();
-    } else {
-      try {
-        InputFile file(f.name, limits::kMaxTextureFileBytes);
-        unsigned char header[kPngHeaderBytes];
-        png = parse_png_header(header, file.read(header, sizeof header));
-        files_bytes += file.size();
-      } catch (const InputFileError&) {
-      }
-    }
+    const PngPeek peek = peek_png(f.name);
+    const std::optional<PngHeader>& png = peek.header;
+    files_bytes += peek.file_bytes;
     if (!png || png->width > std::uint32_t(limits::kMaxLatticeSize)) {
       return 0;
     }

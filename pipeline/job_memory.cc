@@ -9,7 +9,7 @@
 #include "core/input_file.h"
 #include "core/limits.h"
 #include "pipeline/basis_resources.h"
-#include "pipeline/builtin_sketches.h"
+#include "pipeline/png_checks.h"
 #include "pipeline/png_header.h"
 #include "raster/triangle_setup.h"
 
@@ -50,15 +50,10 @@ std::string size_text(int width, int height) {
 // A PNG layer's memory: its file, decoded bytes and float texels; nullopt when the file or its
 // header is unreadable (loading the scene reports why).
 std::optional<std::uintmax_t> png_layer_bytes(const std::string& path) {
-  try {
-    InputFile file(path, limits::kMaxTextureFileBytes);
-    unsigned char header[kPngHeaderBytes];
-    const std::optional<PngHeader> png = parse_png_header(header, file.read(header, sizeof header));
-    if (png && png->width <= std::uint32_t(limits::kMaxTextureSize)) {
-      const std::uintmax_t side = png->width;
-      return file.size() + side * side * (kTexelBytes + kDecodedTexelBytes);
-    }
-  } catch (const InputFileError&) {
+  const PngPeek peek = peek_png(path);
+  if (peek.header && peek.header->width <= std::uint32_t(limits::kMaxTextureSize)) {
+    const std::uintmax_t side = peek.header->width;
+    return peek.file_bytes + side * side * (kTexelBytes + kDecodedTexelBytes);
   }
   return std::nullopt;
 }
@@ -67,32 +62,14 @@ std::optional<std::uintmax_t> png_layer_bytes(const std::string& path) {
 // decoded, the decoded 16-bit texels and their float heights; 0 when its header is unreadable
 // or too large (loading the scene reports why).
 std::uintmax_t sketch_bytes(const SketchSettings& sketch) {
-  static constexpr std::string_view kBuiltin = "builtin:";
-  std::vector<unsigned char> header(kPngHeaderBytes);
-  std::uintmax_t file_bytes = 0;
-  std::size_t header_bytes = 0;
-  if (sketch.image.rfind(kBuiltin, 0) == 0) {
-    const std::span<const unsigned char> png =
-        builtin_sketch_png(std::string_view(sketch.image).substr(kBuiltin.size()));
-    header_bytes = std::min(png.size(), header.size());
-    std::copy_n(png.begin(), header_bytes, header.begin());
-    file_bytes = png.size();
-  } else {
-    try {
-      InputFile file(sketch.image, limits::kMaxTextureFileBytes);
-      header_bytes = file.read(header.data(), header.size());
-      file_bytes = file.size();
-    } catch (const InputFileError&) {
-      return 0;
-    }
-  }
-  const std::optional<PngHeader> png = parse_png_header(header.data(), header_bytes);
+  const PngPeek peek = peek_png(sketch.image);
+  const std::optional<PngHeader>& png = peek.header;
   if (!png || png->width > std::uint32_t(limits::kMaxSketchSize) ||
       png->height > std::uint32_t(limits::kMaxSketchSize)) {
     return 0;
   }
   const std::uintmax_t texels = std::uintmax_t(png->width) * png->height;
-  return file_bytes + texels * (sizeof(std::uint16_t) + sizeof(float));
+  return peek.file_bytes + texels * (sizeof(std::uint16_t) + sizeof(float));
 }
 
 void add_resources(const Scene& scene, MemoryEstimate& estimate) {

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string_view>
 
 #include <stb_image.h>
@@ -9,6 +10,7 @@
 #include "core/input_file.h"
 #include "core/limits.h"
 #include "core/scene/scene_json.h"
+#include "pipeline/builtin_sketches.h"
 #include "pipeline/png_header.h"
 #include "pipeline/png_layout.h"
 
@@ -94,6 +96,50 @@ void check_png_image_data(const std::vector<unsigned char>& png, const std::stri
     throw SceneError(path, "scene: " + field + " could not be decoded: corrupt image data" +
                                (inflate_error.empty() ? "" : " (" + inflate_error + ")"));
   }
+}
+
+Grey16Image decode_grey16_png(const std::vector<unsigned char>& png, const std::string& field,
+                              const std::string& path) {
+  if (png.size() > limits::kMaxTextureFileBytes) {  // stb takes an int size
+    throw SceneError(path, "scene: " + field + " is larger than " +
+                               std::to_string(limits::kMaxTextureFileBytes) + " bytes");
+  }
+  check_png_image_data(png, field, path);
+  const PngHeader header = png_header_or_throw(png, field, path);
+  int width = 0, height = 0, channels = 0;
+  reset_stb_failure_reason();
+  stbi_us* grey = stbi_load_16_from_memory(png.data(), static_cast<int>(png.size()), &width,
+                                           &height, &channels, 1);
+  if (!grey || std::uint32_t(width) != header.width || std::uint32_t(height) != header.height) {
+    stbi_image_free(grey);
+    throw SceneError(path, "scene: " + field + " could not be decoded: " +
+                               (grey ? std::string("its header and data disagree")
+                                     : stb_failure_reason_or("corrupt image data")));
+  }
+  Grey16Image image{width, height, {}};
+  image.levels.assign(grey, grey + std::size_t(width) * std::size_t(height));
+  stbi_image_free(grey);
+  return image;
+}
+
+PngPeek peek_png(const std::string& name) {
+  static constexpr std::string_view kBuiltin = "builtin:";
+  PngPeek peek;
+  if (name.rfind(kBuiltin, 0) == 0) {
+    const std::span<const unsigned char> png =
+        builtin_sketch_png(std::string_view(name).substr(kBuiltin.size()));
+    peek.header = parse_png_header(png.data(), png.size());
+    peek.file_bytes = png.size();
+    return peek;
+  }
+  try {
+    InputFile file(name, limits::kMaxTextureFileBytes);
+    unsigned char header[kPngHeaderBytes];
+    peek.header = parse_png_header(header, file.read(header, sizeof header));
+    peek.file_bytes = file.size();
+  } catch (const InputFileError&) {
+  }
+  return peek;
 }
 
 }  // namespace relief

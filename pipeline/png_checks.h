@@ -3,7 +3,9 @@
 // reason read reliably.
 #pragma once
 
+#include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +29,27 @@ std::vector<unsigned char> read_png_file(
 // Precondition: parse_png_header accepted `png`.
 void check_png_image_data(const std::vector<unsigned char>& png, const std::string& field,
                           const std::string& path);
+
+// A grey PNG's levels as 16-bit values (8-bit levels scaled by 257, as stb does), after
+// check_png_image_data (and at most limits::kMaxTextureFileBytes: stb takes an int size); throws
+// SceneError(path, "scene: FIELD could not be decoded: ...") when stb fails or its size disagrees
+// with the header. Precondition: parse_png_header accepted `png` and it has one channel.
+struct Grey16Image {
+  int width = 0, height = 0;
+  std::vector<std::uint16_t> levels;  // row-major
+};
+Grey16Image decode_grey16_png(const std::vector<unsigned char>& png, const std::string& field,
+                              const std::string& path);
+
+// The header of a PNG named as a scene names one ("builtin:NAME", a PNG shipped inside the
+// binary: builtin_sketches.h, or a file) and the file's size, for memory estimates before
+// anything is read whole; header nullopt when the file cannot be opened or is not a PNG
+// (loading the scene reports why).
+struct PngPeek {
+  std::optional<PngHeader> header;
+  std::uintmax_t file_bytes = 0;
+};
+PngPeek peek_png(const std::string& name);
 
 // stb's failure reason is a global that some failures leave as it was: reset it before a
 // call, then read it with a fallback for "none given".

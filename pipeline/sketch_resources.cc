@@ -8,8 +8,6 @@
 #include <string_view>
 #include <vector>
 
-#include <stb_image.h>
-
 #include "core/input_file.h"
 #include "core/limits.h"
 #include "core/scene/json_input.h"
@@ -75,29 +73,10 @@ std::optional<HeightSketch> load_height_sketch(const Scene& scene) {
         });
   }
   // 16-bit samples whatever the file's depth (stb scales 8-bit values by 257, so v / 65535 is
-  // v8 / 255 exactly).
-  if (bytes.size() > limits::kMaxTextureFileBytes) {  // stb takes an int size
-    throw SceneError(path, "scene: " + field + " is larger than " +
-                               std::to_string(limits::kMaxTextureFileBytes) + " bytes");
-  }
-  // The chunks and the inflated size checked before stb sees the file (png_checks.h).
-  check_png_image_data(bytes, field, path);
-  const PngHeader png = png_header_or_throw(bytes, field, path);
-  int width = 0, height = 0, channels = 0;
-  reset_stb_failure_reason();
-  stbi_us* grey = stbi_load_16_from_memory(bytes.data(), static_cast<int>(bytes.size()), &width,
-                                           &height, &channels, 1);
-  if (!grey || std::uint32_t(width) != png.width || std::uint32_t(height) != png.height) {
-    stbi_image_free(grey);
-    throw SceneError(path, "scene: " + field + " could not be decoded: " +
-                               (grey ? std::string("its header and data disagree")
-                                     : stb_failure_reason_or("corrupt image data")));
-  }
-  const HeightSketch sketch = make_height_sketch(
-      settings, width, height,
-      std::span<const std::uint16_t>(grey, std::size_t(width) * std::size_t(height)), 65535);
-  stbi_image_free(grey);
-  return sketch;
+  // v8 / 255 exactly); the size, the chunks and the inflated size checked before stb sees the
+  // file (png_checks.h).
+  const Grey16Image grey = decode_grey16_png(bytes, field, path);
+  return make_height_sketch(settings, grey.width, grey.height, grey.levels, 65535);
 }
 
 }  // namespace relief
