@@ -85,6 +85,16 @@ struct SketchSettings {
   Vec2d height = {0.0, 1000.0};  // world heights of black and of white
 };
 
+// §4.1's spherical domain (docs/planet.md): the base domain warped around a sphere of this
+// radius whose surface lies at terrain.base_height.
+struct PlanetSettings {
+  double radius = 0.0;   // world units; 0: the plane
+  double horizon = 0.0;  // artificial horizon, arc length along the datum; 0: the geometric one
+  // Camera altitudes (above terrain.base_height) over which the projected grid on the sphere
+  // blends into equal-angle sampling; nullopt: the plain projected grid at every altitude.
+  std::optional<Vec2d> equal_angle;
+};
+
 struct TerrainSettings {
   std::uint64_t seed = 1;
   int lattice_size = 256;  // P
@@ -103,6 +113,8 @@ struct TerrainSettings {
   std::optional<double> water_level = 0.0;
   // The low-frequency base; nullopt: none (the fractal alone).
   std::optional<SketchSettings> sketch;
+  // §4.1's spherical domain; nullopt (or radius 0): the plane.
+  std::optional<PlanetSettings> planet;
 };
 
 // One proto-texture layer (§4.2) with the height/slope ranges of Scape's layers.

@@ -222,6 +222,8 @@ void apply_terrain(const LayerReader& in, const json& value, const std::string& 
            [&](const json& v, const std::string& p) {
              apply_sketch(in, v, p, terrain.sketch, base_dir);
            }},
+          {"planet",
+           [&](const json& v, const std::string& p) { apply_planet(in, v, p, terrain.planet); }},
       });
 }
 
