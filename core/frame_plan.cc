@@ -79,9 +79,15 @@ FramePlan make_frame_plan(const Scene& scene, const NoiseLattice& lattice,
   plan.layout = make_grid_layout(scene.grid.width, scene.grid.height);
   plan.lod = make_lod_plan(stage3_terrain(scene.terrain, lattice.size));
   plan.terrain = make_terrain_plan(scene.terrain, lattice, scene.camera.position, sketch);
-  // After the terrain plan: the projector refines the slab by its regional height bound.
-  plan.projector =
-      make_projector(plan.camera, plan.bounds, scene.terrain.base_height, &plan.terrain);
+  plan.planet = make_planet_plan(scene.terrain, plan.camera, plan.bounds);
+  if (plan.planet.enabled) {
+    plan.projector =
+        make_planet_projector(plan.camera, plan.bounds, scene.terrain.base_height, plan.planet);
+  } else {
+    // After the terrain plan: the projector refines the slab by its regional height bound.
+    plan.projector =
+        make_projector(plan.camera, plan.bounds, scene.terrain.base_height, &plan.terrain);
+  }
   plan.screen = make_screen_grid(scene.grid, plan.projector);
   plan.clip = make_clip_transform(plan.camera);
   plan.relative_water_level = scene.terrain.water_level.value_or(0.0) - scene.camera.position[1];

@@ -9,6 +9,7 @@
 #include "core/height_sketch.h"
 #include "core/lattice.h"
 #include "core/octaves.h"
+#include "core/planet_plan.h"
 #include "core/projector.h"
 #include "core/scene/scene.h"
 #include "core/screen_grid.h"
@@ -66,6 +67,8 @@ struct FramePlan {
   // it (from below, the surface is not drawn: the terrain is seen as if there were none).
   bool water_enabled = false;
   double relative_water_level = 0;  // terrain.water_level - camera y, formed in double
+  // §4.1's spherical domain (planet_plan.h); planet.enabled false on the plane.
+  PlanetPlan planet;
 };
 
 // Precondition: the scene passed validate_scene and `lattice` is stage 3's grid: the noise

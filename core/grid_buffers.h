@@ -83,6 +83,13 @@ struct SurfaceSpans {
   std::span<Real> water_depth;  // max(0, water level - h); 0 without water
 };
 
+// The bend of a planet frame (core/planet_bend.h): camera-relative positions on the sphere,
+// and how far each lies below its unbent height (what stage 8 subtracts).
+template <class Real>
+struct BentSpans {
+  std::span<Real> x, y, z, drop;
+};
+
 // Every per-vertex field of stages 2-4.
 template <class Real>
 struct GridBuffers {
@@ -91,6 +98,8 @@ struct GridBuffers {
   AlignedVector<std::uint8_t> valid;
   AlignedVector<Real> height;
   AlignedVector<Real> nx, ny, nz, slope, water_depth;
+  // A planet frame's bent positions (allocate_bent); empty on the plane.
+  AlignedVector<Real> bent_x, bent_y, bent_z, bent_drop;
 
   explicit GridBuffers(GridLayout grid)
       : layout(grid),
@@ -108,6 +117,12 @@ struct GridBuffers {
 
   DomainSpans<Real> domain() { return {dx, dz, sigma, nu, valid}; }
   SurfaceSpans<Real> surface() { return {nx, ny, nz, slope, water_depth}; }
+  BentSpans<Real> bent() { return {bent_x, bent_y, bent_z, bent_drop}; }
+  void allocate_bent() {
+    for (AlignedVector<Real>* v : {&bent_x, &bent_y, &bent_z, &bent_drop}) {
+      v->resize(layout.size());
+    }
+  }
 };
 
 }  // namespace relief

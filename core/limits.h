@@ -58,6 +58,18 @@ inline constexpr double kMaxFovDeg = 170.0;
 inline constexpr double kMaxHorizontalFovDeg = 175.0;
 inline constexpr double kMaxViewDistance = 1e9;
 
+// --- Planets (§4.1, docs/planet.md) ----------------------------------------------------------
+
+// Below 1e3 units a planet is smaller than a default mountain range; above 1e8 the arc offsets
+// (up to pi R) leave the lattice coordinates float resolves at the default horizontal scale.
+inline constexpr double kMinPlanetRadius = 1e3;
+inline constexpr double kMaxPlanetRadius = 1e8;
+// The artificial horizon (an arc length) and the equal-angle band's altitudes.
+inline constexpr double kMaxPlanetLength = 1e9;
+// The largest central angle a grid vertex may take: the azimuthal equidistant map is singular
+// at the antipode (pi), and a terrain this far round is never seen past the limb.
+inline constexpr double kMaxPlanetAngle = 0.95 * 3.14159265358979323846;
+
 // --- Terrain -------------------------------------------------------------------------------
 
 // Lattice sides are powers of two so that the periodic wrap is a bit mask in every path

@@ -193,6 +193,11 @@ Projector make_projector(const CameraFrame& camera, const HeightBounds& bounds, 
   return projector;
 }
 
+Projector fit_projector_to_points(const CameraFrame& camera, const std::vector<glm::dvec3>& points,
+                                  double height_above_plane) {
+  return fit_projector(camera, points, height_above_plane);
+}
+
 template <class Real>
 bool ProjectorRays<Real>::footprint(Real x, Real y, Real descent, Real& dx, Real& dz) const {
   // The projector has no roll: its right axis is horizontal, so x does not change ray.y.

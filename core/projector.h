@@ -74,6 +74,12 @@ std::vector<glm::dvec3> frustum_slab_vertices(const CameraFrame& camera, double 
 Projector make_projector(const CameraFrame& camera, const HeightBounds& bounds, double base_height,
                          const TerrainPlan* terrain = nullptr);
 
+// make_projector's last step: the projector fitted to camera-relative points (its pitch
+// bisects their footprints' depression angles), the projection plane `height_above_plane`
+// (> 0) below the camera. A planet frame adds points of its own (planet_plan.h).
+Projector fit_projector_to_points(const CameraFrame& camera, const std::vector<glm::dvec3>& points,
+                                  double height_above_plane);
+
 // The footprint of the projector ray through image point (x, y) on the projection plane, as
 // camera-relative (dx, dz). `descent` is the ray's downward component -ray.y for that image
 // row, from projector_descent(): near the horizon ray.y = y cos(pitch) - sin(pitch) cancels

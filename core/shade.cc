@@ -6,6 +6,7 @@
 #include "core/det_math.h"
 #include "core/interpolant.h"
 #include "core/layer_weights.h"
+#include "core/planet_shading.h"
 #include "core/proto_texture.h"
 #include "core/sky.h"
 #include "core/vec3.h"
@@ -103,6 +104,45 @@ Real surface_footprint(const ShadeParams<Real>& p, Real distance, const Vec3<Rea
   return distance * p.pixel_angle / std::max(std::abs(view.y), Real(0.05));
 }
 
+// A planet's background (planet_shading.h): the water sphere, else the datum sphere's fog,
+// else the sky. `ray`: the view ray in double, `d`: it normalised in Real.
+template <class Real>
+Vec3<Real> planet_background(const ShadeParams<Real>& p, const ShadeResources& r,
+                             const double ray[3], const Vec3<Real>& d, ShadeWork& work) {
+  const double length = std::sqrt(ray[0] * ray[0] + ray[1] * ray[1] + ray[2] * ray[2]);
+  const double unit[3] = {ray[0] / length, ray[1] / length, ray[2] / length};  // length >= 1
+  const double D = p.planet_center_distance;
+  if (p.water_enabled) {
+    const double t = planet_sphere_hit(unit, D, p.planet_water_c);
+    if (t >= 0.0) {
+      // The local up there: the hit relative to the centre, normalised (its length is the
+      // water sphere's radius, > 0).
+      const double hit[3] = {t * unit[0], t * unit[1] + D, t * unit[2]};
+      const double radius = std::sqrt(hit[0] * hit[0] + hit[1] * hit[1] + hit[2] * hit[2]);
+      const Vec3<Real> up{Real(hit[0] / radius), Real(hit[1] / radius), Real(hit[2] / radius)};
+      const Vec3<Real> view = to_local_frame(d, up);
+      const Real surface = Real(t);
+      const Real footprint = surface_footprint(p, surface, view);
+      const Vec3<Real> open =
+          shade_water(p, *r.lattice, view, surface, Real(1e6), Vec3<Real>{0, 0, 0}, footprint);
+      ++work.water_pixels;
+      if (!p.fog_enabled) {
+        return open;
+      }
+      ++work.fogged_pixels;
+      return apply_fog(p, open, d, surface);
+    }
+  }
+  // The ground beyond the horizon; a camera below the datum (in a valley, or inside the
+  // planet) has the plane's rule: below the horizontal.
+  const bool ground =
+      p.planet_datum_c > 0.0 ? planet_sphere_hit(unit, D, p.planet_datum_c) >= 0.0 : unit[1] < 0.0;
+  if (ground) {
+    return fog_color(p, d);
+  }
+  return sky_radiance(p, planet_sky_direction<Real>(unit, p.planet_limb_angle));
+}
+
 }  // namespace
 
 template <class Real>
@@ -110,7 +150,9 @@ Vec3<Real> terrain_radiance(const ShadeParams<Real>& p, const ShadeResources& r,
                             const PixelAttributes<Real>& a, ShadeWork& work) {
   ++work.terrain_pixels;
   const Real relative_y = a.height;  // camera-relative (stage 3)
-  const Vec3<Real> position{a.dx, relative_y, a.dz};
+  // On a planet the position is the bent one: (dx, dz) hold it, and the height lies a.drop
+  // above it (x - 0 is x: the plane's bits are unchanged).
+  const Vec3<Real> position{a.dx, relative_y - a.drop, a.dz};
   const Real distance = std::sqrt(dot(position, position));
   const Vec3<Real> view = normalize_or(position, p.camera_forward);
   const Vec3<Real> n =
@@ -155,10 +197,19 @@ Vec3<Real> terrain_radiance(const ShadeParams<Real>& p, const ShadeResources& r,
   Real fog_distance = distance;
   if (p.water_enabled && p.terrain_water && relative_y < p.water_level && view.y < Real(0)) {
     // The view ray meets the surface before the ground (the camera is above the water).
-    const Real surface = p.water_level / view.y;  // both negative: surface > 0
-    const Real footprint = surface_footprint(p, surface, view);
-    radiance = shade_water(p, *r.lattice, view, surface, std::max(Real(0), a.water_depth), radiance,
-                           footprint);
+    // On a planet the water surface lies a.drop lower too (locally flat: the depth is small
+    // beside the curvature); both negative: surface > 0.
+    const Real surface = (p.water_level - a.drop) / view.y;
+    Vec3<Real> water_view = view;
+    if (p.planet_center_distance > 0.0) {  // shaded in the local frame of the point
+      const Real center_y = Real(p.planet_center_distance);
+      const Vec3<Real> up = normalize_or(Vec3<Real>{position.x, position.y + center_y, position.z},
+                                         Vec3<Real>{Real(0), Real(1), Real(0)});
+      water_view = to_local_frame(view, up);
+    }
+    const Real footprint = surface_footprint(p, surface, water_view);
+    radiance = shade_water(p, *r.lattice, water_view, surface, std::max(Real(0), a.water_depth),
+                           radiance, footprint);
     fog_distance = surface;
     ++work.water_pixels;
   }
@@ -185,6 +236,9 @@ Vec3<Real> background_radiance(const ShadeParams<Real>& p, const ShadeResources&
   }
   const Vec3<Real> d =
       normalize_or(Vec3<Real>{Real(ray[0]), Real(ray[1]), Real(ray[2])}, p.camera_forward);
+  if (p.planet_center_distance > 0.0) {
+    return planet_background(p, r, ray, d, work);
+  }
   if (d.y < Real(0)) {
     if (p.water_enabled) {
       const Real surface = p.water_level / d.y;

@@ -37,6 +37,7 @@ struct PixelAttributes {
   Real nx, ny, nz;                                              // normal (renormalised here)
   Real slope;                                                   // |grad h|
   Real water_depth;                                             // §4.3, interpolated
+  Real drop;  // a planet's curvature drop below the height (planet_bend.h); 0 on the plane
 };
 
 // The work stage 8 did, counted per pixel (README.md, "Skipped work").
@@ -79,13 +80,15 @@ struct ShadingInputs {
   std::span<const float> nx, ny, nz;  // interpolated normal (renormalised here)
   std::span<const float> slope;
   std::span<const float> water_depth;  // interpolated per-vertex depth (§4.3)
+  std::span<const float> drop = {};    // a planet's curvature drop; empty: 0 (the plane)
 
   template <class Real>
   PixelAttributes<Real> at(std::size_t k) const {
-    return {Real(dx[k]),         Real(dz[k]),         Real(height[k]), Real(dx_ddx[k]),
-            Real(dx_ddy[k]),     Real(dz_ddx[k]),     Real(dz_ddy[k]), Real(height_ddx[k]),
-            Real(height_ddy[k]), Real(nx[k]),         Real(ny[k]),     Real(nz[k]),
-            Real(slope[k]),      Real(water_depth[k])};
+    return {Real(dx[k]),     Real(dz[k]),          Real(height[k]),
+            Real(dx_ddx[k]), Real(dx_ddy[k]),      Real(dz_ddx[k]),
+            Real(dz_ddy[k]), Real(height_ddx[k]),  Real(height_ddy[k]),
+            Real(nx[k]),     Real(ny[k]),          Real(nz[k]),
+            Real(slope[k]),  Real(water_depth[k]), drop.empty() ? Real(0) : Real(drop[k])};
   }
 };
 

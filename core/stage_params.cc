@@ -91,7 +91,8 @@ TerrainParams<Real> make_terrain_params(const FramePlan& plan) {
                         make_fbm_params<Real>(plan.terrain),
                         make_sketch_params<Real>(plan.terrain.sketch_plan, plan.terrain.sketch),
                         {},
-                        {}};
+                        {},
+                        make_planet_params<Real>(plan.planet)};
   SurfaceParams<Real>& s = p.surface;
   s.width = plan.layout.width;
   s.height = plan.layout.height;
@@ -177,6 +178,24 @@ ShadeParams<Real> make_shade_params(const ShadingPlan& plan) {
   return p;
 }
 
+template <class Real>
+void add_planet_shading(const FramePlan& plan, double base_height, ShadeParams<Real>& p) {
+  const PlanetPlan& planet = plan.planet;
+  if (!planet.enabled || !(planet.center_distance > 0.0)) {
+    return;
+  }
+  const double D = planet.center_distance;
+  const double R = planet.radius;
+  p.planet_center_distance = D;
+  // D - R = a; D - (R + w) = -(relative water level), w the water level above the datum.
+  p.planet_datum_c = planet.altitude * (D + R);
+  const double water_elevation = plan.relative_water_level + plan.camera.position.y - base_height;
+  p.planet_water_c = -plan.relative_water_level * (D + R + water_elevation);
+  // sin = R / D, cos = sqrt(a (D + R)) / D; a camera inside the datum sees no limb.
+  p.planet_limb_angle =
+      planet.altitude > 0.0 ? std::atan2(R, std::sqrt(p.planet_datum_c)) : M_PI / 2;
+}
+
 template DomainRows<float> make_domain_rows<float>(const FramePlan&);
 template DomainRows<double> make_domain_rows<double>(const FramePlan&);
 template FbmParams<float> make_fbm_params<float>(const TerrainPlan&);
@@ -185,5 +204,7 @@ template TerrainParams<float> make_terrain_params<float>(const FramePlan&);
 template TerrainParams<double> make_terrain_params<double>(const FramePlan&);
 template ShadeParams<float> make_shade_params<float>(const ShadingPlan&);
 template ShadeParams<double> make_shade_params<double>(const ShadingPlan&);
+template void add_planet_shading<float>(const FramePlan&, double, ShadeParams<float>&);
+template void add_planet_shading<double>(const FramePlan&, double, ShadeParams<double>&);
 
 }  // namespace relief

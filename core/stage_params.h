@@ -14,6 +14,7 @@
 
 #include "core/frame_plan.h"
 #include "core/limits.h"
+#include "core/planet_plan.h"
 #include "core/projector.h"
 #include "core/shading_plan.h"
 #include "core/vec3.h"
@@ -153,7 +154,19 @@ struct ShadeParams {
   // thousandth of a pixel at any field of view) and rounded once: these stay double.
   double forward[3] = {}, right[3] = {}, up[3] = {};
   double tan_half_fov_x = 0, tan_half_fov_y = 0;
+  // A planet frame (docs/planet.md), in double like the view rays; planet_center_distance 0 on
+  // the plane. The background's rays meet the water sphere (radius R + the water level's
+  // elevation) or the datum sphere, or miss both (the sky, its elevation measured from the
+  // limb); c = (D - r)(D + r) of each sphere, formed without cancellation per frame.
+  double planet_center_distance = 0;  // D = R + a
+  double planet_limb_angle = 0;       // nadir angle of the datum's limb (pi/2 on the surface)
+  double planet_water_c = 0;
+  double planet_datum_c = 0;
 };
+
+// The planet's part of stage 8's parameters (nothing on the plane).
+template <class Real>
+void add_planet_shading(const FramePlan& plan, double base_height, ShadeParams<Real>& params);
 
 // The parameters of stages 2-5, both precisions of which a frame may run.
 template <class Real>
@@ -164,6 +177,7 @@ struct TerrainParams {
   SketchParams<Real> sketch;  // stage 3, after the fractal: §3's low-frequency base
   SurfaceParams<Real> surface;
   TransformParams<Real> transform;
+  PlanetParams<Real> planet;  // stage 2 and the bend on a planet (planet_plan.h)
 };
 
 template <class Real>

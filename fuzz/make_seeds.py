@@ -170,12 +170,17 @@ def dict_file(target, tokens):
 
 
 paths = list(field_paths(alpine))
+# terrain.planet is absent from alpine.json (the plane prints no planet): its fields by hand.
+paths += [("terrain.planet", None)]
+paths += [("terrain.planet." + k, None) for k in ("radius", "horizon", "equal_angle")]
+paths += [("terrain.planet.equal_angle." + k, None) for k in ("begin", "end")]
 layer_keys = list(alpine["shading"]["layers"][0].keys())
 textures = ["builtin:" + t for t in ("sand", "grass", "rock", "snow", "bed", "basalt", "dune")]
 words = ["linear", "cubic", "quintic", "amplitude", "nyquist", "look_at", "true", "false",
          "null"] + textures
 scene_tokens = [f'"{p.split(".")[-1]}":' for p, _ in paths] + [f'"{k}":' for k in layer_keys]
 scene_tokens += ['"look_at":', "{", "}", "[", "]", ",", '"0":', "1e308", "-0", "1e-17", "4096"]
+scene_tokens += ['"planet":']
 scene_tokens += [f'"{w}"' for w in words[:5]] + [f'"{t}"' for t in textures] + words[5:9]
 dict_file("scene", scene_tokens)
 override_tokens = [p + "=" for p, _ in paths] + ["camera.look_at=", "\n"]

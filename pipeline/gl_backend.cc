@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "core/frame_plan.h"
+#include "core/scene/json_fields.h"
 #include "core/shading_plan.h"
 #include "core/stage_params.h"
 #include "pipeline/frame_skips.h"
@@ -18,6 +19,21 @@
 #endif
 
 namespace relief {
+
+namespace {
+
+// §4.1's spherical domain runs on the CPU backends only (docs/planet.md).
+[[maybe_unused]] void refuse_planet(const Scene& scene) {
+  if (scene.terrain.planet && scene.terrain.planet->radius != 0.0) {
+    throw SceneError(
+        "terrain.planet",
+        "scene: terrain.planet.radius = " + format_number(scene.terrain.planet->radius) +
+            ": the GL backend does not carry planets yet; use --backend simd, "
+            "reference or reference-double (or terrain.planet = null)");
+  }
+}
+
+}  // namespace
 
 #ifdef RELIEF_WITH_GL
 namespace {
@@ -222,11 +238,13 @@ std::string gl_renderer() {
 
 std::unique_ptr<FrameBackend> make_gl_backend(const Scene& scene, const SceneResources& resources,
                                               const FrameRequest& request) {
+  refuse_planet(scene);
   return std::make_unique<GlBackend>(scene, resources, request);
 }
 
 GridBuffers<float> gl_terrain_stages(const Scene& scene, const NoiseLattice& lattice,
                                      const HeightSketch* sketch) {
+  refuse_planet(scene);
   GlSession& s = session();
   const std::lock_guard<std::mutex> lock(s.mutex);
   const FramePlan plan = make_frame_plan(scene, lattice, sketch);

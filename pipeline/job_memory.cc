@@ -107,9 +107,12 @@ MemoryEstimate estimate_render_memory(const Scene& scene, Backend backend,
   const std::uintmax_t vertices = grid_vertices(scene);
   const std::uintmax_t triangles =
       2 * std::uintmax_t(scene.grid.width - 1) * std::uintmax_t(scene.grid.height - 1);
-  const std::uintmax_t vertex_bytes = backend != Backend::kReferenceDouble
-                                          ? kGridVertexBytes + kClipVertexBytes
-                                          : kDoubleVertexBytes;
+  // A planet frame adds its four bent streams (x, y, z, drop: core/grid_buffers.h).
+  const bool planet = scene.terrain.planet && scene.terrain.planet->radius != 0.0;
+  const std::uintmax_t vertex_bytes =
+      (backend != Backend::kReferenceDouble ? kGridVertexBytes + kClipVertexBytes
+                                            : kDoubleVertexBytes) +
+      (planet ? 4 * (backend != Backend::kReferenceDouble ? sizeof(float) : sizeof(double)) : 0);
   estimate.add("grid " + size_text(scene.grid.width, scene.grid.height),
                vertices * vertex_bytes + triangles * kSetupTriangleBytes);
   const std::uintmax_t pixels = std::uintmax_t(scene.viewport.width) * scene.viewport.height;

@@ -8,6 +8,8 @@
 #include "core/input_file.h"
 #include "core/limits.h"
 #include "core/octave_coordinates.h"
+#include "core/planet_bend.h"
+#include "core/planet_domain.h"
 #include "core/projected_domain.h"
 #include "core/surface.h"
 #include "core/terrain_stages.h"
@@ -58,6 +60,11 @@ template <class Real>
 std::size_t ReferenceBackend<Real>::units(StageId id) const {
   switch (id) {
     case StageId::kOutcodes:
+      // A planet frame evaluates every valid vertex: the height bounds' segments are vertical
+      // in the unbent frame, not in the bent one (docs/planet.md).
+      return request_.skips.unseen_vertices && !planet()
+                 ? static_cast<std::size_t>(plan_.layout.height)
+                 : 0;
     case StageId::kDrawOutcodes:
       return request_.skips.unseen_vertices ? static_cast<std::size_t>(plan_.layout.height) : 0;
     case StageId::kProjectedDomain:
@@ -107,7 +114,10 @@ void ReferenceBackend<Real>::run(StageId id, std::size_t begin, std::size_t end)
   const RowRange rows{static_cast<int>(begin), static_cast<int>(end)};
   switch (id) {
     case StageId::kProjectedDomain:
-      if constexpr (std::is_same_v<Real, float>) {
+      if (planet()) {  // every backend: the portable loops (planet_domain.h)
+        project_planet_domain<Real>(params_.domain, params_.planet, params_.domain_rows, rows,
+                                    grid_.domain());
+      } else if constexpr (std::is_same_v<Real, float>) {
         if (request_.backend == Backend::kSimd) {
           simd::project_domain(params_.domain, params_.domain_rows, rows, grid_.domain());
         } else {
@@ -122,16 +132,20 @@ void ReferenceBackend<Real>::run(StageId id, std::size_t begin, std::size_t end)
       return;
     case StageId::kOutcodes:
     case StageId::kDrawOutcodes: {
-      // Before stage 3 the segments of the height bounds, after it the vertices' own heights.
+      // Before stage 3 the segments of the height bounds, after it the vertices' own heights
+      // (on a planet their bent positions).
       const std::span<const Real> height =
-          id == StageId::kOutcodes ? std::span<const Real>{} : std::span<const Real>(grid_.height);
+          id == StageId::kOutcodes ? std::span<const Real>{}
+                                   : std::span<const Real>(planet() ? grid_.bent_y : grid_.height);
+      const std::span<const Real> x = planet() ? grid_.bent_x : grid_.dx;
+      const std::span<const Real> z = planet() ? grid_.bent_z : grid_.dz;
       if constexpr (std::is_same_v<Real, float>) {
         if (request_.backend == Backend::kSimd) {
-          simd::vertex_outcodes(cull_, rows, grid_.dx, grid_.dz, height, grid_.valid, outcode_);
+          simd::vertex_outcodes(cull_, rows, x, z, height, grid_.valid, outcode_);
           return;
         }
       }
-      vertex_outcodes<Real>(cull_, rows, grid_.dx, grid_.dz, height, grid_.valid, outcode_);
+      vertex_outcodes<Real>(cull_, rows, x, z, height, grid_.valid, outcode_);
       return;
     }
     case StageId::kDrawNeeds:
@@ -141,51 +155,69 @@ void ReferenceBackend<Real>::run(StageId id, std::size_t begin, std::size_t end)
       return;
     case StageId::kVertexNeeds: {
       const FrameSkips& skips = request_.skips;
-      tally_rows(rows, skips.unseen_vertices
+      tally_rows(rows, skips.unseen_vertices && !planet()
                            ? vertex_needs(plan_.layout, rows, grid_.valid, outcode_, need_)
                            : vertex_needs_without_culling(plan_.layout, rows, grid_.valid,
                                                           !skips.invalid_vertices, need_));
       return;
     }
-    case StageId::kFractal:
+    case StageId::kFractal: {
+      const IndexRange range{plan_.layout.index(0, rows.begin), plan_.layout.index(0, rows.end)};
+      bool done = false;
       if constexpr (std::is_same_v<Real, float>) {
         if (request_.backend == Backend::kSimd) {
-          const IndexRange range{plan_.layout.index(0, rows.begin),
-                                 plan_.layout.index(0, rows.end)};
           tally_fbm(simd::evaluate_fbm(params_.fbm, terrain_values_, range, grid_.dx, grid_.dz,
                                        grid_.nu, need_, grid_.height));
           if (params_.sketch.enabled != 0) {  // §3's low-frequency base
             simd::add_sketch(params_.sketch, plan_.terrain.sketch->heights, range, grid_.dx,
                              grid_.dz, need_, grid_.height);
           }
-          return;
+          done = true;
         }
       }
-      tally_fbm(evaluate_fbm_rows<Real>(params_.fbm, terrain_values_, rows, grid_, need_));
-      add_sketch_rows<Real>(params_.sketch, plan_.terrain.sketch, rows, grid_, need_);
+      if (!done) {
+        tally_fbm(evaluate_fbm_rows<Real>(params_.fbm, terrain_values_, rows, grid_, need_));
+        add_sketch_rows<Real>(params_.sketch, plan_.terrain.sketch, rows, grid_, need_);
+      }
+      if (planet()) {  // the bend, once the rows' heights are known (planet_bend.h)
+        bend_vertices<Real>(params_.planet, range, grid_.dx, grid_.dz, grid_.height, grid_.valid,
+                            grid_.bent());
+      }
       return;
-    case StageId::kSurface:
+    }
+    case StageId::kSurface: {
+      bool done = false;
       if constexpr (std::is_same_v<Real, float>) {
         if (request_.backend == Backend::kSimd) {
           simd::surface_pass(params_.surface, rows, surface_inputs(grid_, need_), grid_.surface());
-          return;
+          done = true;
         }
       }
-      surface_pass<Real>(params_.surface, rows, surface_inputs(grid_, need_), grid_.surface());
+      if (!done) {
+        surface_pass<Real>(params_.surface, rows, surface_inputs(grid_, need_), grid_.surface());
+      }
+      if (planet()) {  // the unbent frame's normals into the bent one
+        bend_normals<Real>(
+            params_.planet,
+            IndexRange{plan_.layout.index(0, rows.begin), plan_.layout.index(0, rows.end)},
+            grid_.dx, grid_.dz, grid_.valid, grid_.nx, grid_.ny, grid_.nz);
+      }
       return;
+    }
     case StageId::kVertexTransform: {
       const ClipSpans<Real> clip{clip_x_, clip_y_, clip_z_, clip_w_};
+      // On a planet the bent positions (planet_bend.h), through the same kernels.
+      const std::span<const Real> x = planet() ? grid_.bent_x : grid_.dx;
+      const std::span<const Real> y = planet() ? grid_.bent_y : grid_.height;
+      const std::span<const Real> z = planet() ? grid_.bent_z : grid_.dz;
       if constexpr (std::is_same_v<Real, float>) {
         if (request_.backend == Backend::kSimd) {
-          simd::transform_vertices(params_.transform, IndexRange{begin, end}, grid_.dx, grid_.dz,
-                                   grid_.height, need_, clip);
+          simd::transform_vertices(params_.transform, IndexRange{begin, end}, x, z, y, need_, clip);
         } else {
-          transform_vertices<Real>(params_.transform, IndexRange{begin, end}, grid_.dx, grid_.dz,
-                                   grid_.height, need_, clip);
+          transform_vertices<Real>(params_.transform, IndexRange{begin, end}, x, z, y, need_, clip);
         }
       } else {
-        transform_vertices<Real>(params_.transform, IndexRange{begin, end}, grid_.dx, grid_.dz,
-                                 grid_.height, need_, clip);
+        transform_vertices<Real>(params_.transform, IndexRange{begin, end}, x, z, y, need_, clip);
       }
       std::uint64_t transformed = 0;
       for (std::size_t k = begin; k < end; ++k) {
@@ -232,6 +264,11 @@ void ReferenceBackend<Real>::prepare(StageId id) {
     case StageId::kOutcodes:
       outcode_.resize(request_.skips.unseen_vertices ? plan_.layout.size() : 0);
       return;
+    case StageId::kFractal:
+      if (planet()) {
+        grid_.allocate_bent();
+      }
+      return;
     case StageId::kVertexTransform: {
       const std::size_t vertices = plan_.layout.size();
       for (AlignedVector<Real>* v : {&clip_x_, &clip_y_, &clip_z_, &clip_w_}) {
@@ -255,6 +292,7 @@ void ReferenceBackend<Real>::prepare(StageId id) {
       // Stage 8's plan and the frame's outputs.
       shading_plan_ = make_shading_plan(scene_, plan_, lattice_.size);
       shade_ = make_shade_params<Real>(shading_plan_);
+      add_planet_shading(plan_, scene_.terrain.base_height, shade_);
       apply_skips(request_.skips, water_in_view(), shade_);
       const int rows = band_rows_ < 0
                            ? state_.height
@@ -272,12 +310,28 @@ void ReferenceBackend<Real>::prepare(StageId id) {
       image_.normal.assign(o.normal ? 3 * pixels : 0, 0.0f);
       image_.world_height.assign(o.world_height ? pixels : 0, 0.0f);
       image_.octaves.assign(o.octaves ? pixels : 0, 0.0f);
-      const VertexStreams<Real> streams{clip_x_,  clip_y_,      clip_w_,           grid_.dx,
-                                        grid_.dz, grid_.height, grid_.nx,          grid_.ny,
-                                        grid_.nz, grid_.slope,  grid_.water_depth, grid_.nu};
+      // On a planet (dx, dz) are the bent ones, the height stays the elevation's (materials
+      // and water are radial) and the drop puts the shaded position on the sphere.
+      const bool bent = planet();
+      const VertexStreams<Real> streams{
+          clip_x_,
+          clip_y_,
+          clip_w_,
+          bent ? grid_.bent_x : grid_.dx,
+          bent ? grid_.bent_z : grid_.dz,
+          grid_.height,
+          grid_.nx,
+          grid_.ny,
+          grid_.nz,
+          grid_.slope,
+          grid_.water_depth,
+          grid_.nu,
+          bent ? std::span<const Real>(grid_.bent_drop) : std::span<const Real>{}};
+      // A planet frame's tiles run the portable loops (the simd resolve carries no drop): the
+      // same bytes as the reference by construction.
       tile_pass_ = std::make_unique<TilePass<Real>>(
           state_, triangles(), streams, shade_, ShadeResources{&lattice_, textures_}, o,
-          plan_.camera.position.y, image_, request_.backend == Backend::kSimd,
+          plan_.camera.position.y, image_, request_.backend == Backend::kSimd && !bent,
           band_rows_ < 0 ? 0 : band_first_row_);
       return;
     }

@@ -59,6 +59,7 @@ class ReferenceBackend final : public FrameBackend {
   raster::GridTriangles triangles() const { return {plan_.layout, grid_.valid, need_}; }
   int band_first_tile_row() const { return band_first_row_ / raster::kTileSize; }
   int band_tile_rows() const;
+  bool planet() const { return params_.planet.enabled != 0; }
   void tally_rows(RowRange rows, const NeedCount& count);
   void tally_fbm(const FbmWork& work);
   void tally_draws(RowRange rows, const NeedCount& count);

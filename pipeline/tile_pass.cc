@@ -155,6 +155,7 @@ void TilePass<Real>::resolve(const raster::TileVisibility& visibility, TileAttri
       out.nz[k] = static_cast<Real>(at(s.nz, q.b));
       out.slope[k] = static_cast<Real>(at(s.slope, q.b));
       out.water_depth[k] = with_water ? static_cast<Real>(at(s.water_depth, q.b)) : Real(0);
+      out.drop[k] = s.drop.empty() ? Real(0) : static_cast<Real>(at(s.drop, q.b));
       if (with_nu) {
         out.nu[k] = static_cast<Real>(at(s.nu, q.b));
       }

@@ -30,6 +30,9 @@ template <class Real>
 struct VertexStreams {
   std::span<const Real> clip_x, clip_y, clip_w;
   std::span<const Real> dx, dz, height, nx, ny, nz, slope, water_depth, nu;
+  // A planet's curvature drop (planet_bend.h); empty on the plane. Read by the scalar resolve
+  // alone: a planet frame's tiles run the portable loops.
+  std::span<const Real> drop = {};
 };
 
 // Stage 7's output for one tile: one named array per field, kTileSize x kTileSize each, row-
@@ -42,11 +45,12 @@ struct TileAttributes {
   Real height_ddx[kPixels], height_ddy[kPixels];
   Real nx[kPixels], ny[kPixels], nz[kPixels];
   Real slope[kPixels], water_depth[kPixels], nu[kPixels];
+  Real drop[kPixels];  // a planet's (resolve() only); 0 on the plane
 
   PixelAttributes<Real> at(std::size_t k) const {
-    return {dx[k],     dz[k],     height[k],     dx_ddx[k],     dx_ddy[k],
-            dz_ddx[k], dz_ddy[k], height_ddx[k], height_ddy[k], nx[k],
-            ny[k],     nz[k],     slope[k],      water_depth[k]};
+    return {dx[k],     dz[k],     height[k],     dx_ddx[k],      dx_ddy[k],
+            dz_ddx[k], dz_ddy[k], height_ddx[k], height_ddy[k],  nx[k],
+            ny[k],     nz[k],     slope[k],      water_depth[k], drop[k]};
   }
 };
 

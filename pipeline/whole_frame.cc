@@ -39,9 +39,12 @@ TerrainFrame rasterize_terrain(const Scene& scene, const NoiseLattice& lattice,
   frame.clip_w.resize(vertex_count);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, vertex_count, 16384),
                     [&](const tbb::blocked_range<std::size_t>& r) {
+                      // A planet's bent positions (core/planet_bend.h), as the backend.
+                      const GridBuffers<float>& g = frame.grid;
+                      const bool bent = frame.plan.planet.enabled;
                       transform_vertices<float>(
-                          transform, IndexRange{r.begin(), r.end()}, frame.grid.dx, frame.grid.dz,
-                          frame.grid.height, {},
+                          transform, IndexRange{r.begin(), r.end()}, bent ? g.bent_x : g.dx,
+                          bent ? g.bent_z : g.dz, bent ? g.bent_y : g.height, {},
                           ClipSpans<float>{frame.clip_x, frame.clip_y, frame.clip_z, frame.clip_w});
                     });
   frame.raster =
@@ -56,38 +59,51 @@ TerrainFrame rasterize_terrain(const Scene& scene, const NoiseLattice& lattice,
 
 raster::ResolvedFrame resolve_for_shading(const TerrainFrame& frame) {
   const GridBuffers<float>& g = frame.grid;
-  const std::span<const float> streams[] = {g.dx, g.dz, g.height, g.nx,
-                                            g.ny, g.nz, g.slope,  g.water_depth};
+  // On a planet the bent (dx, dz) and the drop (reference_backend.cc's streams).
+  const bool bent = frame.plan.planet.enabled;
+  const std::span<const float> streams[] = {bent ? g.bent_x : g.dx,
+                                            bent ? g.bent_z : g.dz,
+                                            g.height,
+                                            g.nx,
+                                            g.ny,
+                                            g.nz,
+                                            g.slope,
+                                            g.water_depth,
+                                            g.bent_drop};
   raster::ResolvedFrame resolved;
   raster::resolve(frame.visibility,
                   raster::VertexPositions::from_clip(frame.clip(), frame.state.viewport),
-                  frame.triangles(), std::span<const std::span<const float>>(streams), 3, resolved);
+                  frame.triangles(), std::span<const std::span<const float>>(streams, bent ? 9 : 8),
+                  3, resolved);
   return resolved;
 }
 
 ShadingInputs shading_inputs(const TerrainFrame& frame, const raster::ResolvedFrame& r) {
-  return ShadingInputs{frame.visibility.primitive,
-                       r.value[0],
-                       r.value[1],
-                       r.value[2],
-                       r.ddx[0],
-                       r.ddy[0],
-                       r.ddx[1],
-                       r.ddy[1],
-                       r.ddx[2],
-                       r.ddy[2],
-                       r.value[3],
-                       r.value[4],
-                       r.value[5],
-                       r.value[6],
-                       r.value[7]};
+  return ShadingInputs{
+      frame.visibility.primitive,
+      r.value[0],
+      r.value[1],
+      r.value[2],
+      r.ddx[0],
+      r.ddy[0],
+      r.ddx[1],
+      r.ddy[1],
+      r.ddx[2],
+      r.ddy[2],
+      r.value[3],
+      r.value[4],
+      r.value[5],
+      r.value[6],
+      r.value[7],
+      r.value.size() > 8 ? std::span<const float>(r.value[8]) : std::span<const float>{}};
 }
 
 FrameImage render_whole_frame(const Scene& scene, const SceneResources& resources) {
   const TerrainFrame frame = rasterize_terrain(scene, resources);
   const raster::ResolvedFrame resolved = resolve_for_shading(frame);
   const ShadingPlan plan = make_shading_plan(scene, frame.plan, resources.lattice.size);
-  const ShadeParams<float> params = make_shade_params<float>(plan);
+  ShadeParams<float> params = make_shade_params<float>(plan);
+  add_planet_shading(frame.plan, scene.terrain.base_height, params);
   const ShadeResources shade_resources{&resources.lattice, resources.textures};
   const ShadingInputs inputs = shading_inputs(frame, resolved);
   FrameImage image;

@@ -109,6 +109,10 @@ Offsets<ShadeParams<float>> shade_offsets() {
   o.add("up[0]", &p.up[0], sizeof(double));
   o.add("tan_half_fov_x", &p.tan_half_fov_x);
   o.add("tan_half_fov_y", &p.tan_half_fov_y);
+  o.add("planet_center_distance", &p.planet_center_distance);
+  o.add("planet_limb_angle", &p.planet_limb_angle);
+  o.add("planet_water_c", &p.planet_water_c);
+  o.add("planet_datum_c", &p.planet_datum_c);
   return o;
 }
 

@@ -211,6 +211,9 @@ void check_preset(const std::string& preset, const std::vector<std::string>& siz
 
 TEST_CASE("glFramesOfEveryPresetMatchTheCpuFrameWithinTheDocumentedBounds", "[gl]") {
   for (const std::string& preset : preset_names()) {
+    if (resolve_scene(preset, {}).terrain.planet) {
+      continue;  // the GL backend carries no planet yet (docs/planet.md)
+    }
     check_preset(preset, kSize);
   }
   // The nearest mip level (GL_LINEAR_MIPMAP_NEAREST) on both sides.
@@ -289,6 +292,9 @@ TEST_CASE("glDrawRefusesInputsThatDoNotFit", "[gl]") {
 // name).
 TEST_CASE("glFramesAtTheReadmeSize", "[.][gl-figures]") {
   for (const std::string& preset : preset_names()) {
+    if (resolve_scene(preset, {}).terrain.planet) {
+      continue;  // the GL backend carries no planet yet (docs/planet.md)
+    }
     check_preset(preset, {"viewport.width=480", "viewport.height=384"});
   }
 }

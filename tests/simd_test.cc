@@ -398,8 +398,8 @@ void require_same_frames(const Frame& a, const Frame& b) {
 
 TEST_CASE("everyPresetRendersBitIdenticallyWithTheSimdBackendOnEveryTarget", "[simd]") {
   const EachTarget targets;
-  for (const char* preset :
-       {"default", "alpine", "badlands", "craters", "dunes", "island", "lake", "lava", "plain"}) {
+  for (const char* preset : {"default", "alpine", "badlands", "craters", "dunes", "island", "lake",
+                             "lava", "plain", "planet"}) {
     const Scene scene = resolve_scene(
         preset, {"viewport.width=203", "viewport.height=131", "grid.width=90", "grid.height=77"});
     const SceneResources resources = load_scene_resources(scene);

@@ -23,6 +23,7 @@
 #include "tools/atomic_file.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
+#include "tools/path_command.h"
 #include "tools/reference_command.h"
 #include "tools/soup.h"
 #include "tools/sweep_command.h"
@@ -204,16 +205,23 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   CLI::App* stress_cmd = add_stress_command(app, stress);
   add_scene_args(stress_cmd, scene_args);
   add_threads(stress_cmd, threads);
+  // A camera path down to a planet (path_command.h).
+  PathOptions path;
+  CLI::App* path_cmd = add_path_command(app, path);
+  add_scene_args(path_cmd, scene_args);
+  add_threads(path_cmd, threads);
+  add_max_memory(path_cmd, max_memory);
+  add_backend(path_cmd, backend, simd_target);
 
   // CLI11 answers an unknown command with "A subcommand is required"; say what is wrong.
   const std::vector<std::string> commands = {"scene", "stages",  "render",     "raster",
                                              "info",  "compare", "crosscheck", "reference",
-                                             "error", "sweep",   "stress"};
+                                             "error", "sweep",   "stress",     "path"};
   if (args.size() > 1 && !args[1].empty() && args[1][0] != '-' &&
       std::find(commands.begin(), commands.end(), args[1]) == commands.end()) {
     err << "relief: error: unknown command '" << brief_text(args[1])
         << "'; commands: scene, stages, render, raster, info, compare, crosscheck, reference, "
-           "error, sweep, stress\nRun 'relief --help' for usage.\n";
+           "error, sweep, stress, path\nRun 'relief --help' for usage.\n";
     return kExitBadInput;
   }
   // compare exits as idiff does, where 2 means the images differ: its bad options are 4.
@@ -256,8 +264,8 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     err << "relief: error: FILE is empty; give the triangle soup's file name\n";
     return kExitBadInput;
   }
-  for (CLI::App* command :
-       {scene_cmd, stages_cmd, render_cmd, crosscheck_cmd, reference_cmd, sweep_cmd, stress_cmd}) {
+  for (CLI::App* command : {scene_cmd, stages_cmd, render_cmd, crosscheck_cmd, reference_cmd,
+                            sweep_cmd, stress_cmd, path_cmd}) {
     if (command->parsed() && given_empty(command->get_option("SCENE"), scene_args.scene)) {
       err << "relief: error: SCENE is empty; give a scene file or a preset name, or leave it "
              "out for the default scene\n";
@@ -275,7 +283,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   }
   const MemoryBudget budget = memory_budget(parse_memory_size(max_memory), max_memory);
   stages.budget = render.budget = raster_options.budget = crosscheck.budget = budget;
-  reference.budget = error_options.budget = sweep.budget = budget;
+  reference.budget = error_options.budget = sweep.budget = path.budget = budget;
   if (error_cmd->parsed()) {
     return run_error_command(error_options, out, err);
   }
@@ -310,7 +318,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       return kExitBadInput;
     }
   }
-  stages.backend = render.backend = *backend_from_name(backend);
+  stages.backend = render.backend = path.backend = *backend_from_name(backend);
   // The rasteriser has no double variant: its arithmetic is exact integers and doubles already.
   if (raster_cmd->parsed() &&
       (render.backend == Backend::kReferenceDouble || render.backend == Backend::kGl)) {
@@ -361,6 +369,9 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     }
     if (stress_cmd->parsed()) {
       return run_stress_command(scene, stress, out, err);
+    }
+    if (path_cmd->parsed()) {
+      return run_path_command(scene, path, out, err);
     }
     if (render_cmd->parsed()) {
       const std::string& o = render.output;

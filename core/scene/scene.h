@@ -115,6 +115,16 @@ struct BasisSettings {
   std::vector<BasisImageSettings> images;  // 1 to limits::kMaxBasisImages
 };
 
+// §4.1's spherical domain (docs/planet.md): the base domain warped around a sphere of this
+// radius whose surface lies at terrain.base_height.
+struct PlanetSettings {
+  double radius = 0.0;   // world units; 0: the plane
+  double horizon = 0.0;  // artificial horizon, arc length along the datum; 0: the geometric one
+  // Camera altitudes (above terrain.base_height) over which the projected grid on the sphere
+  // blends into equal-angle sampling; nullopt: the plain projected grid at every altitude.
+  std::optional<Vec2d> equal_angle;
+};
+
 struct TerrainSettings {
   std::uint64_t seed = 1;
   int lattice_size = 256;  // P
@@ -137,6 +147,8 @@ struct TerrainSettings {
   // With them, stage 3's P is the composed grid's side and its octave-0 cell is
   // basis.tile_size / P: lattice_size sizes only the shading's noise, horizontal_scale is unused.
   std::optional<BasisSettings> basis;
+  // §4.1's spherical domain; nullopt (or radius 0): the plane.
+  std::optional<PlanetSettings> planet;
 };
 
 // One proto-texture layer (§4.2) with the height/slope ranges of Scape's layers.

@@ -244,6 +244,7 @@ void validate_scene(const Scene& scene) {
       }
     }
   }
+  validate_planet(scene);
   const WarpSettings& w = scene.terrain.warp;
   if (w.r0[0] == 0.0 && w.r0[1] == 0.0) {
     fail("terrain.warp.r0",
@@ -297,6 +298,15 @@ json scene_to_json(const Scene& scene) {
                             {"height", vec_json(t.sketch->height)}}
                      : json(nullptr)},
       {"basis", t.basis ? basis_to_json(*t.basis) : json(nullptr)}};
+  if (t.planet) {  // absent from the plane's scenes: their printed form stays as it was
+    const PlanetSettings& planet = *t.planet;
+    out["terrain"]["planet"] = {
+        {"radius", planet.radius},
+        {"horizon", planet.horizon},
+        {"equal_angle", planet.equal_angle ? json{{"begin", (*planet.equal_angle)[0]},
+                                                  {"end", (*planet.equal_angle)[1]}}
+                                           : json(nullptr)}};
+  }
   json layers = json::array();
   for (const MaterialLayer& l : scene.shading.layers) {
     layers.push_back({{"name", l.name},

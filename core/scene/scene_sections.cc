@@ -224,6 +224,8 @@ void apply_terrain(const LayerReader& in, const json& value, const std::string& 
            }},
           {"basis", [&](const json& v,
                         const std::string& p) { apply_basis(in, v, p, terrain.basis, base_dir); }},
+          {"planet",
+           [&](const json& v, const std::string& p) { apply_planet(in, v, p, terrain.planet); }},
       });
 }
 

@@ -35,6 +35,11 @@ json basis_to_json(const BasisSettings& basis);
 // made absolute, so that the printed scene loads back from anywhere; "builtin:..." and absolute
 // names unchanged.
 std::string resolve_scene_path(std::string name, const std::filesystem::path& base_dir);
+// terrain.planet (planet_section.cc): null removes it, an object patches it.
+void apply_planet(const LayerReader& in, const json& value, const std::string& path,
+                  std::optional<PlanetSettings>& planet);
+// The planet's rules across fields, run by validate_scene (throws SceneError).
+void validate_planet(const Scene& scene);
 void apply_shading(const LayerReader& in, const json& value, const std::string& path,
                    ShadingSettings& shading, const std::filesystem::path& base_dir);
 void apply_lighting(const LayerReader& in, const json& value, const std::string& path,

@@ -50,6 +50,7 @@ layout(std430, binding = 0) readonly buffer ShadeParamsBlock {
   Float3 camera_forward;
   double forward[3], right[3], up[3];
   double tan_half_fov_x, tan_half_fov_y;
+  double planet_center_distance, planet_limb_angle, planet_water_c, planet_datum_c;
 }
 P;
 

@@ -1,0 +1,148 @@
+#include "core/planet_domain.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/det_math.h"
+#include "core/limits.h"
+
+namespace relief {
+
+template <class Real>
+bool planet_footprint(const ProjectorRays<Real>& r, const PlanetParams<Real>& p, Real x, Real y,
+                      Real descent, Real& dx, Real& dz) {
+  dx = Real(0);
+  dz = Real(0);
+  // The projector has no roll: x does not change ray.y (projector.h).
+  const Real ray_x = r.fx + x * r.rx + y * r.ux;
+  const Real ray_z = r.fz + x * r.rz + y * r.uz;
+  const Real horizontal = std::sqrt(ray_x * ray_x + ray_z * ray_z);
+  const Real length = std::sqrt(horizontal * horizontal + descent * descent);
+  if (!(length > Real(0))) {
+    return false;  // the division's domain below; never for a projector ray
+  }
+  const Real cos_a = descent / length;
+  const Real sin_a = horizontal / length;
+  // The plain projected grid on the sphere: the ray's near hit with the grid sphere.
+  const Real dc = p.center_distance * cos_a;
+  const Real disc = dc * dc - p.grid_c;
+  const bool hit = cos_a > Real(0) && disc >= Real(0);
+  Real theta_true = p.theta_limb;
+  if (hit) {
+    // Domain: dc > 0 and c > 0, so the denominator is positive and t in (0, D cos alpha].
+    const Real t = p.grid_c / (dc + std::sqrt(disc));
+    theta_true = atan2_det(t * sin_a, p.center_distance - t * cos_a);
+  }
+  const Real alpha = atan2_det(horizontal, descent);
+  const Real theta_eq = p.theta_lo + p.eq_slope * (alpha - p.alpha_lo);
+  const Real theta = std::max(Real(0), p.one_minus_blend * theta_true + p.blend * theta_eq);
+  if (!(theta <= p.theta_h) || (!hit && !(p.blend > Real(0)))) {
+    return false;
+  }
+  // Straight down the direction is undefined and theta is 0: (0, 0). Domain of the division:
+  // horizontal > 0.
+  if (horizontal > Real(0)) {
+    const Real scale = p.radius * theta / horizontal;
+    dx = scale * ray_x;
+    dz = scale * ray_z;
+  }
+  return true;
+}
+
+namespace {
+
+template <class Real>
+struct Footprint {
+  Real x = 0;
+  Real z = 0;
+  bool valid = false;
+};
+
+template <class Real>
+Real distance_sq(const Footprint<Real>& a, const Footprint<Real>& b) {
+  const Real ex = a.x - b.x;
+  const Real ez = a.z - b.z;
+  return ex * ex + ez * ez;
+}
+
+// Squared spacing along one grid axis (projected_domain.cc's rule).
+template <class Real>
+Real axis_spacing_sq(const Footprint<Real>& minus, const Footprint<Real>& centre,
+                     const Footprint<Real>& plus) {
+  if (minus.valid && plus.valid) {
+    return distance_sq(minus, plus) * Real(0.25);
+  }
+  if (plus.valid) {
+    return distance_sq(centre, plus);
+  }
+  if (minus.valid) {
+    return distance_sq(minus, centre);
+  }
+  return Real(0);
+}
+
+}  // namespace
+
+template <class Real>
+void project_planet_domain(const DomainParams<Real>& p, const PlanetParams<Real>& planet,
+                           const DomainRows<Real>& table, RowRange rows, DomainSpans<Real> out) {
+  struct Row {
+    Real descent, x0, step_x;
+  };
+  auto row = [&](int j) {
+    const auto k = static_cast<std::size_t>(j + 1);
+    return Row{table.descent[k], table.x0[k], table.step_x[k]};
+  };
+  const bool visible = p.terrain_visible != 0 && planet.visible != 0;
+  auto footprint = [&](int i, int j, const Row& r) {
+    Footprint<Real> f;
+    f.valid = visible && planet_footprint(p.rays, planet, r.x0 + Real(i) * r.step_x,
+                                          p.y0 + Real(j) * p.step_y, r.descent, f.x, f.z);
+    return f;
+  };
+  for (int j = rows.begin; j < rows.end; ++j) {
+    const Row below = row(j - 1), here = row(j), above = row(j + 1);
+    for (int i = 0; i < p.pitch; ++i) {
+      const std::size_t k = static_cast<std::size_t>(j) * p.pitch + i;
+      out.dx[k] = Real(0);
+      out.dz[k] = Real(0);
+      out.sigma[k] = Real(0);
+      out.nu[k] = Real(1);
+      out.valid[k] = 0;
+      if (i >= p.width) {
+        continue;
+      }
+      const Footprint<Real> centre = footprint(i, j, here);
+      if (!centre.valid) {
+        continue;
+      }
+      const Real spacing_sq =
+          std::max(axis_spacing_sq(footprint(i - 1, j, here), centre, footprint(i + 1, j, here)),
+                   axis_spacing_sq(footprint(i, j - 1, below), centre, footprint(i, j + 1, above)));
+      Real nu = p.nu_max;
+      if (spacing_sq > p.min_spacing_sq) {
+        nu = std::clamp(p.c0 - p.c1 * log2_det(spacing_sq), Real(1), p.nu_max);
+      }
+      if (p.whole_octaves != 0) {
+        nu = std::ceil(nu);
+      }
+      out.dx[k] = centre.x;
+      out.dz[k] = centre.z;
+      out.sigma[k] = std::sqrt(spacing_sq);
+      out.nu[k] = nu;
+      out.valid[k] = 1;
+    }
+  }
+}
+
+template bool planet_footprint<float>(const ProjectorRays<float>&, const PlanetParams<float>&,
+                                      float, float, float, float&, float&);
+template bool planet_footprint<double>(const ProjectorRays<double>&, const PlanetParams<double>&,
+                                       double, double, double, double&, double&);
+template void project_planet_domain<float>(const DomainParams<float>&, const PlanetParams<float>&,
+                                           const DomainRows<float>&, RowRange, DomainSpans<float>);
+template void project_planet_domain<double>(const DomainParams<double>&,
+                                            const PlanetParams<double>&, const DomainRows<double>&,
+                                            RowRange, DomainSpans<double>);
+
+}  // namespace relief

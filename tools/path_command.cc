@@ -1,0 +1,126 @@
+#include "tools/path_command.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <ostream>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "core/limits.h"
+#include "core/scene/json_fields.h"
+#include "core/scene/scene_json.h"
+#include "pipeline/image_io.h"
+#include "pipeline/image_metadata.h"
+#include "pipeline/job_memory.h"
+#include "tools/atomic_file.h"
+#include "tools/cli.h"
+#include "tools/terminal_progress.h"
+
+namespace relief {
+
+namespace {
+
+constexpr int kMaxFrames = 10000;
+constexpr double kMinPitchDeg = -89.0, kMaxPitchDeg = 89.0;
+
+}  // namespace
+
+CLI::App* add_path_command(CLI::App& app, PathOptions& options) {
+  CLI::App* cmd = app.add_subcommand(
+      "path",
+      "Renders a radial descent of the camera (docs/planet.md) as DIR/frame_0000.png, ...: the "
+      "altitude above terrain.base_height log-uniform from --from-altitude to --to-altitude, "
+      "the pitch easing from the scene's to --to-pitch");
+  cmd->add_option("--out", options.out_dir, "Directory for the frames")->required();
+  cmd->add_option("--frames", options.frames, "Number of frames (1 to 10000)")->required();
+  cmd->add_option("--from-altitude", options.from_altitude,
+                  "Altitude of the first frame above terrain.base_height (> 0, <= 1e9)")
+      ->required();
+  cmd->add_option("--to-altitude", options.to_altitude,
+                  "Altitude of the last frame above terrain.base_height (> 0, <= 1e9)")
+      ->required();
+  cmd->add_option("--to-pitch", options.to_pitch_deg,
+                  "Pitch of the last frame in degrees (-89 to 89; default -8)");
+  return cmd;
+}
+
+CameraSettings path_camera(const Scene& scene, const PathOptions& o, int k) {
+  const double f = o.frames > 1 ? double(k) / double(o.frames - 1) : 0.0;
+  CameraSettings camera = scene.camera;
+  // Log-uniform: the same ratio from frame to frame (A, B > 0: validated).
+  const double altitude = o.from_altitude * std::pow(o.to_altitude / o.from_altitude, f);
+  camera.position[1] = scene.terrain.base_height + altitude;
+  const double ease = f * f * (3.0 - 2.0 * f);
+  camera.pitch_deg = scene.camera.pitch_deg + (o.to_pitch_deg - scene.camera.pitch_deg) * ease;
+  return camera;
+}
+
+int run_path_command(const Scene& scene, const PathOptions& o, std::ostream& out,
+                     std::ostream& err) {
+  const auto bad = [&](const std::string& message) {
+    err << "relief: error: " << message << "\n";
+    return kExitBadInput;
+  };
+  if (o.frames < 1 || o.frames > kMaxFrames) {
+    return bad("--frames " + std::to_string(o.frames) + " is out of range; allowed 1 to " +
+               std::to_string(kMaxFrames));
+  }
+  for (const auto& [name, value] :
+       {std::pair{"--from-altitude", o.from_altitude}, std::pair{"--to-altitude", o.to_altitude}}) {
+    if (!(value > 0.0 && value <= limits::kMaxPlanetLength)) {
+      return bad(
+          std::string(name) + " " + format_number(value) +
+          " is out of range; allowed 0 < altitude <= " + format_number(limits::kMaxPlanetLength));
+    }
+  }
+  if (!(o.to_pitch_deg >= kMinPitchDeg && o.to_pitch_deg <= kMaxPitchDeg)) {
+    return bad("--to-pitch " + format_number(o.to_pitch_deg) + " is out of range; allowed " +
+               format_number(kMinPitchDeg) + " to " + format_number(kMaxPitchDeg));
+  }
+  if (o.out_dir.empty()) {
+    return bad("--out is empty; give a directory name");
+  }
+  // Every frame's scene is validated before anything is written (SceneError: exit 2).
+  std::vector<Scene> frames;
+  frames.reserve(std::size_t(o.frames));
+  for (int k = 0; k < o.frames; ++k) {
+    Scene frame = scene;
+    frame.camera = path_camera(scene, o, k);
+    validate_scene(frame);
+    frames.push_back(std::move(frame));
+  }
+  FrameRequest request;
+  request.backend = o.backend;
+  const MemoryEstimate estimate = estimate_render_memory(scene, request.backend, request.outputs);
+  check_memory(estimate, o.budget, "each frame of this path",
+               "Lower viewport.width/height or grid.width/height");
+  request.max_bin_bytes = memory_left(estimate, o.budget);
+  const SceneResources resources = load_scene_resources(scene);  // the camera's not in them
+
+  OutputDirectory directory(o.out_dir);
+  TerminalProgress progress("relief path", "frames");
+  for (int k = 0; k < o.frames; ++k) {
+    const Scene& frame_scene = frames[std::size_t(k)];
+    char altitude[64];
+    std::snprintf(altitude, sizeof altitude, "altitude %.4g",
+                  frame_scene.camera.position[1] - scene.terrain.base_height);
+    progress.update(k, o.frames, altitude);
+    const Frame frame = render_frame(frame_scene, resources, request);
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%04d.png", k);
+    write_file_atomically(std::filesystem::path(o.out_dir) / name,
+                          encode_png_rgb(frame.image.width, frame.image.height, frame.image.srgb,
+                                         scene_metadata(frame_scene)));
+    directory.keep();
+  }
+  progress.update(o.frames, o.frames);
+  progress.finish();
+  out << "wrote " << o.frames << " frames to " << o.out_dir << " (altitude "
+      << format_number(o.from_altitude) << " to " << format_number(o.to_altitude) << ")\n";
+  return kExitOk;
+}
+
+}  // namespace relief
