@@ -80,4 +80,12 @@ void validate_planet(const Scene& scene) {
   }
 }
 
+json planet_to_json(const PlanetSettings& planet) {
+  return {{"radius", planet.radius},
+          {"horizon", planet.horizon},
+          {"equal_angle", planet.equal_angle ? json{{"begin", (*planet.equal_angle)[0]},
+                                                    {"end", (*planet.equal_angle)[1]}}
+                                             : json(nullptr)}};
+}
+
 }  // namespace relief

@@ -299,13 +299,7 @@ json scene_to_json(const Scene& scene) {
                      : json(nullptr)},
       {"basis", t.basis ? basis_to_json(*t.basis) : json(nullptr)}};
   if (t.planet) {  // absent from the plane's scenes: their printed form stays as it was
-    const PlanetSettings& planet = *t.planet;
-    out["terrain"]["planet"] = {
-        {"radius", planet.radius},
-        {"horizon", planet.horizon},
-        {"equal_angle", planet.equal_angle ? json{{"begin", (*planet.equal_angle)[0]},
-                                                  {"end", (*planet.equal_angle)[1]}}
-                                           : json(nullptr)}};
+    out["terrain"]["planet"] = planet_to_json(*t.planet);
   }
   json layers = json::array();
   for (const MaterialLayer& l : scene.shading.layers) {

@@ -40,6 +40,7 @@ void apply_planet(const LayerReader& in, const json& value, const std::string& p
                   std::optional<PlanetSettings>& planet);
 // The planet's rules across fields, run by validate_scene (throws SceneError).
 void validate_planet(const Scene& scene);
+json planet_to_json(const PlanetSettings& planet);
 void apply_shading(const LayerReader& in, const json& value, const std::string& path,
                    ShadingSettings& shading, const std::filesystem::path& base_dir);
 void apply_lighting(const LayerReader& in, const json& value, const std::string& path,
