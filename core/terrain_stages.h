@@ -9,6 +9,8 @@
 #include "core/grid_buffers.h"
 #include "core/height_sketch.h"
 #include "core/octave_coordinates.h"
+#include "core/planet_bend.h"
+#include "core/planet_domain.h"
 #include "core/projected_domain.h"
 #include "core/stage_params.h"
 #include "core/surface.h"
@@ -44,18 +46,38 @@ void add_sketch_rows(const SketchParams<Real>& params, const HeightSketch* sketc
 
 // Stages 2, 3 and 4 over the whole grid, with parameters derived from `plan` for this call:
 // every valid vertex, none culled (heights of invalid vertices 0, as the frame leaves them).
+// A planet frame (docs/planet.md) runs stage 2 on the sphere, bends the vertices after stage 3
+// (into the bent spans, allocated here) and rotates the normals after stage 4.
 template <class Real>
 void run_terrain_stages(const FramePlan& plan, GridBuffers<Real>& buffers) {
   TerrainParams<Real> params = make_terrain_params<Real>(plan);
   const RowRange all{0, buffers.layout.height};
-  project_domain<Real>(params.domain, params.domain_rows, all, buffers.domain());
+  const bool planet = params.planet.enabled != 0;
+  if (planet) {
+    project_planet_domain<Real>(params.domain, params.planet, params.domain_rows, all,
+                                buffers.domain());
+  } else {
+    project_domain<Real>(params.domain, params.domain_rows, all, buffers.domain());
+  }
   choose_coordinate_forms(plan.terrain,
                           octave_reach<Real>(IndexRange{0, buffers.layout.size()}, buffers.dx,
                                              buffers.dz, buffers.nu, buffers.valid),
                           params.fbm);
   evaluate_fbm_rows<Real>(params.fbm, *plan.terrain.lattice, all, buffers, buffers.valid);
   add_sketch_rows<Real>(params.sketch, plan.terrain.sketch, all, buffers, buffers.valid);
+  const IndexRange every{0, buffers.layout.size()};
+  if (planet) {
+    if (buffers.bent_x.size() != buffers.layout.size()) {
+      buffers.allocate_bent();
+    }
+    bend_vertices<Real>(params.planet, every, buffers.dx, buffers.dz, buffers.height, buffers.valid,
+                        buffers.bent());
+  }
   surface_pass<Real>(params.surface, all, surface_inputs(buffers), buffers.surface());
+  if (planet) {
+    bend_normals<Real>(params.planet, every, buffers.dx, buffers.dz, buffers.valid, buffers.nx,
+                       buffers.ny, buffers.nz);
+  }
 }
 
 }  // namespace relief

@@ -18,12 +18,14 @@ using Domain = DomainParams<float>;
 using Fbm = FbmParams<float>;
 using Sketch = SketchParams<float>;
 using Surface = SurfaceParams<float>;
+using Planet = PlanetParams<float>;
 
 // The structs are uploaded as bytes: no pointers, no padding a GLSL struct would not have.
 static_assert(std::is_standard_layout_v<Domain> && std::is_trivially_copyable_v<Domain>);
 static_assert(std::is_standard_layout_v<Fbm> && std::is_trivially_copyable_v<Fbm>);
 static_assert(std::is_standard_layout_v<Sketch> && std::is_trivially_copyable_v<Sketch>);
 static_assert(std::is_standard_layout_v<Surface> && std::is_trivially_copyable_v<Surface>);
+static_assert(std::is_standard_layout_v<Planet> && std::is_trivially_copyable_v<Planet>);
 static_assert(std::is_standard_layout_v<GlLatticeHeader>);
 
 // A scalar member, and an array member (its first element, as GL names it).
@@ -138,6 +140,26 @@ GlBlockLayout surface_params_layout() {
               RELIEF_SCALAR(Surface, "surface.", water_level),
               RELIEF_SCALAR(Surface, "surface.", min_sine_sq),
               RELIEF_SCALAR(Surface, "surface.", max_slope),
+          }};
+}
+
+GlBlockLayout planet_params_layout() {
+  return {"PlanetParamsBlock",
+          sizeof(Planet),
+          {
+              RELIEF_SCALAR(Planet, "planet.", enabled),
+              RELIEF_SCALAR(Planet, "planet.", visible),
+              RELIEF_SCALAR(Planet, "planet.", radius),
+              RELIEF_SCALAR(Planet, "planet.", inv_radius),
+              RELIEF_SCALAR(Planet, "planet.", center_distance),
+              RELIEF_SCALAR(Planet, "planet.", grid_c),
+              RELIEF_SCALAR(Planet, "planet.", blend),
+              RELIEF_SCALAR(Planet, "planet.", one_minus_blend),
+              RELIEF_SCALAR(Planet, "planet.", theta_h),
+              RELIEF_SCALAR(Planet, "planet.", theta_limb),
+              RELIEF_SCALAR(Planet, "planet.", alpha_lo),
+              RELIEF_SCALAR(Planet, "planet.", theta_lo),
+              RELIEF_SCALAR(Planet, "planet.", eq_slope),
           }};
 }
 

@@ -50,6 +50,7 @@ GlBlockLayout domain_params_layout();   // DomainParamsBlock { DomainParams doma
 GlBlockLayout fbm_params_layout();      // FbmParamsBlock { FbmParams fbm; }
 GlBlockLayout sketch_params_layout();   // SketchParamsBlock { SketchParams sketch; }
 GlBlockLayout surface_params_layout();  // SurfaceParamsBlock { SurfaceParams surface; }
+GlBlockLayout planet_params_layout();   // PlanetParamsBlock { PlanetParams planet; }
 GlBlockLayout lattice_layout();         // LatticeBlock: GlLatticeHeader, then the values
 
 // Every difference between `expected` and that block as `program` linked it: a member the

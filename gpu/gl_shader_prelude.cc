@@ -49,6 +49,14 @@ std::string_view gl_stream_name(GlStream stream) {
       return "slope";
     case GlStream::kWaterDepth:
       return "water_depth";
+    case GlStream::kBentX:
+      return "bent_x";
+    case GlStream::kBentY:
+      return "bent_y";
+    case GlStream::kBentZ:
+      return "bent_z";
+    case GlStream::kBentDrop:
+      return "bent_drop";
   }
   return "?";
 }
@@ -64,6 +72,7 @@ std::string shader_prelude() {
   s += define("RELIEF_BINDING_MASK", kBindingMask);
   s += define("RELIEF_BINDING_REACH", kBindingReach);
   s += define("RELIEF_BINDING_SKETCH", kBindingSketch);
+  s += define("RELIEF_BINDING_PLANET", kBindingPlanet);
   for (const GlStream stream : kGlStreams) {
     std::string name(gl_stream_name(stream));
     for (char& c : name) {
@@ -83,6 +92,32 @@ std::string shader_prelude() {
     s += define_float("RELIEF_LOG2_COEFF_" + std::to_string(k),
                       float(det_math_detail::kAtanhLog2Coeffs[k]));
   }
+  // sin_cos_det<float> and atan2_det<float> (det_math.glsl), the constants as the CPU rounds
+  // them: Real(double) once, and the atan series' float(+-1) / float(2k + 1).
+  using Trig = det_math_detail::TrigTerms<float>;
+  static_assert(Trig::kSin == 5 && Trig::kCos == 6 && Trig::kAtan == 10,
+                "det_math.glsl spells out 5 sine, 6 cosine and 10 arctangent terms");
+  for (int k = 0; k < Trig::kSin; ++k) {
+    s += define_float("RELIEF_SIN_COEFF_" + std::to_string(k),
+                      float(det_math_detail::kSinCoeffs[k]));
+  }
+  for (int k = 0; k < Trig::kCos; ++k) {
+    s += define_float("RELIEF_COS_COEFF_" + std::to_string(k),
+                      float(det_math_detail::kCosCoeffs[k]));
+  }
+  for (int k = 0; k < Trig::kAtan; ++k) {
+    s += define_float("RELIEF_ATAN_COEFF_" + std::to_string(k),
+                      float(k % 2 == 0 ? 1.0 : -1.0) / float(2 * k + 1));
+  }
+  using Pieces = det_math_detail::HalfPiPieces<float>;
+  s += define_float("RELIEF_HALF_PI_HI", Pieces::hi);
+  s += define_float("RELIEF_HALF_PI_MID", Pieces::mid);
+  s += define_float("RELIEF_HALF_PI_LO", Pieces::lo);
+  s += define_float("RELIEF_INV_HALF_PI", float(1.0 / det_math_detail::kHalfPi));
+  s += define_float("RELIEF_TAN_EIGHTH_PI", float(det_math_detail::kTanEighthPi));
+  s += define_float("RELIEF_QUARTER_PI", float(det_math_detail::kQuarterPi));
+  s += define_float("RELIEF_HALF_PI", float(det_math_detail::kHalfPi));
+  s += define_float("RELIEF_PI", float(2.0 * det_math_detail::kHalfPi));
   return s;
 }
 

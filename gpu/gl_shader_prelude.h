@@ -16,10 +16,11 @@ inline constexpr int kBindingParams = 0;       // the stage's parameter struct
 inline constexpr int kBindingRows = 1;         // DomainRows
 inline constexpr int kBindingFirstStream = 2;  // + GlStream
 inline constexpr int kBindingLattice = kBindingFirstStream + kGlStreamCount;
-inline constexpr int kBindingMask = kBindingLattice + 1;  // need flags, or valid
-inline constexpr int kBindingReach = kBindingMask + 1;    // octave_reach per finest octave
-inline constexpr int kBindingSketch = kBindingReach + 1;  // the sketch's texel heights
-inline constexpr int kBindingCount = kBindingSketch + 1;
+inline constexpr int kBindingMask = kBindingLattice + 1;   // need flags, or valid
+inline constexpr int kBindingReach = kBindingMask + 1;     // octave_reach per finest octave
+inline constexpr int kBindingSketch = kBindingReach + 1;   // the sketch's texel heights
+inline constexpr int kBindingPlanet = kBindingSketch + 1;  // PlanetParams (stage 2, the bend)
+inline constexpr int kBindingCount = kBindingPlanet + 1;
 
 inline constexpr int stream_binding(GlStream stream) {
   return kBindingFirstStream + static_cast<int>(stream);

@@ -24,14 +24,27 @@ enum class GlStream : int {
   kNz,
   kSlope,       // stage 4: |grad h|
   kWaterDepth,  // stage 4: max(0, water level - h)
+  // A planet frame's bend (core/planet_bend.h), after stage 3: the camera-relative position on
+  // the sphere and how far it lies below the unbent height. Allocated by the first planet
+  // frame (buffer() is 0 before).
+  kBentX,
+  kBentY,
+  kBentZ,
+  kBentDrop,
 };
 
-inline constexpr int kGlStreamCount = 11;
+inline constexpr int kGlStreamCount = 15;
 
 inline constexpr std::array<GlStream, kGlStreamCount> kGlStreams = {
-    GlStream::kDx,    GlStream::kDz,     GlStream::kSigma,     GlStream::kNu,
-    GlStream::kValid, GlStream::kHeight, GlStream::kNx,        GlStream::kNy,
-    GlStream::kNz,    GlStream::kSlope,  GlStream::kWaterDepth};
+    GlStream::kDx,    GlStream::kDz,     GlStream::kSigma,      GlStream::kNu,
+    GlStream::kValid, GlStream::kHeight, GlStream::kNx,         GlStream::kNy,
+    GlStream::kNz,    GlStream::kSlope,  GlStream::kWaterDepth, GlStream::kBentX,
+    GlStream::kBentY, GlStream::kBentZ,  GlStream::kBentDrop};
+
+// The streams every frame has (the bent ones only a planet's).
+inline constexpr bool is_bent_stream(GlStream stream) {
+  return static_cast<int>(stream) >= static_cast<int>(GlStream::kBentX);
+}
 
 // The GridBuffers field name: "dx", "valid", "water_depth", ...
 std::string_view gl_stream_name(GlStream stream);

@@ -118,10 +118,15 @@ GlTerrain::GlTerrain(GridLayout layout, const NoiseLattice& lattice, const Heigh
       make_storage_buffer(padded_block_size(sizeof(FbmParams<float>)), "stage 3's parameters");
   surface_params_ =
       make_storage_buffer(padded_block_size(sizeof(SurfaceParams<float>)), "stage 4's parameters");
+  planet_params_ = make_storage_buffer(padded_block_size(sizeof(PlanetParams<float>)),
+                                       "the planet's parameters");
   rows_ = make_storage_buffer(3 * (std::size_t(layout.height) + 2) * sizeof(float),
                               "stage 2's row table");
   reach_ = make_storage_buffer(limits::kMaxOctaves * sizeof(std::uint32_t), "the octave reach");
   for (const GlStream stream : kGlStreams) {
+    if (is_bent_stream(stream)) {
+      continue;  // a planet frame's: allocated by bend_vertices
+    }
     const std::size_t bytes = stream == GlStream::kValid ? layout.size() : stream_bytes;
     streams_[static_cast<int>(stream)] =
         make_storage_buffer(bytes, "stream " + std::string(gl_stream_name(stream)));
@@ -173,13 +178,16 @@ void GlTerrain::dispatch(unsigned int program, int groups_x, int groups_y,
 }
 
 void GlTerrain::run(const TerrainParams<float>& params) {
-  project_domain(params.domain, params.domain_rows);
+  project_domain(params.domain, params.domain_rows, params.planet);
   evaluate_fbm(params.fbm, OctaveForms::kFromReach);
   add_sketch(params.sketch);
+  bend_vertices(params.planet);
   surface_pass(params.surface);
+  bend_normals(params.planet);
 }
 
-void GlTerrain::project_domain(const DomainParams<float>& params, const DomainRows<float>& rows) {
+void GlTerrain::project_domain(const DomainParams<float>& params, const DomainRows<float>& rows,
+                               const PlanetParams<float>& planet) {
   require_context("project_domain");
   const char* who = "GlTerrain::project_domain";
   require_equal(who, "DomainParams::width", params.width, layout_.width);
@@ -194,6 +202,7 @@ void GlTerrain::project_domain(const DomainParams<float>& params, const DomainRo
   upload_bytes(rows_, 0, rows.descent.data(), row_bytes);
   upload_bytes(rows_, row_bytes, rows.x0.data(), row_bytes);
   upload_bytes(rows_, 2 * row_bytes, rows.step_x.data(), row_bytes);
+  upload_planet(planet);
   check_gl("uploading stage 2's parameters");
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingParams, domain_params_.get());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingRows, rows_.get());
@@ -368,6 +377,12 @@ void GlTerrain::read_all(GridBuffers<float>& out) const {
   read(GlStream::kNz, out.nz);
   read(GlStream::kSlope, out.slope);
   read(GlStream::kWaterDepth, out.water_depth);
+  if (!out.bent_x.empty() && buffer(GlStream::kBentX) != 0) {
+    read(GlStream::kBentX, out.bent_x);
+    read(GlStream::kBentY, out.bent_y);
+    read(GlStream::kBentZ, out.bent_z);
+    read(GlStream::kBentDrop, out.bent_drop);
+  }
 }
 
 FbmParams<float> GlTerrain::fbm_params() const {

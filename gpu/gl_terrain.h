@@ -54,14 +54,21 @@ class GlTerrain {
   // of set_need(), if any, limit stages 3 and 4 as the frame's culling does.
   void run(const TerrainParams<float>& params);
 
-  // The stages one by one, in this order (each reads what the previous ones wrote).
-  void project_domain(const DomainParams<float>& params, const DomainRows<float>& rows);
+  // The stages one by one, in this order (each reads what the previous ones wrote). `planet`:
+  // stage 2 on the sphere when enabled (core/planet_domain.h); the default, the plane.
+  void project_domain(const DomainParams<float>& params, const DomainRows<float>& rows,
+                      const PlanetParams<float>& planet = {});
   void evaluate_fbm(const FbmParams<float>& params, OctaveForms forms = OctaveForms::kFromReach);
   // Stage 3's second part: adds the sketch to the heights evaluate_fbm wrote (where stage 3
   // evaluated). Nothing when params.enabled is 0; throws std::invalid_argument when the
   // parameters do not match the sketch given to the constructor.
   void add_sketch(const SketchParams<float>& params);
   void surface_pass(const SurfaceParams<float>& params);
+  // A planet frame's bend (core/planet_bend.h; gl_terrain_planet.cc): bend_vertices after
+  // stage 3 into the bent streams (allocated by the first call), bend_normals after stage 4.
+  // Nothing when planet.enabled is 0.
+  void bend_vertices(const PlanetParams<float>& planet);
+  void bend_normals(const PlanetParams<float>& planet);
 
   // The frame's need flags (core/vertex_culling.h: kEvaluate, kDraw), one byte per vertex:
   // stage 3 evaluates where they are non-zero, stage 4 where kDraw is set; empty: stage 3
@@ -76,7 +83,8 @@ class GlTerrain {
   // Copies a stream back (layout().size() values or bytes).
   void read(GlStream stream, std::span<float> out) const;
   void read_valid(std::span<std::uint8_t> out) const;
-  // Every stream into the matching GridBuffers fields (same layout).
+  // Every stream into the matching GridBuffers fields (same layout); the bent streams where
+  // `out` has them allocated (GridBuffers::allocate_bent) and this GlTerrain has bent.
   void read_all(GridBuffers<float>& out) const;
   // Stage 3's parameters as the GPU holds them: the last evaluate_fbm's, with the octave
   // forms it chose.
@@ -95,12 +103,14 @@ class GlTerrain {
   void check_stream_size(const char* who, GlStream stream, std::size_t count) const;
   void bind_stream(GlStream stream) const;
   void dispatch(unsigned int program, int groups_x, int groups_y, const std::string& what) const;
+  void upload_planet(const PlanetParams<float>& planet);
 
   GridLayout layout_;
   void* context_ = nullptr;  // the EGL context the objects belong to
   int lattice_size_ = 0;
   GlTerrainPrograms programs_;
   GlName domain_params_, fbm_params_, sketch_params_, surface_params_;  // the structs' bytes
+  GlName planet_params_;
   GlName sketch_;  // the sketch's texel heights, when there is one
   int sketch_width_ = 0, sketch_height_ = 0;
   GlName rows_;     // DomainRows: descent, x0, step_x

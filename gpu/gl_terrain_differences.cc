@@ -7,6 +7,7 @@
 
 #include "core/fbm.h"
 #include "core/octave_coordinates.h"
+#include "core/planet_bend.h"
 #include "core/surface.h"
 
 namespace relief::gpu {
@@ -58,7 +59,22 @@ TerrainDifferences terrain_differences(const GridBuffers<float>& r, const GridBu
       d.identical_domain += domain_same ? 1 : 0;
       d.identical_height += height_same ? 1 : 0;
       d.identical_surface += surface_same ? 1 : 0;
-      d.identical += domain_same && height_same && surface_same ? 1 : 0;
+      // A planet's bend (both sides bent, or neither: the plane).
+      const bool bent = !r.bent_x.empty() && !g.bent_x.empty();
+      const bool bent_same =
+          !bent ||
+          (same_bits(r.bent_x[k], g.bent_x[k]) && same_bits(r.bent_y[k], g.bent_y[k]) &&
+           same_bits(r.bent_z[k], g.bent_z[k]) && same_bits(r.bent_drop[k], g.bent_drop[k]));
+      d.identical += domain_same && height_same && surface_same && bent_same ? 1 : 0;
+      if (bent) {
+        const double bx = r.bent_x[k], by = r.bent_y[k], bz = r.bent_z[k];
+        const double error = std::max(
+            {std::abs(bx - g.bent_x[k]), std::abs(by - g.bent_y[k]), std::abs(bz - g.bent_z[k])});
+        const double size = std::sqrt(bx * bx + by * by + bz * bz);
+        if (error > 0) {
+          d.bent_max_rel = std::max(d.bent_max_rel, size > 0 ? error / size : error);
+        }
+      }
       const double distance = std::hypot(double(r.dx[k]), double(r.dz[k]));
       const double domain =
           std::max(std::abs(double(r.dx[k]) - g.dx[k]), std::abs(double(r.dz[k]) - g.dz[k]));
@@ -111,6 +127,12 @@ GridBuffers<float> staged_reference(const FramePlan& plan, const GridBuffers<flo
   // Stage 4 on the GL's stages 2 and 3.
   const SurfaceInputs<float> inputs{gl.dx, gl.dz, gl.height, gl.valid, {}};
   surface_pass<float>(params.surface, RowRange{0, layout.height}, inputs, staged.surface());
+  if (params.planet.enabled != 0) {  // the bend and the normals' rotation (planet_bend.h)
+    staged.allocate_bent();
+    bend_vertices<float>(params.planet, all, gl.dx, gl.dz, gl.height, gl.valid, staged.bent());
+    bend_normals<float>(params.planet, all, gl.dx, gl.dz, gl.valid, staged.nx, staged.ny,
+                        staged.nz);
+  }
   return staged;
 }
 

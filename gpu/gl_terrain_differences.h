@@ -27,6 +27,7 @@ struct TerrainDifferences {
   double normal_max_angle = 0;  // radians between the unit normals
   double slope_max_rel = 0;     // |d slope| / (1 + slope)
   double water_max_abs = 0;     // |d water_depth|, world units
+  double bent_max_rel = 0;      // a planet's bend: |d bent position| / |bent position|
 };
 
 // `reference`: the CPU's buffers; `gl`: GlTerrain::read_all's, of the same layout.
@@ -37,8 +38,8 @@ TerrainDifferences terrain_differences(const GridBuffers<float>& reference,
 // with the CPU doing the same arithmetic on the same numbers (a GL stage's rounding is not
 // amplified by the later stages): stage 2 as the CPU computes it (`cpu`, run_terrain_stages'
 // buffers), stage 3 on the GL's dx, dz, nu and valid (the octaves' forms chosen from them as
-// the frame chooses), stage 4 on the GL's dx, dz, valid and heights. Every vertex is computed
-// (no need flags).
+// the frame chooses), stage 4 on the GL's dx, dz, valid and heights; on a planet the bend and
+// the normals' rotation on the GL's inputs too. Every vertex is computed (no need flags).
 GridBuffers<float> staged_reference(const FramePlan& plan, const GridBuffers<float>& cpu,
                                     const GridBuffers<float>& gl);
 

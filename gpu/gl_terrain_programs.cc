@@ -24,9 +24,14 @@ GlName build(const std::string& prelude, const std::string& name,
 
 std::vector<GlProgramBlocks> terrain_program_blocks() {
   return {
-      {"domain", {domain_params_layout()}}, {"reach", {}},
-      {"forms", {fbm_params_layout()}},     {"fbm", {fbm_params_layout(), lattice_layout()}},
-      {"sketch", {sketch_params_layout()}}, {"surface", {surface_params_layout()}},
+      {"domain", {domain_params_layout(), planet_params_layout()}},
+      {"reach", {}},
+      {"forms", {fbm_params_layout()}},
+      {"fbm", {fbm_params_layout(), lattice_layout()}},
+      {"sketch", {sketch_params_layout()}},
+      {"surface", {surface_params_layout()}},
+      {"bend", {planet_params_layout()}},
+      {"bend_normals", {planet_params_layout()}},
   };
 }
 
@@ -49,6 +54,12 @@ unsigned int program_named(const GlTerrainPrograms& programs, std::string_view n
   if (name == "surface") {
     return programs.surface.get();
   }
+  if (name == "bend") {
+    return programs.bend.get();
+  }
+  if (name == "bend_normals") {
+    return programs.bend_normals.get();
+  }
   throw GlError("no terrain program named " + std::string(name));
 }
 
@@ -62,6 +73,9 @@ GlTerrainPrograms build_terrain_programs() {
       build(prelude, "fbm.comp (stage 3)", {"lattice.glsl", "octave_coordinates.glsl", "fbm.comp"});
   p.sketch = build(prelude, "sketch.comp (stage 3, sketch)", {"sketch.comp"});
   p.surface = build(prelude, "surface.comp (stage 4)", {"surface.comp"});
+  p.bend = build(prelude, "bend.comp (a planet's bend)", {"det_math.glsl", "bend.comp"});
+  p.bend_normals = build(prelude, "bend_normals.comp (a planet's normals)",
+                         {"det_math.glsl", "bend_normals.comp"});
   for (const GlProgramBlocks& entry : terrain_program_blocks()) {
     std::string problems;
     for (const GlBlockLayout& block : entry.blocks) {

@@ -12,12 +12,14 @@
 namespace relief::gpu {
 
 struct GlTerrainPrograms {
-  GlName domain;   // stage 2: domain.comp
-  GlName reach;    // octave_reach: reach.comp
-  GlName forms;    // choose_coordinate_forms: forms.comp
-  GlName fbm;      // stage 3: fbm.comp
-  GlName sketch;   // stage 3, §3's sketch: sketch.comp
-  GlName surface;  // stage 4: surface.comp
+  GlName domain;        // stage 2: domain.comp
+  GlName reach;         // octave_reach: reach.comp
+  GlName forms;         // choose_coordinate_forms: forms.comp
+  GlName fbm;           // stage 3: fbm.comp
+  GlName sketch;        // stage 3, §3's sketch: sketch.comp
+  GlName surface;       // stage 4: surface.comp
+  GlName bend;          // a planet's bend after stage 3: bend.comp
+  GlName bend_normals;  // a planet's normals into the bent frame after stage 4
 };
 
 // The parameter blocks each program reads, with the layouts they must have.

@@ -22,13 +22,14 @@ namespace relief {
 
 namespace {
 
-// §4.1's spherical domain runs on the CPU backends only (docs/planet.md).
+// §4.1's spherical domain: the GL side runs a planet's stages 1-4 (gl_terrain_stages), not its
+// frames yet: the draw and stage 8's planet branches are not ported (docs/planet.md).
 [[maybe_unused]] void refuse_planet(const Scene& scene) {
   if (scene.terrain.planet && scene.terrain.planet->radius != 0.0) {
     throw SceneError(
         "terrain.planet",
         "scene: terrain.planet.radius = " + format_number(scene.terrain.planet->radius) +
-            ": the GL backend does not carry planets yet; use --backend simd, "
+            ": the GL backend does not render planet frames yet; use --backend simd, "
             "reference or reference-double (or terrain.planet = null)");
   }
 }
@@ -244,12 +245,14 @@ std::unique_ptr<FrameBackend> make_gl_backend(const Scene& scene, const SceneRes
 
 GridBuffers<float> gl_terrain_stages(const Scene& scene, const NoiseLattice& lattice,
                                      const HeightSketch* sketch) {
-  refuse_planet(scene);
   GlSession& s = session();
   const std::lock_guard<std::mutex> lock(s.mutex);
   const FramePlan plan = make_frame_plan(scene, lattice, sketch);
   const TerrainParams<float> params = make_terrain_params<float>(plan);
   GridBuffers<float> grid(plan.layout);
+  if (params.planet.enabled != 0) {
+    grid.allocate_bent();  // the bend's outputs (docs/planet.md)
+  }
   if (params.domain.terrain_visible == 0) {
     return grid;
   }

@@ -82,6 +82,13 @@ void check_stages(const GlTerrainRun& run, const std::string& what) {
 
   const double c1 = plan.lod.c1;
   const bool warp = plan.terrain.warp.enabled;
+  // On a planet stage 2's footprint takes two square roots, two divisions and two atan2_det
+  // (a division each) before its product (core/planet_domain.cc): 16 units where the 4 of
+  // the plane's one division stand. The bend on the same inputs: a square root and a
+  // division (sinc) before its products: 8 units of the bent position's size. The normals'
+  // rotation adds a few roundings of a unit vector: 8 units of angle.
+  const bool planet = !gl.bent_x.empty();
+  const double domain_units = planet ? 16 : 4;
   std::size_t vertices = 0, mismatched = 0;
   double gl_max = 0, gl_sq = 0, float_max = 0, float_sq = 0;
   for (int j = 0; j < l.height; ++j) {
@@ -95,8 +102,16 @@ void check_stages(const GlTerrainRun& run, const std::string& what) {
       INFO(what << ": vertex (" << i << ", " << j << ")");
       // Stage 2: the footprint's one division (2.5 ULP) and its product: 4 units.
       const double d = std::hypot(double(staged.dx[k]), double(staged.dz[k]));
-      CHECK(std::abs(double(gl.dx[k]) - staged.dx[k]) <= 4 * kUnit * d);
-      CHECK(std::abs(double(gl.dz[k]) - staged.dz[k]) <= 4 * kUnit * d);
+      CHECK(std::abs(double(gl.dx[k]) - staged.dx[k]) <= domain_units * kUnit * d);
+      CHECK(std::abs(double(gl.dz[k]) - staged.dz[k]) <= domain_units * kUnit * d);
+      if (planet) {
+        const double bx = staged.bent_x[k], by = staged.bent_y[k], bz = staged.bent_z[k];
+        const double size = std::sqrt(bx * bx + by * by + bz * bz);
+        CHECK(std::abs(double(gl.bent_x[k]) - bx) <= 8 * kUnit * size);
+        CHECK(std::abs(double(gl.bent_y[k]) - by) <= 8 * kUnit * size);
+        CHECK(std::abs(double(gl.bent_z[k]) - bz) <= 8 * kUnit * size);
+        CHECK(std::abs(double(gl.bent_drop[k]) - staged.bent_drop[k]) <= 8 * kUnit * size);
+      }
       // sigma: two footprints 4 units each, at most 3 max(|d|, sigma) away, and the square
       // root (GLSL: inherited from 1 / inversesqrt) and its squares: 32 units of that.
       const double m = std::max(d, double(staged.sigma[k]));
@@ -120,7 +135,7 @@ void check_stages(const GlTerrainRun& run, const std::string& what) {
       float_sq += float_error * float_error;
       // Stage 4: the divisions and square roots of the normal, through the condition number
       // 1 / sin(angle between the tangents).
-      const double bound = 32 * kUnit / tangent_sine(gl, i, j);
+      const double bound = 32 * kUnit / tangent_sine(gl, i, j) + (planet ? 8 * kUnit : 0.0);
       CHECK(angle(staged, gl, k) <= bound);
       const double slope = staged.slope[k];
       CHECK(std::abs(double(gl.slope[k]) - slope) <= bound * (1 + slope) * (1 + slope));
@@ -186,7 +201,7 @@ void check_gl_terrain(const GlTerrainRun& run, bool exact, const std::string& wh
   INFO(what << ": " << d.vertices << " vertices, " << d.identical << " bit-identical, "
             << d.valid_mismatches << " valid differences; end to end: nu " << d.nu_max_abs
             << ", height max " << d.height_max_abs / a << " A, rms " << d.height_rms_abs / a
-            << " A, normal " << d.normal_max_angle << " rad");
+            << " A, normal " << d.normal_max_angle << " rad, bent " << d.bent_max_rel);
   REQUIRE(d.vertices > 0);
   CHECK(d.default_mismatches == 0);
   for (int n = 0; n < run.cpu_fbm.count; ++n) {

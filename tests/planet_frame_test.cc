@@ -285,8 +285,15 @@ TEST_CASE("planetSettingsAreValidatedAndTheGlBackendRefusesAPlanet", "[planet][c
     INFO(r.err);
     CHECK(r.code == 2);
     CHECK(r.err.find("terrain.planet") != std::string::npos);
-    CHECK(r.err.find("does not carry planets") != std::string::npos);
+    CHECK(r.err.find("does not render planet frames") != std::string::npos);
     CHECK_FALSE(std::filesystem::exists(dir.path() / "p.png"));
+    // Its stages 1-4 run on GL (docs/planet.md).
+    const test::CliResult stages =
+        test::run({"stages", "planet", "--backend", "gl", "--out", (dir.path() / "s").string(),
+                   "--set", "grid.width=64", "--set", "grid.height=64"});
+    INFO(stages.err);
+    CHECK(stages.code == 0);
+    CHECK(std::filesystem::exists(dir.path() / "s" / "stages.json"));
   }
 }
 

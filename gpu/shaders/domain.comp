@@ -1,6 +1,9 @@
 // Stage 2, the projected domain (§4.1, steps 1-2 and the LOD paragraph): core/projected_domain.cc
 // and ProjectorRays::footprint (core/projector.cc), one invocation per vertex (i, j) of the
 // row pitch, padding included. Rays are recomputed for the four neighbours, as on the CPU.
+// On a planet (planet.enabled) the footprint is core/planet_domain.cc's instead: the ray's near
+// hit with the grid sphere (theta_true), blended into equal angles (theta_eq), as an arc
+// offset (docs/planet.md).
 layout(local_size_x = RELIEF_GROUP_SIZE) in;
 
 layout(std430, binding = RELIEF_BINDING_PARAMS) readonly buffer DomainParamsBlock {
@@ -10,6 +13,9 @@ layout(std430, binding = RELIEF_BINDING_PARAMS) readonly buffer DomainParamsBloc
 // the other.
 layout(std430, binding = RELIEF_BINDING_ROWS) readonly buffer DomainRowsBlock {
   float domain_rows[];
+};
+layout(std430, binding = RELIEF_BINDING_PLANET) readonly buffer PlanetParamsBlock {
+  PlanetParams planet;
 };
 layout(std430, binding = RELIEF_BINDING_DX) writeonly buffer DxBlock { float out_dx[]; };
 layout(std430, binding = RELIEF_BINDING_DZ) writeonly buffer DzBlock { float out_dz[]; };
@@ -35,8 +41,51 @@ struct Footprint {
   bool valid;
 };
 
+// planet_footprint (core/planet_domain.cc) of the ray through image point (x, y): the arc
+// offset of its remapped central angle theta; invalid beyond theta_h, or where the ray misses
+// the grid sphere while b = 0.
+Footprint planet_footprint(float x, float y, float descent) {
+  Footprint f = Footprint(0.0, 0.0, false);
+  // The projector has no roll: x does not change ray.y (projector.h).
+  precise float ray_x = domain.rays.fx + x * domain.rays.rx + y * domain.rays.ux;
+  precise float ray_z = domain.rays.fz + x * domain.rays.rz + y * domain.rays.uz;
+  precise float horizontal = sqrt(ray_x * ray_x + ray_z * ray_z);
+  precise float length = sqrt(horizontal * horizontal + descent * descent);
+  if (!(length > 0.0)) {
+    return f;  // the division's domain below; never for a projector ray
+  }
+  precise float cos_a = descent / length;
+  precise float sin_a = horizontal / length;
+  precise float dc = planet.center_distance * cos_a;
+  precise float disc = dc * dc - planet.grid_c;
+  const bool hit = cos_a > 0.0 && disc >= 0.0;
+  precise float theta_true = planet.theta_limb;
+  if (hit) {
+    // Domain: dc > 0 and c > 0, so the denominator is positive.
+    precise float t = planet.grid_c / (dc + sqrt(disc));
+    precise float along = t * sin_a;
+    precise float across = planet.center_distance - t * cos_a;
+    theta_true = atan2_det(along, across);
+  }
+  precise float alpha = atan2_det(horizontal, descent);
+  precise float theta_eq = planet.theta_lo + planet.eq_slope * (alpha - planet.alpha_lo);
+  precise float blended = planet.one_minus_blend * theta_true + planet.blend * theta_eq;
+  precise float theta = 0.0 < blended ? blended : 0.0;  // std::max(0, blended)
+  if (!(theta <= planet.theta_h) || (!hit && !(planet.blend > 0.0))) {
+    return f;
+  }
+  f.valid = true;
+  // Straight down the direction is undefined and theta is 0: (0, 0). Domain: horizontal > 0.
+  if (horizontal > 0.0) {
+    precise float scale = planet.radius * theta / horizontal;
+    f.x = scale * ray_x;
+    f.z = scale * ray_z;
+  }
+  return f;
+}
+
 // ProjectorRays::footprint at image point (x0 + i step_x, y0 + j step_y), gated by
-// terrain_visible as the CPU's `&&` gates it.
+// terrain_visible as the CPU's `&&` gates it (and, on a planet, by planet.visible).
 Footprint footprint(int i, int j, Row r) {
   Footprint f = Footprint(0.0, 0.0, false);
   if (domain.terrain_visible == 0) {
@@ -44,6 +93,12 @@ Footprint footprint(int i, int j, Row r) {
   }
   precise float x = r.x0 + float(i) * r.step_x;
   precise float y = domain.y0 + float(j) * domain.step_y;
+  if (planet.enabled != 0) {
+    if (planet.visible == 0) {
+      return f;
+    }
+    return planet_footprint(x, y, r.descent);
+  }
   precise float ray_x = domain.rays.fx + x * domain.rays.rx + y * domain.rays.ux;
   precise float ray_z = domain.rays.fz + x * domain.rays.rz + y * domain.rays.uz;
   precise float horizontal_sq = ray_x * ray_x + ray_z * ray_z;

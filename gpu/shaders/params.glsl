@@ -24,6 +24,18 @@ struct DomainParams {  // stage 2 (§4.1)
   int whole_octaves;
 };
 
+struct PlanetParams {  // stage 2 on a planet and the bend (core/planet_plan.h, §4.1)
+  int enabled;
+  int visible;
+  float radius, inv_radius;
+  float center_distance;
+  float grid_c;
+  float blend, one_minus_blend;
+  float theta_h, theta_limb;
+  float alpha_lo, theta_lo;
+  float eq_slope;
+};
+
 struct FbmParams {  // stage 3 (Eq. 1, §2.2, §4.1)
   int count;
   int interpolant;
