@@ -122,6 +122,10 @@ inline constexpr int kMaxBasisUpsample = 8;  // terrain.basis.upsample: 1, 2, 4 
 inline constexpr double kMinBasisTileSize = 1e-11;
 inline constexpr double kMaxBasisTileSize = 1e9;
 inline constexpr double kMaxBasisWeight = 1e6;
+// The least non-zero constant weight: Eq. 2's products w I and their sums stay far from double's
+// subnormals (a weight of 5e-324 made w I round to 0 or to w, and the composed grid garbage),
+// and the weights' ratio (at most 1e12) far from its precision.
+inline constexpr double kMinBasisWeight = 1e-6;
 inline constexpr double kMaxBasisSigma = kMaxLatticeSize / 2;
 // The seam measure (core/basis_images.h) above which a repeating image is said not to tile:
 // the steps across its wrap twice as large (RMS) as the steps between neighbours inside it.

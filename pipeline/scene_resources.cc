@@ -7,8 +7,11 @@
 
 #include <stb_image.h>
 
+#include "core/basis_images.h"
+#include "core/height_bounds.h"
 #include "core/input_file.h"
 #include "core/limits.h"
+#include "core/scene/json_fields.h"
 #include "core/scene/json_input.h"
 #include "core/scene/scene_json.h"
 #include "core/srgb.h"
@@ -92,6 +95,34 @@ RgbImage load_layer_texture(const MaterialLayer& layer, int builtin_size, const 
   return decode_texture_png(bytes, field, path);
 }
 
+namespace {
+
+// §4.1: the bend maps elevation e to radius R + e, which must stay positive: terrain that can
+// reach the planet's centre is refused (its bounds need the composed grid and the sketch, so
+// this runs once they are loaded).
+void check_planet_depth(const Scene& scene, const SceneResources& resources) {
+  const TerrainSettings& t = scene.terrain;
+  if (!t.planet || t.planet->radius == 0.0) {
+    return;
+  }
+  const NoiseLattice& values = resources.terrain_values();
+  const HeightBounds bounds =
+      derive_height_bounds(values, stage3_terrain(t, values.size), resources.sketch_or_null());
+  const double deepest = bounds.world_min - t.base_height;  // lowest elevation, radial
+  if (!(t.planet->radius + deepest > 0.0)) {
+    throw SceneError("terrain.planet.radius",
+                     "scene: terrain.planet.radius = " + format_number(t.planet->radius) +
+                         " is less than the depth the terrain can reach below the datum (" +
+                         format_number(-deepest) +
+                         ": terrain.amplitude, the octaves' sum and the sketch's heights), so "
+                         "the surface would pass through the planet's centre; allowed "
+                         "terrain.planet.radius > " +
+                         format_number(-deepest) + " for this terrain");
+  }
+}
+
+}  // namespace
+
 SceneResources load_scene_resources(const Scene& scene) {
   SceneResources resources;
   resources.lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
@@ -103,6 +134,7 @@ SceneResources load_scene_resources(const Scene& scene) {
   }
   resources.sketch = load_height_sketch(scene);
   resources.basis = load_basis_grid(scene, &resources.notes);
+  check_planet_depth(scene, resources);
   return resources;
 }
 

@@ -36,12 +36,17 @@ std::string position(const Scene& base, double x, double y, double z) {
   return out;
 }
 
-// The terrain's period in x and z: P lattice cells of octave 0. With an integer lacunarity
-// every octave's lattice repeats within it, so a camera moved by whole periods sees the same
-// terrain and the distance axis compares like with like.
+// The terrain's period in x and z: P lattice cells of octave 0 (one basis image tile with
+// terrain.basis). With an integer lacunarity every octave's lattice repeats within it, so a
+// camera moved by whole periods sees the same terrain and the distance axis compares like with
+// like.
 double terrain_period(const Scene& base) {
   const double r = base.terrain.r;
-  return r == std::floor(r) ? base.terrain.lattice_size * base.terrain.horizontal_scale : 0.0;
+  if (r != std::floor(r)) {
+    return 0.0;
+  }
+  return base.terrain.basis ? base.terrain.basis->tile_size
+                            : base.terrain.lattice_size * base.terrain.horizontal_scale;
 }
 
 // `distance` rounded to whole terrain periods (where there is one), within the camera's range.
@@ -142,7 +147,7 @@ void add_camera_cases(CaseList& list, const Scene& base, const NoiseLattice& lat
            {position(base, 0, ground + 10, 0), "terrain.water_level=" + num(ground + 20)});
 }
 
-void add_terrain_cases(CaseList& list) {
+void add_terrain_cases(CaseList& list, const Scene& base) {
   const std::string on = "terrain.warp.enabled=true";
   list.add("warp", "warped, default c1 c2 c3", {on});
   list.add("warp", "c3 = 0", {on, "terrain.warp.c3=[0,0]"});
@@ -181,10 +186,19 @@ void add_terrain_cases(CaseList& list) {
   list.add("octaves", "0 octaves far away (bias -8)",
            {"terrain.first_octave=0", "terrain.last_octave=0", "terrain.lod.bias=-8"});
   list.add("octaves", "24 octaves (0..23)", {"terrain.first_octave=0", "terrain.last_octave=23"});
-  list.add("octaves", "octaves 32..40 (r^k = 2^40)",
-           {"terrain.r=2", "terrain.first_octave=32", "terrain.last_octave=40",
-            // the coarsest lattice coordinate at the farthest footprint below 2^24
-            "terrain.horizontal_scale=1e8"});
+  if (base.terrain.basis) {
+    // Basis images set the octave-0 cell by tile_size / P: even the largest tile puts the
+    // coarsest coordinate of octave 32 at the farthest footprint past 2^24, which the scene's
+    // rule refuses by name.
+    list.add("octaves", "octaves 32..40 (r^k = 2^40)",
+             {"terrain.r=2", "terrain.first_octave=32", "terrain.last_octave=40"},
+             "terrain.basis.tile_size");
+  } else {
+    list.add("octaves", "octaves 32..40 (r^k = 2^40)",
+             {"terrain.r=2", "terrain.first_octave=32", "terrain.last_octave=40",
+              // the coarsest lattice coordinate at the farthest footprint below 2^24
+              "terrain.horizontal_scale=1e8"});
+  }
   list.add("octaves", "25 octaves", {"terrain.first_octave=0", "terrain.last_octave=24"},
            "terrain.last_octave");
 }
@@ -257,7 +271,7 @@ std::vector<StressCase> make_stress_cases(const Scene& base, std::uintmax_t budg
   std::vector<StressCase> cases;
   CaseList list(cases);
   add_camera_cases(list, base, lattice);
-  add_terrain_cases(list);
+  add_terrain_cases(list, base);
   add_size_cases(list, base, budget_bytes, backends);
   return cases;
 }

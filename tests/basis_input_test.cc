@@ -91,6 +91,10 @@ TEST_CASE("basisFieldsAreCheckedNamingTheFieldAndTheRange", "[basis]") {
           "terrain.basis.images[0].weight = -0.5 is out of range; allowed 0 <= "
           "terrain.basis.images[0].weight <= ");
   refused(one_image("builtin:basis/craters", "true"), "terrain.basis.images[0].weight");
+  // A subnormal weight once made Eq. 2's products round to garbage.
+  refused(one_image("builtin:basis/craters", "5e-324"),
+          "terrain.basis.images[0].weight = 5e-324 is too small to weigh; allowed 0 or 1e-06 <= "
+          "terrain.basis.images[0].weight <= 1e+06");
   refused({"terrain.basis.upsample=3"},
           "terrain.basis.upsample = 3 is not a power of two; allowed 1, 2, 4 or 8");
   refused({"terrain.basis.upsample=16"}, "terrain.basis.upsample = 16 is out of range");
@@ -204,6 +208,15 @@ TEST_CASE("anImageThatDoesNotTileIsNotedWithItsSeamMeasureAndMirrorSilencesIt", 
   CHECK_THAT(scaled.err, Catch::Contains("terrain.horizontal_scale = 500 is not used with "
                                          "terrain.basis: the octave-0 cell is "
                                          "terrain.basis.tile_size / 256 = 31.25 world units"));
+}
+
+// The stress suite on a basis preset: its cases that set the octave-0 cell through
+// horizontal_scale expect basis mode's own rule instead (stress_cases.cc).
+TEST_CASE("theStressSuiteRunsOnABasisPreset", "[basis][stress]") {
+  const test::CliResult r = test::run({"stress", "craters", "--axis", "octaves", "--backend",
+                                       "simd", "--viewport", "32", "24", "--grid", "16"});
+  INFO(r.out << r.err);
+  CHECK(r.code == 0);
 }
 
 }  // namespace

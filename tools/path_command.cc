@@ -92,6 +92,20 @@ int run_path_command(const Scene& scene, const PathOptions& o, std::ostream& out
     validate_scene(frame);
     frames.push_back(std::move(frame));
   }
+  // Frames of an earlier path left in the directory would mix with these (a shorter path keeps
+  // the old frames past its last), and one of them being a directory would stop this path
+  // half-way: refused before anything is written.
+  std::error_code error;
+  if (std::filesystem::is_directory(o.out_dir, error)) {
+    for (const auto& entry : std::filesystem::directory_iterator(o.out_dir, error)) {
+      const std::string name = entry.path().filename().string();
+      if (name.starts_with("frame_") && name.ends_with(".png")) {
+        return bad("--out " + o.out_dir + " already holds " + name +
+                   " (from an earlier path?); allowed: a new directory, or one without "
+                   "frame_*.png");
+      }
+    }
+  }
   FrameRequest request;
   request.backend = o.backend;
   const MemoryEstimate estimate = estimate_render_memory(scene, request.backend, request.outputs);

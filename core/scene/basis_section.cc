@@ -35,6 +35,11 @@ BasisImageSettings read_basis_image(const LayerReader& in, const json& value,
                image.weight_image = resolve_scene_path(in.string(v, p), base_dir);
              } else {
                image.weight = in.number(v, p, Range{0.0, limits::kMaxBasisWeight});
+               if (image.weight > 0.0 && image.weight < limits::kMinBasisWeight) {
+                 in.fail(p, p + " = " + brief(v) + " is too small to weigh; allowed 0 or " +
+                                format_number(limits::kMinBasisWeight) + " <= " + p +
+                                " <= " + format_number(limits::kMaxBasisWeight));
+               }
                image.weight_image.clear();
              }
            }},

@@ -61,11 +61,29 @@ void validate_planet(const Scene& scene) {
   if (!t.planet || t.planet->radius == 0.0) {
     return;
   }
+  const double radius = t.planet->radius;
+  // The water sphere's radius R + (water level - base height) must be positive: at or below
+  // the centre there is no sphere (its equation would draw one of radius |R + w| instead).
+  if (t.water_level && !(radius + (*t.water_level - t.base_height) > 0.0)) {
+    throw SceneError("terrain.water_level",
+                     "scene: terrain.water_level = " + format_number(*t.water_level) +
+                         " puts the water sphere at or past the planet's centre (" +
+                         format_number(*t.water_level - t.base_height) +
+                         " below the datum of terrain.planet.radius = " + format_number(radius) +
+                         "); allowed terrain.water_level > " +
+                         format_number(t.base_height - radius) + ", or null (no water)");
+  }
   // The farthest arc offset stage 2 may give a vertex is kMaxPlanetAngle R: its coarsest
   // lattice coordinate must stay where float holds every cell (as camera.far's footprint).
-  const double farthest = limits::kMaxPlanetAngle * t.planet->radius;
-  const double coordinate =
-      std::pow(t.r, t.first_octave) * farthest / t.horizontal_scale + t.lattice_size;
+  // Stage 3's cell and period: horizontal_scale and lattice_size, or with basis images
+  // tile_size / P and P for the largest P any image can give (P is known only once they are
+  // read; a smaller P gives a larger cell), as validate_basis takes them.
+  const double period = t.basis ? double(limits::kMaxLatticeSize) : double(t.lattice_size);
+  const double cell = t.basis ? t.basis->tile_size / period : t.horizontal_scale;
+  const char* cell_fields =
+      t.basis ? "terrain.basis.tile_size" : "terrain.horizontal_scale, terrain.lattice_size";
+  const double farthest = limits::kMaxPlanetAngle * radius;
+  const double coordinate = std::pow(t.r, t.first_octave) * farthest / cell + period;
   if (coordinate > limits::kMaxLatticeCoordinate) {
     throw SceneError(
         "terrain.planet.radius",
@@ -74,9 +92,9 @@ void validate_planet(const Scene& scene) {
             " units along the surface) at lattice coordinate " +
             format_number(std::round(coordinate)) + " of the coarsest octave, beyond " +
             format_number(limits::kMaxLatticeCoordinate) + "; allowed terrain.planet.radius <= " +
-            format_number((limits::kMaxLatticeCoordinate - t.lattice_size) * t.horizontal_scale /
+            format_number((limits::kMaxLatticeCoordinate - period) * cell /
                           std::pow(t.r, t.first_octave) / limits::kMaxPlanetAngle) +
-            " for this terrain.horizontal_scale, terrain.r and terrain.first_octave");
+            " for this " + cell_fields + ", terrain.r and terrain.first_octave");
   }
 }
 

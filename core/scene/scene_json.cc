@@ -298,7 +298,7 @@ json scene_to_json(const Scene& scene) {
                             {"height", vec_json(t.sketch->height)}}
                      : json(nullptr)},
       {"basis", t.basis ? basis_to_json(*t.basis) : json(nullptr)}};
-  if (t.planet) {  // absent from the plane's scenes: their printed form stays as it was
+  if (t.planet && t.planet->radius != 0.0) {  // the plane prints as it always has
     out["terrain"]["planet"] = planet_to_json(*t.planet);
   }
   json layers = json::array();

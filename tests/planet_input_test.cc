@@ -1,0 +1,96 @@
+// terrain.planet from outside, where a hostile pass found holes: a water sphere or terrain at or
+// past the planet's centre, the lattice rule with basis images, and `relief path` into a
+// directory that already holds frames. Each refusal: exit 2, the field named, nothing written.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "cli_support.h"
+#include "test_support.h"
+
+namespace relief {
+namespace {
+
+const std::vector<std::string> kSmall = {
+    "--set", "viewport.width=64", "--set", "viewport.height=48",
+    "--set", "grid.width=32",     "--set", "grid.height=32"};
+
+test::CliResult render(const std::string& preset, const std::vector<std::string>& sets,
+                       const std::filesystem::path& out) {
+  std::vector<std::string> args = {"render", preset, "-o", out.string()};
+  args.insert(args.end(), kSmall.begin(), kSmall.end());
+  for (const std::string& s : sets) {
+    args.push_back("--set");
+    args.push_back(s);
+  }
+  return test::run(args);
+}
+
+TEST_CASE("nothingOfAPlanetMayReachItsCentre", "[planet][cli]") {
+  test::TempDir dir("planet-centre");
+  const std::filesystem::path out = dir.path() / "p.png";
+  // The water sphere's radius R + w - base must be positive (it once drew a sphere of |R + w|).
+  const test::CliResult water =
+      render("planet",
+             {"terrain.planet.radius=1000", "terrain.horizontal_scale=1000",
+              "terrain.amplitude=100", "terrain.water_level=-5000"},
+             out);
+  INFO(water.err);
+  CHECK(water.code == 2);
+  CHECK(water.err.find("terrain.water_level = -5000 puts the water sphere at or past the "
+                       "planet's centre") != std::string::npos);
+  CHECK(water.err.find("allowed terrain.water_level > -900") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(out));
+  // Terrain whose bounds reach below -R would be bent through the centre.
+  const test::CliResult deep =
+      render("planet",
+             {"terrain.planet.radius=1000", "terrain.horizontal_scale=1000",
+              "terrain.amplitude=3000", "terrain.water_level=null"},
+             out);
+  INFO(deep.err);
+  CHECK(deep.code == 2);
+  CHECK(deep.err.find("terrain.planet.radius = 1000 is less than the depth the terrain can "
+                      "reach below the datum") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(out));
+  // The same small planet with shallow terrain renders.
+  const test::CliResult shallow =
+      render("planet",
+             {"terrain.planet.radius=1000", "terrain.horizontal_scale=1000", "terrain.amplitude=20",
+              "terrain.water_level=null", "camera.position=[0,30000,0]", "camera.pitch_deg=-89"},
+             out);
+  INFO(shallow.err);
+  CHECK(shallow.code == 0);
+}
+
+TEST_CASE("thePlanetsLatticeRuleUsesTheBasisImagesCell", "[planet][cli]") {
+  // With basis images horizontal_scale is unused: the rule names tile_size, not it.
+  const test::CliResult r = test::run({"scene", "craters", "--set", "terrain.planet.radius=1e8",
+                                       "--set", "terrain.horizontal_scale=10"});
+  INFO(r.err);
+  CHECK(r.code == 2);
+  CHECK(r.err.find("for this terrain.basis.tile_size, terrain.r") != std::string::npos);
+  CHECK(test::run({"scene", "craters", "--set", "terrain.planet.radius=1e5"}).code == 0);
+}
+
+TEST_CASE("aPathRefusesADirectoryThatAlreadyHoldsFrames", "[planet][cli]") {
+  test::TempDir dir("path-stale");
+  const std::filesystem::path out = dir.path() / "frames";
+  std::filesystem::create_directories(out / "frame_0001.png");  // a directory in the way
+  std::vector<std::string> args = {"path", "planet",          "--out", out.string(),    "--frames",
+                                   "2",    "--from-altitude", "1e6",   "--to-altitude", "1e4"};
+  args.insert(args.end(), kSmall.begin(), kSmall.end());
+  const test::CliResult r = test::run(args);
+  INFO(r.err);
+  CHECK(r.code == 2);
+  CHECK(r.err.find("already holds frame_0001.png") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(out / "frame_0000.png"));
+  std::filesystem::remove_all(out / "frame_0001.png");
+  CHECK(test::run(args).code == 0);
+  CHECK(std::filesystem::is_regular_file(out / "frame_0001.png"));
+  CHECK(test::run(args).code == 2);  // its own frames, a second time
+}
+
+}  // namespace
+}  // namespace relief
