@@ -54,8 +54,13 @@ void GlGridUpload::upload(const GridBuffers<float>& grid, std::span<const std::u
     owned_.push_back(make_buffer(v.data(), n * sizeof(float), what));
     return owned_.back();
   };
-  streams_.dx = floats(grid.dx, "dx");
-  streams_.dz = floats(grid.dz, "dz");
+  const bool bent = !grid.bent_x.empty();
+  streams_.dx = bent ? floats(grid.bent_x, "bent x") : floats(grid.dx, "dx");
+  streams_.dz = bent ? floats(grid.bent_z, "bent z") : floats(grid.dz, "dz");
+  if (bent) {
+    streams_.position_y = floats(grid.bent_y, "bent y");
+    streams_.drop = floats(grid.bent_drop, "bent drop");
+  }
   streams_.height = floats(grid.height, "height");
   streams_.nx = floats(grid.nx, "nx");
   streams_.ny = floats(grid.ny, "ny");

@@ -20,7 +20,15 @@ namespace relief::gpu {
 // stages 1-4 on the GPU) keeps them; the draw only reads them.
 struct GlGridStreams {
   GridLayout layout;
-  std::uint32_t dx = 0, dz = 0, height = 0;  // camera-relative position (stages 2-3)
+  // Camera-relative position (stages 2-3); on a planet dx and dz name the bent x and z, and
+  // height stays the unbent one (materials and water are radial; docs/planet.md).
+  std::uint32_t dx = 0, dz = 0, height = 0;
+  // A planet's bent y (what stage 5 transforms; 0: height, the plane) and curvature drop
+  // (what stage 8 subtracts; 0: none, the plane).
+  std::uint32_t position_y = 0, drop = 0;
+  // The camera-relative height the draw interpolates heights from (as offsets): a planet's
+  // datum, -altitude, where heights are the camera's altitude in size; 0 on the plane.
+  float height_origin = 0;
   std::uint32_t nx = 0, ny = 0, nz = 0;      // unit normal (stage 4)
   std::uint32_t slope = 0, water_depth = 0;  // stage 4
   std::uint32_t nu = 0;                      // octave count (stage 2); 0: no octaves output
@@ -28,7 +36,9 @@ struct GlGridStreams {
   std::uint32_t need = 0;  // VertexNeed flags (core/vertex_culling.h); 0: every vertex kDraw
 };
 
-// CPU grid buffers uploaded into buffer objects (what the tests use).
+// CPU grid buffers uploaded into buffer objects (what the tests use); a grid with bent
+// positions (a planet's, GridBuffers::allocate_bent) uploads them as its dx, dz, position_y and
+// drop.
 class GlGridUpload {
  public:
   // `need`: empty, or one VertexNeed byte per vertex (layout.size()).

@@ -23,8 +23,10 @@ constexpr GLuint kShadeBinding = 0, kLatticeBinding = 1, kSrgbBinding = 2;  // s
 constexpr GLuint kTransformBinding = 0;                                     // uniform
 constexpr GLuint kValidBinding = 0, kNeedBinding = 1, kIndexBinding = 2;    // triangles.comp
 
-// Vertex attributes of terrain.vert: the float streams at 0-8, valid at 9, need at 10.
+// Vertex attributes of terrain.vert: the float streams at 0-8, valid at 9, need at 10, the
+// y that stage 5 transforms at 11 and a planet's drop at 12.
 constexpr GLuint kValidAttribute = 9, kNeedAttribute = 10;
+constexpr GLuint kDropAttribute = 12;
 
 // Colour targets: location k of the fragment shaders is GL_COLOR_ATTACHMENT0 + k.
 constexpr GLenum kTargetFormats[5] = {GL_RGBA32F, GL_RGBA8UI, GL_R32UI, GL_RGBA32F, GL_RG32F};
@@ -137,11 +139,17 @@ void GlTerrainDraw::set_up_targets(int width, int height) {
 }
 
 void GlTerrainDraw::bind_vertex_streams(const GlGridStreams& grid) {
-  const GLuint floats[9] = {grid.dx, grid.dz,    grid.height,      grid.nx, grid.ny,
-                            grid.nz, grid.slope, grid.water_depth, grid.nu};
+  const GLuint floats[13] = {
+      grid.dx,  grid.dz, grid.height, grid.nx,
+      grid.ny,  grid.nz, grid.slope,  grid.water_depth,
+      grid.nu,  0,       0,           grid.position_y != 0 ? grid.position_y : grid.height,
+      grid.drop};
   const GLuint vao = terrain_vao_;
-  for (GLuint a = 0; a < 9; ++a) {
-    if (floats[a] == 0) {  // only nu may be missing (checked by draw): a constant 0
+  for (GLuint a = 0; a < 13; ++a) {
+    if (a == kValidAttribute || a == kNeedAttribute) {
+      continue;  // the byte streams, below
+    }
+    if (floats[a] == 0) {  // only nu and drop may be missing (draw checks): a constant 0
       glDisableVertexArrayAttrib(vao, a);
       continue;
     }
@@ -178,8 +186,12 @@ GlFrameImage GlTerrainDraw::draw(const GlGridStreams& grid, const TransformParam
                              grid.nz, grid.slope, grid.water_depth, grid.valid};
   for (const GLuint name : required) {
     if (name == 0) {
-      throw std::invalid_argument("gpu: every grid stream but nu and need must be a buffer");
+      throw std::invalid_argument(
+          "gpu: every grid stream but nu, need, position_y and drop must be a buffer");
     }
+  }
+  if ((grid.position_y != 0) != (grid.drop != 0)) {
+    throw std::invalid_argument("gpu: a planet's grid needs both position_y and drop streams");
   }
   if (shade.layer_count < 1 ||
       static_cast<std::size_t>(shade.layer_count) > resources.textures().size() ||
@@ -215,7 +227,9 @@ GlFrameImage GlTerrainDraw::draw(const GlGridStreams& grid, const TransformParam
                       static_cast<GLsizei>(resources.texture_sizes().size()),
                       resources.texture_sizes().data());
   glProgramUniform1d(program, glGetUniformLocation(program, "u_camera_y"), camera_y);
+  glProgramUniform1f(program, glGetUniformLocation(program, "u_height_origin"), grid.height_origin);
   glVertexAttrib1f(8, 0.0f);               // nu where no stream is bound
+  glVertexAttrib1f(kDropAttribute, 0.0f);  // the plane: no drop
   glVertexAttribI1ui(kNeedAttribute, 2u);  // kDraw where no stream is bound
 
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);

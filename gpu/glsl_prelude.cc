@@ -1,5 +1,7 @@
 #include <cstdio>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "core/det_math.h"
 #include "core/limits.h"
@@ -26,6 +28,7 @@ constexpr double kRelativeIndex = 1.0 / 1.333;  // water.cc: air to water
 constexpr double kMinTransmittedCosine = 0.1;   // water.cc: path length domain
 constexpr double kReflectivityBase = 0.3;       // water.cc: reflectivity 0.3 + 0.7 f
 constexpr double kReflectivityDepth = 0.7;
+constexpr double kLocalFrameMinCos = -0.999;  // planet_shading.h, to_local_frame
 
 // The float `value` as a GLSL literal: 9 significant digits identify a float, and the
 // decimal lies so close to it that even a parser rounding through double returns it.
@@ -33,6 +36,28 @@ std::string literal(float value) {
   char text[32];
   std::snprintf(text, sizeof text, "%.8e", double(value));
   return text;
+}
+
+// The double `value` as a GLSL literal: 17 significant digits identify a double (Mesa parses
+// them with strtod, correctly rounded).
+std::string literal(double value) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.16eLF", value);
+  return text;
+}
+
+void constant_double(std::string& out, const std::string& name, double value) {
+  out += "const double " + name + " = " + literal(value) + ";\n";
+}
+
+void constant_double_array(std::string& out, const std::string& name,
+                           std::span<const double> values) {
+  out += "const int " + name + "Count = " + std::to_string(values.size()) + ";\n";
+  out += "const double " + name + "[" + std::to_string(values.size()) + "] = double[](";
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    out += (k > 0 ? ", " : "") + literal(values[k]);
+  }
+  out += ");\n";
 }
 
 void constant(std::string& out, const char* name, float value) {
@@ -56,10 +81,13 @@ std::vector<GlslSource> with_prelude(std::vector<GlslSource> sources) {
 }
 
 std::vector<GlslSource> shading_sources() {
-  return {
-      {"common.glsl", glsl::kCommon},           {"shade_params.glsl", glsl::kShadeParams},
-      {"shading_lattice.glsl", glsl::kLattice}, {"proto_texture.glsl", glsl::kProtoTexture},
-      {"sky_water.glsl", glsl::kSkyWater},      {"terrain_shading.glsl", glsl::kTerrainShading}};
+  return {{"common.glsl", glsl::kCommon},
+          {"shade_params.glsl", glsl::kShadeParams},
+          {"shading_lattice.glsl", glsl::kLattice},
+          {"proto_texture.glsl", glsl::kProtoTexture},
+          {"sky_water.glsl", glsl::kSkyWater},
+          {"planet_shading.glsl", glsl::kPlanetShading},
+          {"terrain_shading.glsl", glsl::kTerrainShading}};
 }
 
 }  // namespace
@@ -95,6 +123,27 @@ std::string glsl_prelude() {
   constant(out, "kMinTransmittedCosine", float(kMinTransmittedCosine));
   constant(out, "kReflectivityBase", float(kReflectivityBase));
   constant(out, "kReflectivityDepth", float(kReflectivityDepth));
+  constant(out, "kLocalFrameMinCos", float(kLocalFrameMinCos));
+  // sin_cos_det<double> and atan2_det<double> (planet_shading.glsl: a planet's background).
+  using Trig = det_math_detail::TrigTerms<double>;
+  static_assert(Trig::kSin == 8 && Trig::kCos == 9 && Trig::kAtan == 21,
+                "planet_shading.glsl loops over 8 sine, 9 cosine and 21 arctangent terms");
+  std::vector<double> atan(Trig::kAtan);
+  for (int k = 0; k < Trig::kAtan; ++k) {  // atan_reduced's Real(+-1) / Real(2k + 1)
+    atan[k] = (k % 2 == 0 ? 1.0 : -1.0) / double(2 * k + 1);
+  }
+  constant_double_array(out, "kSinCoeffD", {det_math_detail::kSinCoeffs, Trig::kSin});
+  constant_double_array(out, "kCosCoeffD", {det_math_detail::kCosCoeffs, Trig::kCos});
+  constant_double_array(out, "kAtanCoeffD", atan);
+  using Pieces = det_math_detail::HalfPiPieces<double>;
+  constant_double(out, "kHalfPiHiD", Pieces::hi);
+  constant_double(out, "kHalfPiMidD", Pieces::mid);
+  constant_double(out, "kHalfPiLoD", Pieces::lo);
+  constant_double(out, "kInvHalfPiD", 1.0 / det_math_detail::kHalfPi);
+  constant_double(out, "kHalfPiD", det_math_detail::kHalfPi);
+  constant_double(out, "kQuarterPiD", det_math_detail::kQuarterPi);
+  constant_double(out, "kTanEighthPiD", det_math_detail::kTanEighthPi);
+  constant_double(out, "kPiD", 2.0 * det_math_detail::kHalfPi);
   return out;
 }
 

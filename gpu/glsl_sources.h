@@ -16,6 +16,7 @@ extern const char* const kShadeParams;     // shaders/shade_params.glsl
 extern const char* const kLattice;         // shaders/shading_lattice.glsl
 extern const char* const kProtoTexture;    // shaders/proto_texture.glsl
 extern const char* const kSkyWater;        // shaders/sky_water.glsl
+extern const char* const kPlanetShading;   // shaders/planet_shading.glsl
 extern const char* const kTerrainShading;  // shaders/terrain_shading.glsl
 extern const char* const kTerrainVert;     // shaders/terrain.vert
 extern const char* const kTerrainFrag;     // shaders/terrain.frag

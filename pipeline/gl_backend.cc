@@ -4,7 +4,6 @@
 #include <utility>
 
 #include "core/frame_plan.h"
-#include "core/scene/json_fields.h"
 #include "core/shading_plan.h"
 #include "core/stage_params.h"
 #include "pipeline/frame_skips.h"
@@ -19,22 +18,6 @@
 #endif
 
 namespace relief {
-
-namespace {
-
-// §4.1's spherical domain: the GL side runs a planet's stages 1-4 (gl_terrain_stages), not its
-// frames yet: the draw and stage 8's planet branches are not ported (docs/planet.md).
-[[maybe_unused]] void refuse_planet(const Scene& scene) {
-  if (scene.terrain.planet && scene.terrain.planet->radius != 0.0) {
-    throw SceneError(
-        "terrain.planet",
-        "scene: terrain.planet.radius = " + format_number(scene.terrain.planet->radius) +
-            ": the GL backend does not render planet frames yet; use --backend simd, "
-            "reference or reference-double (or terrain.planet = null)");
-  }
-}
-
-}  // namespace
 
 #ifdef RELIEF_WITH_GL
 namespace {
@@ -130,17 +113,22 @@ class GlBackend final : public FrameBackend {
     GlSession& s = session();
     switch (id) {
       case StageId::kProjectedDomain:
-        with_context(s, "projected domain",
-                     [&] { terrain_->project_domain(params_.domain, params_.domain_rows); });
+        with_context(s, "projected domain", [&] {
+          terrain_->project_domain(params_.domain, params_.domain_rows, params_.planet);
+        });
         return;
       case StageId::kFractal:
         with_context(s, "fractal", [&] {
           terrain_->evaluate_fbm(params_.fbm);
-          terrain_->add_sketch(params_.sketch);  // §3's low-frequency base (none: no pass)
+          terrain_->add_sketch(params_.sketch);     // §3's low-frequency base (none: no pass)
+          terrain_->bend_vertices(params_.planet);  // a planet's bend (none: no pass)
         });
         return;
       case StageId::kSurface:
-        with_context(s, "surface pass", [&] { terrain_->surface_pass(params_.surface); });
+        with_context(s, "surface pass", [&] {
+          terrain_->surface_pass(params_.surface);
+          terrain_->bend_normals(params_.planet);  // into the bent frame (none: no pass)
+        });
         return;
       case StageId::kTiles:
         with_context(s, "draw", [&] { draw(s); });
@@ -162,6 +150,7 @@ class GlBackend final : public FrameBackend {
   void draw(GlSession& s) {
     const ShadingPlan shading = make_shading_plan(scene_, plan_, resources_.lattice.size);
     ShadeParams<float> shade = make_shade_params<float>(shading);
+    add_planet_shading(plan_, scene_.terrain.base_height, shade);  // nothing on the plane
     // No culling on the GL side, hence no lowest drawn height: the water pass over terrain
     // runs wherever there is water (it changes no pixel above the water).
     apply_skips(request_.skips, true, shade);
@@ -172,8 +161,14 @@ class GlBackend final : public FrameBackend {
     streams.layout = plan_.layout;
     if (params_.domain.terrain_visible != 0) {
       const auto name = [&](gpu::GlStream stream) { return terrain_->buffer(stream); };
-      streams.dx = name(gpu::GlStream::kDx);
-      streams.dz = name(gpu::GlStream::kDz);
+      // On a planet the bent positions (docs/planet.md): stage 5 transforms them, stage 8
+      // reads the bent x and z, the unbent height and the drop.
+      const bool planet = params_.planet.enabled != 0;
+      streams.dx = name(planet ? gpu::GlStream::kBentX : gpu::GlStream::kDx);
+      streams.dz = name(planet ? gpu::GlStream::kBentZ : gpu::GlStream::kDz);
+      streams.position_y = planet ? name(gpu::GlStream::kBentY) : 0;
+      streams.drop = planet ? name(gpu::GlStream::kBentDrop) : 0;
+      streams.height_origin = planet ? static_cast<float>(-plan_.planet.altitude) : 0.0f;
       streams.height = name(gpu::GlStream::kHeight);
       streams.nx = name(gpu::GlStream::kNx);
       streams.ny = name(gpu::GlStream::kNy);
@@ -239,7 +234,6 @@ std::string gl_renderer() {
 
 std::unique_ptr<FrameBackend> make_gl_backend(const Scene& scene, const SceneResources& resources,
                                               const FrameRequest& request) {
-  refuse_planet(scene);
   return std::make_unique<GlBackend>(scene, resources, request);
 }
 

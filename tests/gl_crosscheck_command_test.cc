@@ -29,9 +29,6 @@ using test::run;
 TEST_CASE("crosscheckOfEveryPresetOnLlvmpipeIsWithinTheDocumentedBounds", "[gl]") {
   test::TempDir dir("crosscheck");
   for (const std::string& preset : preset_names()) {
-    if (resolve_scene(preset, {}).terrain.planet) {
-      continue;  // the GL backend carries no planet yet (docs/planet.md)
-    }
     const std::filesystem::path out = dir.path() / preset;
     const CliResult r =
         run({"crosscheck", preset, "--out", out.string(), "--set", "viewport.width=240", "--set",

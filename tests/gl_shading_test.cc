@@ -49,6 +49,7 @@ FrameInputs frame_inputs(const Scene& scene, const SceneResources& resources) {
   FrameInputs in{rasterize_terrain(scene, resources), {}, {}, 0.0};
   in.shade =
       make_shade_params<float>(make_shading_plan(scene, in.terrain.plan, resources.lattice.size));
+  add_planet_shading(in.terrain.plan, scene.terrain.base_height, in.shade);  // the plane: none
   in.transform = make_terrain_params<float>(in.terrain.plan).transform;
   in.camera_y = in.terrain.plan.camera.position.y;
   return in;
@@ -135,7 +136,10 @@ gpu::GlFrameImage draw_with_gl(const FrameInputs& in, const SceneResources& reso
   const gpu::GlGridUpload grid(in.terrain.grid, need);
   const gpu::GlShadeResources textures(ShadeResources{&resources.lattice, resources.textures});
   gpu::GlTerrainDraw draw;
-  return draw.draw(grid.streams(), in.transform, in.shade, textures, in.camera_y);
+  gpu::GlGridStreams streams = grid.streams();
+  const PlanetPlan& planet = in.terrain.plan.planet;
+  streams.height_origin = planet.enabled ? static_cast<float>(-planet.altitude) : 0.0f;  // as GL
+  return draw.draw(streams, in.transform, in.shade, textures, in.camera_y);
 }
 
 // Distance in pixels from (u, v) to the nearest edge of triangle t in window coordinates
@@ -211,9 +215,6 @@ void check_preset(const std::string& preset, const std::vector<std::string>& siz
 
 TEST_CASE("glFramesOfEveryPresetMatchTheCpuFrameWithinTheDocumentedBounds", "[gl]") {
   for (const std::string& preset : preset_names()) {
-    if (resolve_scene(preset, {}).terrain.planet) {
-      continue;  // the GL backend carries no planet yet (docs/planet.md)
-    }
     check_preset(preset, kSize);
   }
   // The nearest mip level (GL_LINEAR_MIPMAP_NEAREST) on both sides.
@@ -292,9 +293,6 @@ TEST_CASE("glDrawRefusesInputsThatDoNotFit", "[gl]") {
 // name).
 TEST_CASE("glFramesAtTheReadmeSize", "[.][gl-figures]") {
   for (const std::string& preset : preset_names()) {
-    if (resolve_scene(preset, {}).terrain.planet) {
-      continue;  // the GL backend carries no planet yet (docs/planet.md)
-    }
     check_preset(preset, {"viewport.width=480", "viewport.height=384"});
   }
 }

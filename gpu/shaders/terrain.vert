@@ -25,28 +25,40 @@ layout(location = 7) in float a_water_depth;
 layout(location = 8) in float a_nu;
 layout(location = 9) in uint a_valid;
 layout(location = 10) in uint a_need;  // VertexNeed flags; kDraw (2) where no stream is bound
+// The y stage 5 transforms: the height on the plane, a planet's bent y (whose x and z are then
+// a_dx and a_dz); and a planet's curvature drop, 0 where no stream is bound (docs/planet.md).
+layout(location = 11) in float a_position_y;
+layout(location = 12) in float a_drop;
 
 out float v_dx, v_dz, v_height;
 out float v_nx, v_ny, v_nz;
 out float v_slope, v_water_depth, v_nu;
+out float v_drop;
+
+// The height is interpolated as an offset from this camera-relative height (a planet's datum,
+// 0 on the plane): GL's interpolation arithmetic errs by a few ulps of the interpolated
+// values' size, and a planet's heights are the camera's altitude in size (docs/gl-shading.md).
+uniform float u_height_origin;
 
 void main() {
   v_dx = a_dx;
   v_dz = a_dz;
-  v_height = a_height;
+  precise float offset = a_height - u_height_origin;  // exact: both near the datum (Sterbenz)
+  v_height = offset;
   v_nx = a_nx;
   v_ny = a_ny;
   v_nz = a_nz;
   v_slope = a_slope;
   v_water_depth = a_water_depth;
   v_nu = a_nu;
+  v_drop = a_drop;
   if (a_valid == 0u || (a_need & 2u) == 0u) {
     // In no drawn triangle (only in the degenerate ones of skipped cells): whatever the
     // stream holds there, a fixed finite position.
     gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
     return;
   }
-  const float px = a_dx, py = a_height, pz = a_dz;
+  const float px = a_dx, py = a_position_y, pz = a_dz;
   precise float x = T.row_x0 * px + T.row_x1 * py + T.row_x2 * pz;
   precise float y = T.row_y0 * px + T.row_y1 * py + T.row_y2 * pz;
   precise float w = T.row_w0 * px + T.row_w1 * py + T.row_w2 * pz;

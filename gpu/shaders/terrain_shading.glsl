@@ -8,6 +8,7 @@ struct Attributes {
   float nx, ny, nz;
   float slope;
   float water_depth;
+  float drop;  // a planet's curvature drop (core/planet_bend.h); 0 on the plane
 };
 
 float ramp_weight(Ramp ramp, float x, float dither_offset) {
@@ -106,7 +107,10 @@ vec3 light(vec3 albedo, vec3 n, vec3 view, float specular) {
 
 vec3 terrain_radiance(Attributes a) {
   const float relative_y = a.height;
-  const vec3 position = vec3(a.dx, relative_y, a.dz);
+  // On a planet (dx, dz) are the bent position's and the height lies a.drop above it (shade.cc;
+  // x - 0 is x: the plane's bits are unchanged).
+  precise float position_y = relative_y - a.drop;
+  const vec3 position = vec3(a.dx, position_y, a.dz);
   precise float distance = sqrt(dot3(position, position));
   const vec3 view = normalize_or(position, f3(P.camera_forward));
   const vec3 n = normalize_or(vec3(a.nx, a.ny, a.nz), vec3(0.0, 1.0, 0.0));
@@ -142,9 +146,18 @@ vec3 terrain_radiance(Attributes a) {
 
   precise float fog_distance = distance;
   if (P.water_enabled != 0 && P.terrain_water != 0 && relative_y < P.water_level && view.y < 0.0) {
-    precise float surface = P.water_level / view.y;
-    const float footprint = surface_footprint(surface, view);
-    radiance = shade_water(view, surface, max_cpp(0.0, a.water_depth), radiance, footprint);
+    // On a planet the water surface lies a.drop lower too (locally flat).
+    precise float surface = (P.water_level - a.drop) / view.y;
+    vec3 water_view = view;
+    if (P.planet_center_distance > 0.0LF) {  // shaded in the local frame of the point
+      const float center_y = float(P.planet_center_distance);
+      precise float up_y = position.y + center_y;
+      const vec3 up = normalize_or(vec3(position.x, up_y, position.z), vec3(0.0, 1.0, 0.0));
+      water_view = to_local_frame(view, up);
+    }
+    const float footprint = surface_footprint(surface, water_view);
+    radiance =
+        shade_water(water_view, surface, max_cpp(0.0, a.water_depth), radiance, footprint);
     fog_distance = surface;
   }
   if (P.fog_enabled == 0) {
@@ -162,6 +175,9 @@ vec3 background_radiance(int px, int py) {
   precise double r1 = (P.forward[1] + sx * P.right[1]) + sy * P.up[1];
   precise double r2 = (P.forward[2] + sx * P.right[2]) + sy * P.up[2];
   const vec3 d = normalize_or(vec3(float(r0), float(r1), float(r2)), f3(P.camera_forward));
+  if (P.planet_center_distance > 0.0LF) {
+    return planet_background(r0, r1, r2, d);
+  }
   if (d.y < 0.0) {
     if (P.water_enabled != 0) {
       precise float surface = P.water_level / d.y;
