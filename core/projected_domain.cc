@@ -4,43 +4,10 @@
 #include <cmath>
 
 #include "core/det_math.h"
+#include "core/footprint_spacing.h"
 #include "core/limits.h"
 
 namespace relief {
-
-namespace {
-
-template <class Real>
-struct Footprint {
-  Real x = 0;
-  Real z = 0;
-  bool valid = false;
-};
-
-template <class Real>
-Real distance_sq(const Footprint<Real>& a, const Footprint<Real>& b) {
-  const Real ex = a.x - b.x;
-  const Real ez = a.z - b.z;
-  return ex * ex + ez * ez;
-}
-
-// Squared spacing along one grid axis from the centre and its two neighbours.
-template <class Real>
-Real axis_spacing_sq(const Footprint<Real>& minus, const Footprint<Real>& centre,
-                     const Footprint<Real>& plus) {
-  if (minus.valid && plus.valid) {
-    return distance_sq(minus, plus) * Real(0.25);
-  }
-  if (plus.valid) {
-    return distance_sq(centre, plus);
-  }
-  if (minus.valid) {
-    return distance_sq(minus, centre);
-  }
-  return Real(0);
-}
-
-}  // namespace
 
 template <class Real>
 void project_domain(const DomainParams<Real>& p, const DomainRows<Real>& table, RowRange rows,
