@@ -126,11 +126,14 @@ MemoryEstimate estimate_render_memory(const Scene& scene, Backend backend,
     // way): per pixel the render targets (RGBA32F linear and normal 32, RGBA8UI sRGB 4, R32UI
     // primitive 4, RG32F height and octaves 8, DEPTH32F 4), the read-back staging (RGBA32F 16,
     // RGBA8 4, RG32F 8) and every output read back (43); per vertex the eleven float streams
-    // (44) and the index buffer of its two triangles (24).
+    // (44), a planet's four bent ones (16: gpu/gl_streams.h) and the index buffer of its two
+    // triangles (24).
     constexpr std::uintmax_t kGlPixelBytes = 52 + 28 + 43;
     constexpr std::uintmax_t kGlVertexBytes = 44 + 24;
-    estimate.add("GL targets, read-back and buffers",
-                 pixels * kGlPixelBytes + vertices * kGlVertexBytes);
+    constexpr std::uintmax_t kGlBentVertexBytes = 16;
+    estimate.add(
+        "GL targets, read-back and buffers",
+        pixels * kGlPixelBytes + vertices * (kGlVertexBytes + (planet ? kGlBentVertexBytes : 0)));
   }
   return estimate;
 }
