@@ -130,8 +130,13 @@ void add_camera_cases(CaseList& list, const Scene& base, const NoiseLattice& lat
                      num(std::min(*base.terrain.water_level + lift, limits::kMaxBaseHeight)));
   }
   list.add("altitude", "base height 1e7, camera lifted with it", lifted);
+  // On a planet the water level left behind lies 1e7 below the datum: past the centre of a
+  // planet smaller than that, which the scene's rule refuses by name.
+  const PlanetSettings* planet = base.terrain.planet ? &*base.terrain.planet : nullptr;
+  const bool water_past_centre = planet && planet->radius != 0.0 && base.terrain.water_level &&
+                                 !(planet->radius + (*base.terrain.water_level - 1e7) > 0.0);
   list.add("altitude", "base height 1e7, camera not lifted (inside the terrain)",
-           {"terrain.base_height=1e7"});
+           {"terrain.base_height=1e7"}, water_past_centre ? "terrain.water_level" : "");
   list.add("altitude", "base height -1e7, camera not lifted", {"terrain.base_height=-1e7"});
   list.add("altitude", "base height 1e7 + 1", {"terrain.base_height=10000001"},
            "terrain.base_height");
@@ -178,7 +183,9 @@ void add_terrain_cases(CaseList& list, const Scene& base) {
   list.add("r", "r = nextafter(1.001, 2)", {"terrain.r=" + num(std::nextafter(1.001, 2.0))});
   list.add("r", "r = 1", {"terrain.r=1"}, "terrain.r");
   list.add("r", "r = 16, 11 octaves", {"terrain.r=16", "terrain.last_octave=10"});
-  list.add("r", "r = 16, 15 octaves", {"terrain.r=16"}, "terrain.last_octave");
+  list.add("r", "r = 16, 15 octaves",
+           {"terrain.r=16", "terrain.first_octave=0", "terrain.last_octave=14"},
+           "terrain.last_octave");
   list.add("r", "r = nextafter(16, 17)", {"terrain.r=" + num(std::nextafter(16.0, 17.0))},
            "terrain.r");
 
@@ -194,10 +201,14 @@ void add_terrain_cases(CaseList& list, const Scene& base) {
              {"terrain.r=2", "terrain.first_octave=32", "terrain.last_octave=40"},
              "terrain.basis.tile_size");
   } else {
-    list.add("octaves", "octaves 32..40 (r^k = 2^40)",
-             {"terrain.r=2", "terrain.first_octave=32", "terrain.last_octave=40",
-              // the coarsest lattice coordinate at the farthest footprint below 2^24
-              "terrain.horizontal_scale=1e8"});
+    list.add(
+        "octaves", "octaves 32..40 (r^k = 2^40)",
+        {"terrain.r=2", "terrain.first_octave=32", "terrain.last_octave=40",
+         // the coarsest lattice coordinate at the farthest footprint below 2^24 (for the
+         // default camera.far, which a preset's may exceed)
+         "terrain.horizontal_scale=1e8", "camera.far=60000"},
+        // a planet's far side lies farther than any footprint: its own rule refuses it
+        base.terrain.planet && base.terrain.planet->radius != 0.0 ? "terrain.planet.radius" : "");
   }
   list.add("octaves", "25 octaves", {"terrain.first_octave=0", "terrain.last_octave=24"},
            "terrain.last_octave");

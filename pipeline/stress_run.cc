@@ -101,7 +101,8 @@ void run_backend(const Scene& scene, const StressCase& stress_case, const Stress
     row.height = frame.image.height;
     row.srgb = frame.image.srgb;
   }
-  TerrainRun<Real> terrain = run_terrain_stages<Real>(scene, resources.terrain_values(), backend);
+  TerrainRun<Real> terrain = run_terrain_stages<Real>(scene, resources.terrain_values(), backend,
+                                                      resources.sketch_or_null());
   count_grid(terrain.grid, row);
   count_pixels(frame.image, row);
 

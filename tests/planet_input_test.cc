@@ -92,5 +92,18 @@ TEST_CASE("aPathRefusesADirectoryThatAlreadyHoldsFrames", "[planet][cli]") {
   CHECK(test::run(args).code == 2);  // its own frames, a second time
 }
 
+// The stress suite on the presets that are not the default: its cases once assumed the
+// default's camera.far, last_octave and flat datum, and once ran the island without its sketch
+// (an internal error).
+TEST_CASE("theStressSuiteRunsOnTheIslandAndThePlanet", "[planet][stress]") {
+  for (const char* preset : {"island", "planet"}) {
+    const test::CliResult r =
+        test::run({"stress", preset, "--axis", "altitude", "--axis", "octaves", "--axis", "r",
+                   "--backend", "simd", "--viewport", "32", "24", "--grid", "16"});
+    INFO(preset << ": " << r.out << r.err);
+    CHECK(r.code == 0);
+  }
+}
+
 }  // namespace
 }  // namespace relief
