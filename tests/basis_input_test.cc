@@ -54,20 +54,16 @@ std::vector<std::string> one_image(const std::string& image, const std::string& 
                   ", \"weight\": ", weight, more, "}]}"})};
 }
 
+// A 32 x 32 render of a 16 x 16 grid: the refusals and notes do not need more.
+const std::vector<std::string> kSmall = {
+    "--set", "viewport.width=32", "--set", "viewport.height=32",
+    "--set", "grid.width=16",     "--set", "grid.height=16"};
+
 struct Refusals {
   std::filesystem::path out;
   void operator()(const std::vector<std::string>& sets, const std::string& message) const {
-    std::vector<std::string> args = {
-        "render", "craters",       "--set", "viewport.width=32", "--set", "viewport.height=32",
-        "--set",  "grid.width=16", "--set", "grid.height=16"};
-    for (const std::string& s : sets) {
-      args.push_back("--set");
-      args.push_back(s);
-    }
-    args.push_back("-o");
-    args.push_back(out.string());
     INFO(message);
-    require_refused(run(args), message, out);
+    require_refused(test::render_preset("craters", sets, out, kSmall), message, out);
   }
 };
 
@@ -181,15 +177,8 @@ TEST_CASE("anImageThatDoesNotTileIsNotedWithItsSeamMeasureAndMirrorSilencesIt", 
   test::TempDir dir("basis-seam");
   const std::string ramp = write_ramp(dir.path() / "ramp.png", 16);
   const std::filesystem::path out = dir.path() / "out.png";
-  const auto render = [&](std::vector<std::string> sets) {
-    std::vector<std::string> args = {
-        "render", "craters",       "--set", "viewport.width=32", "--set", "viewport.height=32",
-        "--set",  "grid.width=16", "--set", "grid.height=16",    "-o",    out.string()};
-    for (const std::string& s : sets) {
-      args.push_back("--set");
-      args.push_back(s);
-    }
-    return run(args);
+  const auto render = [&](const std::vector<std::string>& sets) {
+    return test::render_preset("craters", sets, out, kSmall);
   };
   const test::CliResult repeat = render(one_image(ramp));
   CHECK(repeat.code == 0);

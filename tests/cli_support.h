@@ -48,6 +48,22 @@ inline std::string concat(std::initializer_list<std::string_view> parts) {
   return out;
 }
 
+// `relief render PRESET --set S ... -o OUT` with the given leading arguments (a smaller size,
+// say) before the scene's overrides.
+inline CliResult render_preset(const std::string& preset, const std::vector<std::string>& sets,
+                               const std::filesystem::path& out,
+                               const std::vector<std::string>& leading = {}) {
+  std::vector<std::string> args = {"render", preset};
+  args.insert(args.end(), leading.begin(), leading.end());
+  for (const std::string& s : sets) {
+    args.push_back("--set");
+    args.push_back(s);
+  }
+  args.push_back("-o");
+  args.push_back(out.string());
+  return run(args);
+}
+
 // The checks every refused command must pass: exit 2, an error message naming the problem,
 // and `out` not written.
 inline void require_refused(const CliResult& r, const std::string& message,

@@ -19,13 +19,7 @@ const std::vector<std::string> kSmall = {
 
 test::CliResult render(const std::string& preset, const std::vector<std::string>& sets,
                        const std::filesystem::path& out) {
-  std::vector<std::string> args = {"render", preset, "-o", out.string()};
-  args.insert(args.end(), kSmall.begin(), kSmall.end());
-  for (const std::string& s : sets) {
-    args.push_back("--set");
-    args.push_back(s);
-  }
-  return test::run(args);
+  return test::render_preset(preset, sets, out, kSmall);
 }
 
 TEST_CASE("nothingOfAPlanetMayReachItsCentre", "[planet][cli]") {

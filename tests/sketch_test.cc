@@ -70,16 +70,9 @@ std::vector<std::uint16_t> random_grey(int count, unsigned seed) {
 TEST_CASE("sketchFieldsAreCheckedAndBadSketchesAreRefusedNamingTheField", "[sketch]") {
   test::TempDir dir("sketch");
   const std::filesystem::path out = dir.path() / "out.png";
-  const auto refused = [&](std::vector<std::string> sets, const std::string& message) {
-    std::vector<std::string> args = {"render", "island"};
-    for (const std::string& s : sets) {
-      args.push_back("--set");
-      args.push_back(s);
-    }
-    args.push_back("-o");
-    args.push_back(out.string());
+  const auto refused = [&](const std::vector<std::string>& sets, const std::string& message) {
     INFO(message);
-    require_refused(run(args), message, out);
+    require_refused(test::render_preset("island", sets, out), message, out);
   };
   refused({"terrain.sketch.extent=[0,0,0,10]"}, "terrain.sketch.extent = [0,0,0,10] is empty");
   refused({"terrain.sketch.extent=[0,0,10,-5]"}, "terrain.sketch.extent");
