@@ -1,8 +1,8 @@
-// Stage 8 on a planet (docs/planet.md): what the plane's shading assumes (a horizontal water
-// surface, open water below the horizon) made right for the sphere. The water pass shades in
-// the local frame of the point it looks at (its up the sphere's radial direction), and the
-// background ray meets the water sphere, the datum sphere (beyond the horizon: fog) or neither
-// (the sky).
+// Stage 8 on a planet (§4.1's spherical domain, docs/planet.md): what the plane's shading assumes
+// (a horizontal water surface, open water below the horizon) made right for the sphere. The water
+// pass shades in the local frame of the point it looks at (its up the sphere's radial direction),
+// and the background ray meets the water sphere, the datum sphere (beyond the horizon: fog) or
+// neither (the sky).
 #pragma once
 
 #include <cmath>

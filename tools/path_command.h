@@ -1,5 +1,6 @@
 // `relief path [SCENE] --frames N --from-altitude A --to-altitude B --out DIR`
-// (path_command.cc): a radial descent of the scene's camera (docs/planet.md), written as
+// (path_command.cc): §4.1's viewer moving from orbit close to the surface, a radial descent of the
+// scene's camera (docs/planet.md), written as
 // DIR/frame_0000.png, ...: the altitude above terrain.base_height log-uniform from A to B, the
 // pitch easing from the scene's (looking down at the planet) to --to-pitch (near-horizontal),
 // through the equal-angle band of a planet scene.
