@@ -5,10 +5,15 @@
 
 #include <span>
 #include <string_view>
+#include <vector>
 
 namespace relief {
 
-// The PNG file's bytes; empty for an unknown name.
+// The PNG file's bytes; empty for an unknown name. The table also holds §3 Eq. 2's basis images
+// as "basis/NAME" (basis_resources.h); a sketch names none of those.
 std::span<const unsigned char> builtin_sketch_png(std::string_view name);
+
+// The height sketches' names (without "basis/..."), in the table's order: "island".
+std::vector<std::string_view> builtin_sketch_names();
 
 }  // namespace relief

@@ -5,12 +5,15 @@
 #include <string>
 #include <vector>
 
+#include <tbb/global_control.h>
+
 #include "core/grid_buffers.h"
 #include "core/input_file.h"
 #include "core/limits.h"
 #include "pipeline/basis_resources.h"
 #include "pipeline/png_checks.h"
 #include "pipeline/png_header.h"
+#include "raster/raster_types.h"
 #include "raster/triangle_setup.h"
 
 namespace relief {
@@ -28,6 +31,9 @@ constexpr std::uintmax_t kDoubleVertexBytes = 10 * 8 + 1 + 4 * 8 + 4 * 4;
 // 13), plus each requested output and its encoding (twice its size: the PFM copy).
 constexpr std::uintmax_t kRenderPixelBytes = 3 + 13;
 // A set-up triangle, twice over for the growth of its chunk's vector.
+// raster::PreparedVertices per vertex: flags and outcode, floor x, y, z, fx, fy, window x, y
+// and the passes' bits.
+constexpr std::uintmax_t kPreparedVertexBytes = 1 + 1 + 3 * 4 + 2 * 4 + 2 * 4 + 4;
 constexpr std::uintmax_t kSetupTriangleBytes = 2 * sizeof(raster::RasterTriangle);
 // Texture texels: float RGB (12) and the mip chain's third (4); PNG files decode through
 // 3 bytes a texel.
@@ -100,21 +106,41 @@ std::uintmax_t grid_vertices(const Scene& scene) {
 
 }  // namespace
 
+MemoryEstimate estimate_scene_resources_memory(const Scene& scene) {
+  MemoryEstimate estimate;
+  add_resources(scene, estimate);
+  return estimate;
+}
+
 MemoryEstimate estimate_render_memory(const Scene& scene, Backend backend,
                                       const FrameOutputs& outputs) {
   MemoryEstimate estimate;
   add_resources(scene, estimate);
   const std::uintmax_t vertices = grid_vertices(scene);
-  const std::uintmax_t triangles =
-      2 * std::uintmax_t(scene.grid.width - 1) * std::uintmax_t(scene.grid.height - 1);
   // A planet frame adds its four bent streams (x, y, z, drop: core/grid_buffers.h).
   const bool planet = scene.terrain.planet && scene.terrain.planet->radius != 0.0;
   const std::uintmax_t vertex_bytes =
       (backend != Backend::kReferenceDouble ? kGridVertexBytes + kClipVertexBytes
                                             : kDoubleVertexBytes) +
       (planet ? 4 * (backend != Backend::kReferenceDouble ? sizeof(float) : sizeof(double)) : 0);
-  estimate.add("grid " + size_text(scene.grid.width, scene.grid.height),
-               vertices * vertex_bytes + triangles * kSetupTriangleBytes);
+  // The set-up triangles are not counted here: culling, clipping and the coverage test leave
+  // few of a fine grid's triangles at a small viewport (a 4096^2 grid at 256 x 192 sets up
+  // 173,349 of 33.5 million), so their worst case refused jobs that fit; the backend counts
+  // them with the bins once set up, against what this estimate leaves of the budget.
+  estimate.add("grid " + size_text(scene.grid.width, scene.grid.height), vertices * vertex_bytes);
+  // Set-up's per-thread scratch (raster::PreparedVertices, kept between frames): every vertex
+  // one chunk of kSetupChunk triangles spans, padded rows included, 34 bytes each. A narrow
+  // grid's chunk spans many rows: on a 2 x 8192 grid 2,049 rows of 16, 1.1 MiB a thread.
+  if (backend != Backend::kGl) {
+    const GridLayout layout = make_grid_layout(scene.grid.width, scene.grid.height);
+    const std::uintmax_t cells_per_row = std::uintmax_t(std::max(layout.width - 1, 1));
+    const std::uintmax_t rows =
+        std::min<std::uintmax_t>(layout.height, raster::kSetupChunk / (2 * cells_per_row) + 2);
+    const auto threads = std::uintmax_t(
+        tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+    estimate.add("set-up scratch",
+                 threads * rows * std::uintmax_t(layout.pitch) * kPreparedVertexBytes);
+  }
   const std::uintmax_t pixels = std::uintmax_t(scene.viewport.width) * scene.viewport.height;
   // Floats per pixel of the requested outputs; the primitive ids are written without a copy.
   const std::uintmax_t output_floats = 3 * outputs.linear + outputs.depth + 3 * outputs.normal +
@@ -126,14 +152,20 @@ MemoryEstimate estimate_render_memory(const Scene& scene, Backend backend,
     // way): per pixel the render targets (RGBA32F linear and normal 32, RGBA8UI sRGB 4, R32UI
     // primitive 4, RG32F height and octaves 8, DEPTH32F 4), the read-back staging (RGBA32F 16,
     // RGBA8 4, RG32F 8) and every output read back (43); per vertex the eleven float streams
-    // (44), a planet's four bent ones (16: gpu/gl_streams.h) and the index buffer of its two
-    // triangles (24).
+    // (44), a planet's four bent ones (16: gpu/gl_streams.h), the index buffer of its two
+    // triangles (24) and the driver's transformed vertices (llvmpipe keeps the vertex shader's
+    // outputs of a draw: measured 147 bytes a vertex on a 1872^2 grid, counted as 192).
+    // The streams hold padded rows (V); the indices and the transformed vertices only the
+    // grid's own vertices.
     constexpr std::uintmax_t kGlPixelBytes = 52 + 28 + 43;
-    constexpr std::uintmax_t kGlVertexBytes = 44 + 24;
+    constexpr std::uintmax_t kGlStreamBytes = 44;
+    constexpr std::uintmax_t kGlDrawnVertexBytes = 24 + 192;
     constexpr std::uintmax_t kGlBentVertexBytes = 16;
-    estimate.add(
-        "GL targets, read-back and buffers",
-        pixels * kGlPixelBytes + vertices * (kGlVertexBytes + (planet ? kGlBentVertexBytes : 0)));
+    const std::uintmax_t grid_own = std::uintmax_t(scene.grid.width) * scene.grid.height;
+    estimate.add("GL targets, read-back and buffers",
+                 pixels * kGlPixelBytes +
+                     vertices * (kGlStreamBytes + (planet ? kGlBentVertexBytes : 0)) +
+                     grid_own * kGlDrawnVertexBytes);
   }
   return estimate;
 }

@@ -12,12 +12,17 @@
 namespace relief {
 
 // `relief render`: scene resources (lattice, textures with their mip chains), grid buffers
-// and clip coordinates in the backend's precision, the rasteriser's set-up triangles, and per
-// pixel the sRGB image, its PNG encoding and each requested output with its encoding. The
-// tile-fused back end keeps no per-pixel attribute planes (tile_pass.h). The rasteriser's bins
-// depend on the triangles' sizes and are checked when they are counted.
+// and clip coordinates in the backend's precision, and per pixel the sRGB image, its PNG
+// encoding and each requested output with its encoding. The tile-fused back end keeps no
+// per-pixel attribute planes (tile_pass.h). The rasteriser's set-up triangles and bins depend
+// on the frame's triangles (how many survive culling, clipping and the coverage test, and
+// their sizes) and are checked against what the estimate leaves once they are counted.
 MemoryEstimate estimate_render_memory(const Scene& scene, Backend backend,
                                       const FrameOutputs& outputs);
+
+// The scene's resources alone (scene_resources.h): the lattice, the textures, the sketch and
+// the basis images. `relief scene` loads them to validate the scene as render does.
+MemoryEstimate estimate_scene_resources_memory(const Scene& scene);
 
 // `relief reference` (ground_truth.h): the resources, the grid of `supersampled` (the scene
 // with its viewport and grid enlarged) in double with its set-up triangles, one band of

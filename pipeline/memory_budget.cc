@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <sys/resource.h>
+
 #include "core/input_file.h"
 
 namespace relief {
@@ -40,6 +42,28 @@ std::optional<std::uintmax_t> cgroup_remaining() {
 
 }  // namespace
 
+// Allocations fail at the address-space limit long before physical memory runs out, so a job
+// is checked against it too.
+std::optional<std::uintmax_t> address_space_remaining() {
+  rlimit limit{};
+  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) {
+    return std::nullopt;
+  }
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  std::uintmax_t mapped = 0;
+  while (std::getline(status, line)) {
+    std::istringstream fields(line);
+    std::string key;
+    std::uintmax_t kib = 0;
+    if (fields >> key >> kib && key == "VmSize:") {
+      mapped = kib * 1024;
+    }
+  }
+  const std::uintmax_t cap = limit.rlim_cur;
+  return cap > mapped ? cap - mapped : 0;
+}
+
 std::optional<std::uintmax_t> available_memory() {
   std::optional<std::uintmax_t> available;
   std::ifstream meminfo("/proc/meminfo");
@@ -55,6 +79,9 @@ std::optional<std::uintmax_t> available_memory() {
   if (const std::optional<std::uintmax_t> cgroup = cgroup_remaining()) {
     available = available ? std::min(*available, *cgroup) : *cgroup;
   }
+  if (const std::optional<std::uintmax_t> address = address_space_remaining()) {
+    available = available ? std::min(*available, *address) : *address;
+  }
   return available;
 }
 
@@ -68,8 +95,9 @@ std::optional<std::uintmax_t> parse_memory_size(std::string_view text) {
   std::transform(unit.begin(), unit.end(), unit.begin(),
                  [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
   static const std::pair<const char*, int> kUnits[] = {
-      {"", 0},     {"B", 0},  {"K", 10},  {"KB", 10},  {"KIB", 10}, {"M", 20},  {"MB", 20},
-      {"MIB", 20}, {"G", 30}, {"GB", 30}, {"GIB", 30}, {"T", 40},   {"TB", 40}, {"TIB", 40}};
+      {"", 0},     {"B", 0},   {"K", 10},   {"KB", 10},  {"KIB", 10}, {"M", 20},  {"MB", 20},
+      {"MIB", 20}, {"G", 30},  {"GB", 30},  {"GIB", 30}, {"T", 40},   {"TB", 40}, {"TIB", 40},
+      {"P", 50},   {"PB", 50}, {"PIB", 50}, {"E", 60},   {"EB", 60},  {"EIB", 60}};
   for (const auto& [name, shift] : kUnits) {
     if (unit == name) {
       const double bytes = std::ldexp(value, shift);
@@ -121,9 +149,29 @@ void check_memory(const MemoryEstimate& estimate, const MemoryBudget& budget, st
     return;
   }
   const bool from_option = budget.source.rfind("--max-memory", 0) == 0;
+  // Where the scene's files dominate, lowering the viewport or grid would not help: the advice
+  // names what does.
+  std::string remedy(advice);
+  const auto largest =
+      std::max_element(estimate.parts.begin(), estimate.parts.end(),
+                       [](const auto& a, const auto& b) { return a.second < b.second; });
+  if (largest != estimate.parts.end() && 2 * largest->second > estimate.total()) {
+    const std::string& part = largest->first;
+    // A caller's own way out ("..., or raise RenderOptions::max_memory_bytes") is kept.
+    const std::size_t raise = advice.find(", or raise ");
+    const std::string tail(raise == std::string_view::npos ? "" : advice.substr(raise));
+    if (part.rfind("basis images", 0) == 0) {
+      remedy =
+          "The basis images dominate: use smaller images or a lower terrain.basis.upsample" + tail;
+    } else if (part == "textures") {
+      remedy = "The textures dominate: use smaller texture files or shading.texture_size" + tail;
+    } else if (part == "height sketch") {
+      remedy = "The height sketch dominates: use a smaller terrain.sketch.image" + tail;
+    }
+  }
   throw MemoryLimitError(std::string(job) + " needs about " + estimate.describe() + "; " +
-                         budget.source + " is " + format_bytes(budget.bytes) + ". " +
-                         std::string(advice) + (from_option ? ", or raise --max-memory." : "."));
+                         budget.source + " is " + format_bytes(budget.bytes) + ". " + remedy +
+                         (from_option ? ", or raise --max-memory." : "."));
 }
 
 }  // namespace relief

@@ -14,17 +14,22 @@
 namespace relief {
 
 // The limit a job is checked against: the machine's available memory (Linux MemAvailable,
-// and the cgroup's remaining limit where one is set), or --max-memory when that is lower.
+// the cgroup's remaining limit where one is set, and the address space left under the
+// process's RLIMIT_AS where one is set), or --max-memory when that is lower.
 struct MemoryBudget {
   std::uintmax_t bytes = UINTMAX_MAX;
   std::string source;  // what the limit is: "available memory", "--max-memory 2G"
 };
 
+// The address space the process may still map under its limit (ulimit -v, RLIMIT_AS): the
+// limit minus what is mapped now (VmSize); nullopt without a limit.
+std::optional<std::uintmax_t> address_space_remaining();
+
 // The machine's available memory in bytes, or nullopt where it cannot be read.
 std::optional<std::uintmax_t> available_memory();
 
-// "4096", "512K", "2G", "1.5GiB", "800MB" (K, M, G, T are powers of 1024, with or without
-// "iB"/"B"). nullopt for anything else, for values below 1 MiB and beyond 2^60.
+// "4096", "512K", "2G", "1.5GiB", "800MB", "1E" (K, M, G, T, P, E are powers of 1024, with or
+// without "iB"/"B"). nullopt for anything else, for values below 1 MiB and beyond 2^60 (1E).
 std::optional<std::uintmax_t> parse_memory_size(std::string_view text);
 
 MemoryBudget memory_budget(std::optional<std::uintmax_t> max_memory, std::string_view max_text);

@@ -110,14 +110,21 @@ void check_planet_depth(const Scene& scene, const SceneResources& resources) {
       derive_height_bounds(values, stage3_terrain(t, values.size), resources.sketch_or_null());
   const double deepest = bounds.world_min - t.base_height;  // lowest elevation, radial
   if (!(t.planet->radius + deepest > 0.0)) {
+    const std::string depth = format_number(-deepest);
+    // The advice stays within the field's own range: past its maximum no radius holds.
+    const std::string advice =
+        -deepest < limits::kMaxPlanetRadius
+            ? "allowed: a radius above that depth (terrain.planet.radius is at most " +
+                  format_number(limits::kMaxPlanetRadius) + ")"
+            : "no radius up to terrain.planet.radius's maximum " +
+                  format_number(limits::kMaxPlanetRadius) +
+                  " holds it: lower terrain.amplitude or the sketch's heights";
     throw SceneError("terrain.planet.radius",
                      "scene: terrain.planet.radius = " + format_number(t.planet->radius) +
-                         " is less than the depth the terrain can reach below the datum (" +
-                         format_number(-deepest) +
-                         ": terrain.amplitude, the octaves' sum and the sketch's heights), so "
-                         "the surface would pass through the planet's centre; allowed "
-                         "terrain.planet.radius > " +
-                         format_number(-deepest) + " for this terrain");
+                         " is not above the depth the terrain can reach below the datum, " + depth +
+                         " (terrain.amplitude, the octaves' sum and the sketch's heights), so "
+                         "the surface would pass through the planet's centre; " +
+                         advice);
   }
 }
 

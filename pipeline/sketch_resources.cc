@@ -1,6 +1,7 @@
 // terrain.sketch's image (§3's low-frequency base, core/height_sketch.h): a grey PNG of 8 or
 // 16 bits, from a file or built in, checked as the layer textures are (png_checks.h) before
 // stb_image decodes it.
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -58,12 +59,18 @@ std::optional<HeightSketch> load_height_sketch(const Scene& scene) {
   std::vector<unsigned char> bytes;
   static constexpr std::string_view kBuiltin = "builtin:";
   if (settings.image.rfind(kBuiltin, 0) == 0) {
-    const std::span<const unsigned char> png =
-        builtin_sketch_png(std::string_view(settings.image).substr(kBuiltin.size()));
-    if (png.empty()) {
-      throw SceneError(path, "scene: " + field + " names no built-in sketch; allowed: " +
-                                 "builtin:island, or a PNG file");
+    const std::string_view name = std::string_view(settings.image).substr(kBuiltin.size());
+    const std::vector<std::string_view> names = builtin_sketch_names();
+    if (std::find(names.begin(), names.end(), name) == names.end()) {
+      std::string allowed;
+      for (const std::string_view sketch : names) {
+        allowed += "builtin:" + std::string(sketch) + ", ";
+      }
+      throw SceneError(path, "scene: " + field + " names no built-in sketch; allowed: " + allowed +
+                                 "or a PNG file (the builtin:basis/ images are " +
+                                 "terrain.basis's, not sketches)");
     }
+    const std::span<const unsigned char> png = builtin_sketch_png(name);
     bytes.assign(png.begin(), png.end());
     check_sketch_header(bytes, field, path);
   } else {

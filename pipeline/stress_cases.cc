@@ -225,8 +225,8 @@ void add_size_cases(CaseList& list, const Scene& base, std::uintmax_t budget,
     return v;
   };
   const int max_grid = limits::kMaxGridSide;
-  // The rasteriser's bins are counted only once the triangles are set up (job_memory.h): the
-  // largest cases leave them a tenth of the budget.
+  // The rasteriser's set-up triangles and bins are counted only once the triangles are set up
+  // (job_memory.h): the largest cases leave them a tenth of the budget.
   const std::uintmax_t fitting_budget = budget - budget / 10;
   list.add("grid", "2x2, margin 0", with_margin(grid(2, 2), 0));
   list.add("grid", "3x3, margin 0", with_margin(grid(3, 3), 0));
@@ -234,9 +234,17 @@ void add_size_cases(CaseList& list, const Scene& base, std::uintmax_t budget,
   list.add("grid", "2x8192, margin 0", with_margin(grid(2, max_grid), 0));
   list.add("grid", "8192x2, margin 0", with_margin(grid(max_grid, 2), 0));
   Scene sized = base;
+  // GL draws from one index buffer of 3 x 4 bytes a triangle, two triangles a cell, bound as a
+  // storage block: GL 4.5 guarantees 2^27 bytes of one (GL_MAX_SHADER_STORAGE_BLOCK_SIZE,
+  // table 23.64); a larger grid may be refused by a conforming GL (llvmpipe's limit is that).
+  const bool gl = std::find(backends.begin(), backends.end(), Backend::kGl) != backends.end();
+  const auto gl_draws = [&](int side) {
+    const std::uintmax_t cells = std::uintmax_t(side - 1) * std::uintmax_t(side - 1);
+    return !gl || 2 * 3 * 4 * cells <= (std::uintmax_t{1} << 27);
+  };
   const int fitting_grid = largest_fitting(base.grid.width, max_grid, [&](int side) {
     sized.grid.width = sized.grid.height = side;
-    return largest_estimate(sized, backends) <= fitting_budget;
+    return largest_estimate(sized, backends) <= fitting_budget && gl_draws(side);
   });
   list.add("grid",
            "largest within the budget: " + std::to_string(fitting_grid) + "x" +

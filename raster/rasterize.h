@@ -38,6 +38,7 @@ struct RasterStats {
   std::uint64_t setup = 0;        // rasterisable pieces after culling and clipping
   std::uint64_t bin_entries = 0;  // (triangle, tile) pairs
   std::uint64_t bin_bytes = 0;    // memory of the bins (entries and per-chunk tile offsets)
+  std::uint64_t setup_bytes = 0;  // memory of the set-up triangles (the chunks' storage)
   bool bins_refused = false;      // bin_bytes > max_bin_bytes: nothing was drawn
 };
 

@@ -83,18 +83,26 @@ TEST_CASE("basisFieldsAreCheckedNamingTheFieldAndTheRange", "[basis]") {
           "terrain.basis.images");
   refused({"terrain.basis.images=[{\"weight\": 1}]"},
           "terrain.basis.images[0] = {\"weight\":1} must be an object with at least an \"image\"");
+  // One rule and one message whichever side is crossed, naming the least non-zero weight.
+  const std::string allowed =
+      " is out of range; allowed 0, or 1e-06 <= terrain.basis.images[0].weight <= 1e+06, or a "
+      "grey PNG's path";
   refused(one_image("builtin:basis/craters", "-0.5"),
-          "terrain.basis.images[0].weight = -0.5 is out of range; allowed 0 <= "
-          "terrain.basis.images[0].weight <= ");
+          "terrain.basis.images[0].weight = -0.5" + allowed);
+  refused(one_image("builtin:basis/craters", "2e6"),
+          "terrain.basis.images[0].weight = 2e+06" + allowed);
   refused(one_image("builtin:basis/craters", "true"), "terrain.basis.images[0].weight");
   // A subnormal weight once made Eq. 2's products round to garbage.
   refused(one_image("builtin:basis/craters", "5e-324"),
-          "terrain.basis.images[0].weight = 5e-324 is too small to weigh; allowed 0 or 1e-06 <= "
-          "terrain.basis.images[0].weight <= 1e+06");
+          "terrain.basis.images[0].weight = 5e-324" + allowed);
+  refused(one_image("builtin:basis/craters", "1e-7"),
+          "terrain.basis.images[0].weight = 1e-07" + allowed);
   refused({"terrain.basis.upsample=3"},
           "terrain.basis.upsample = 3 is not a power of two; allowed 1, 2, 4 or 8");
   refused({"terrain.basis.upsample=16"}, "terrain.basis.upsample = 16 is out of range");
-  refused(one_image("builtin:basis/craters", "0"), "every terrain.basis.images[k].weight is 0");
+  refused(one_image("builtin:basis/craters", "0"),
+          "every terrain.basis.images[k].weight is 0, so the weights sum to 0 everywhere; "
+          "allowed: each weight 0, or 1e-06 to 1e+06");
   refused(one_image("builtin:basis/craters", "1", ", \"low_pass\": -1"),
           "terrain.basis.images[0].low_pass = -1 is out of range");
   refused(one_image("builtin:basis/craters", "1", ", \"high_pass\": 200"),

@@ -119,16 +119,16 @@ TEST_CASE("crosscheckRefusesBadInputAndWritesNothing", "[gl]") {
            {"crosscheck", "--out", out, "--set", "viewport.width=0"}}) {
     const CliResult r = run(args);
     INFO(r.err);
-    CHECK(r.code == 2);
+    CHECK(r.code == 4);
     CHECK_THAT(r.err, Catch::Contains("relief: error:"));
   }
   CHECK(!std::filesystem::exists(out));
-  // --out naming a regular file: nothing is written, exit 1 (output error).
+  // --out naming a regular file: nothing is written, exit 5 (output error).
   const std::string file = test::write_file(dir.path() / "file", "x");
   const CliResult r =
       run({"crosscheck", "--out", file, "--set", "viewport.width=64", "--set", "viewport.height=64",
            "--set", "grid.width=32", "--set", "grid.height=32"});
-  CHECK(r.code == 1);
+  CHECK(r.code == 5);
   CHECK(test::read_bytes(file).size() == 1);
 }
 

@@ -244,10 +244,13 @@ TEST_CASE("overridesGiveTheViewDirectionInOneFormOnly", "[hostile]") {
 TEST_CASE("jobsThatCannotFitTheirMemoryAreRefusedWithTheEstimate", "[hostile]") {
   test::TempDir dir("memory");
   const std::filesystem::path out = dir.path() / "out.png";
-  require_refused(run({"render", "--max-memory", "64M", "-o", out.string()}),
+  require_refused(run({"render", "--max-memory", "32M", "-o", out.string()}),
                   "this render needs about", out);
-  require_refused(run({"render", "--max-memory", "64M", "-o", out.string()}),
-                  "--max-memory 64M is 64.0 MiB", out);
+  require_refused(run({"render", "--max-memory", "32M", "-o", out.string()}),
+                  "--max-memory 32M is 32.0 MiB", out);
+  // Past the up-front estimate, the set-up triangles and bins are counted and refused.
+  require_refused(run({"render", "--max-memory", "48M", "-o", out.string()}),
+                  "the rasteriser's set-up triangles and bins for this frame need", out);
   require_refused(run({"stages", "--set", "grid.width=8192", "--set", "grid.height=8192",
                        "--max-memory", "1G", "--out", (dir.path() / "stages").string()}),
                   "relief stages needs about", dir.path() / "stages");

@@ -45,9 +45,30 @@ TEST_CASE("nothingOfAPlanetMayReachItsCentre", "[planet][cli]") {
              out);
   INFO(deep.err);
   CHECK(deep.code == 2);
-  CHECK(deep.err.find("terrain.planet.radius = 1000 is less than the depth the terrain can "
-                      "reach below the datum") != std::string::npos);
+  CHECK(deep.err.find("terrain.planet.radius = 1000 is not above the depth the terrain can "
+                      "reach below the datum, ") != std::string::npos);
+  // The depth is printed once, and the advice stays within the field's range.
+  const std::size_t depth_at = deep.err.find("datum, ") + 7;
+  const std::string depth = deep.err.substr(depth_at, deep.err.find(' ', depth_at) - depth_at);
+  CHECK(std::stod(depth) > 1000);
+  CHECK(deep.err.find(depth, depth_at + 1) == std::string::npos);
+  CHECK(deep.err.find("allowed: a radius above that depth (terrain.planet.radius is at most "
+                      "1e+08)") != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(out));
+  // relief scene validates as render does: the same refusal, nothing printed.
+  const test::CliResult scene =
+      test::run({"scene", "planet", "--set", "terrain.planet.radius=1000", "--set",
+                 "terrain.horizontal_scale=1000", "--set", "terrain.amplitude=3000", "--set",
+                 "terrain.water_level=null"});
+  CHECK(scene.code == 2);
+  CHECK(scene.out.empty());
+  CHECK(scene.err.find("terrain.planet.radius = 1000 is not above the depth") != std::string::npos);
+  // Terrain deeper than the largest radius: no radius is suggested.
+  const test::CliResult deepest =
+      test::run({"scene", "planet", "--set", "terrain.amplitude=1e7", "--set", "terrain.H=0.1"});
+  CHECK(deepest.code == 2);
+  CHECK(deepest.err.find("no radius up to terrain.planet.radius's maximum 1e+08 holds it") !=
+        std::string::npos);
   // The same small planet with shallow terrain renders.
   const test::CliResult shallow =
       render("planet",

@@ -42,10 +42,13 @@ inline std::vector<StressRow> run_stress_axes(const std::vector<std::string>& ax
       continue;
     }
     for (StressRow& row : run_stress_case(base, c, settings)) {
-      INFO(row.axis << ": " << row.name << " on " << row.backend << ": " << row.message);
+      // The failures in one message: an INFO inside a loop ends with the loop's body.
+      std::string failures;
       for (const std::string& failure : row.failures) {
-        INFO(failure);
+        failures += "; " + failure;
       }
+      INFO(row.axis << ": " << row.name << " on " << row.backend << ": " << row.message
+                    << failures);
       CHECK(row.passed());
       if (row.status == StressStatus::kOk) {
         CHECK(row.nonfinite == 0);

@@ -216,7 +216,7 @@ TEST_CASE("sweepRefusesBadOptionsWithNothingWritten", "[sweep][cli]") {
            {{"--reference", small}, true, "is 32x24; the scene's viewport is 64x48"},
            {{"--reference", png}, true, "is a png image"},
            {{"--reference", (dir.path() / "missing.exr").string()}, true, "missing.exr"},
-           {{"--reference-supersample", "0"}, true, "--supersample 0"},
+           {{"--reference-supersample", "0"}, true, "--reference-supersample 0 is out of range"},
            {{"--max-memory", "1M"}, true, "this sweep"}}) {
     const test::CliResult r = sweep(extra, with_out);
     test::require_refused(r, message, out);

@@ -19,7 +19,9 @@
 #include "pipeline/build_info.h"
 #include "pipeline/frame.h"
 #include "pipeline/gl_backend.h"
+#include "pipeline/job_memory.h"
 #include "pipeline/memory_budget.h"
+#include "pipeline/scene_resources.h"
 #include "tools/atomic_file.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
@@ -75,10 +77,18 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   stages_cmd
       ->add_option("--float-format", stages.raw_format,
                    "Format of the float files: pfm (the default) or exr (OpenEXR, 32-bit float)")
-      ->transform(
-          CLI::CheckedTransformer(std::map<std::string, FloatFormat>{{"pfm", FloatFormat::kPfm},
-                                                                     {"exr", FloatFormat::kExr}},
-                                  CLI::ignore_case));
+      ->transform(CLI::Validator(
+          [](std::string& text) -> std::string {
+            // The name to the enum's value, which CLI11 then converts; the message names the
+            // option's own values (CLI11's own transformer printed its internal table).
+            const std::string name = CLI::detail::to_lower(text);
+            if (name != "pfm" && name != "exr") {
+              return "'" + brief_text(text) + "' is not a float format; allowed: pfm, exr";
+            }
+            text = std::to_string(int(name == "pfm" ? FloatFormat::kPfm : FloatFormat::kExr));
+            return "";
+          },
+          "pfm|exr"));
 
   RenderOptions render;
   CLI::App* render_cmd =
@@ -169,7 +179,9 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       "llvmpipe) and compare them stage by stage: heights, normals and octave counts at the "
       "grid's vertices, the triangle at each pixel, the per-pixel outputs, the final images. "
       "Writes both images, heat maps, a table and its JSON into --out; exits as idiff does on "
-      "the final images (0 pass, 1 warning, 2 failure).");
+      "the final images over the pixels both draw with the same triangle (0 pass, 1 warning, 2 "
+      "failure; 2 also for a pixel that changed triangle away from any triangle boundary), 4 "
+      "for bad input or no GL, 5 when an output cannot be written.");
   add_scene_args(crosscheck_cmd, scene_args);
   const CLI::Option* crosscheck_out =
       crosscheck_cmd->add_option("--out", crosscheck.out_dir, "Output directory")->required();
@@ -181,6 +193,9 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
                    "Render each backend this many times for the frame times (median)")
       ->check(CLI::Range(1, 100));
   add_compare_thresholds(crosscheck_cmd, crosscheck.thresholds);
+  crosscheck_cmd->add_flag("--all-pixels", crosscheck.all_pixels,
+                           "Judge every pixel, also where the two frames draw another triangle "
+                           "(as idiff judges cpu.png and gl.png; may fail on a conforming GL)");
   add_threads(crosscheck_cmd, threads);
   add_max_memory(crosscheck_cmd, max_memory);
 
@@ -224,10 +239,12 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
            "error, sweep, stress, path\nRun 'relief --help' for usage.\n";
     return kExitBadInput;
   }
-  // compare exits as idiff does, where 2 means the images differ: its bad options are 4.
-  const int bad_input = args.size() > 1 && args[1] == "compare"
-                            ? exit_code(CompareVerdict::kFileError)
-                            : kExitBadInput;
+  // compare and crosscheck exit as idiff does, where 2 means the images differ: their bad
+  // input is 4, crosscheck's unwritten output 5.
+  const bool idiff_codes = args.size() > 1 && (args[1] == "compare" || args[1] == "crosscheck");
+  const int bad_input = idiff_codes ? exit_code(CompareVerdict::kFileError) : kExitBadInput;
+  const int output_error =
+      args.size() > 1 && args[1] == "crosscheck" ? kCrosscheckOutputError : kExitOutputError;
   std::vector<const char*> argv;
   for (const std::string& a : args) {
     argv.push_back(a.c_str());
@@ -257,19 +274,19 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     if (given_empty(option, value)) {
       err << "relief: error: " << option->get_name()
           << " is empty; give a file or directory name\n";
-      return kExitBadInput;
+      return bad_input;
     }
   }
   if (raster_cmd->parsed() && raster_options.soup.empty()) {
     err << "relief: error: FILE is empty; give the triangle soup's file name\n";
-    return kExitBadInput;
+    return bad_input;
   }
   for (CLI::App* command : {scene_cmd, stages_cmd, render_cmd, crosscheck_cmd, reference_cmd,
                             sweep_cmd, stress_cmd, path_cmd}) {
     if (command->parsed() && given_empty(command->get_option("SCENE"), scene_args.scene)) {
       err << "relief: error: SCENE is empty; give a scene file or a preset name, or leave it "
              "out for the default scene\n";
-      return kExitBadInput;
+      return bad_input;
     }
   }
   if (raster_cmd->parsed()) {
@@ -278,12 +295,13 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     if (file.empty() || file == "." || file == "..") {
       err << "relief: error: --out " << brief_text(raster_options.prefix)
           << " has no file name part; give a prefix such as out/soup\n";
-      return kExitBadInput;
+      return bad_input;
     }
   }
   const MemoryBudget budget = memory_budget(parse_memory_size(max_memory), max_memory);
   stages.budget = render.budget = raster_options.budget = crosscheck.budget = budget;
   reference.budget = error_options.budget = sweep.budget = path.budget = budget;
+  reference.scene_arg = scene_args.scene;
   if (error_cmd->parsed()) {
     return run_error_command(error_options, out, err);
   }
@@ -307,7 +325,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     if (command->get_option("--backend")->count() > 0 && backend != "simd") {
       err << "relief: error: --simd " << brief_text(simd_target) << " runs the simd backend, "
           << "not --backend " << backend << "; leave --backend out or give --backend simd\n";
-      return kExitBadInput;
+      return bad_input;
     }
     backend = "simd";
     try {
@@ -315,7 +333,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       simd_forced = true;
     } catch (const SimdTargetError& e) {
       err << "relief: error: --simd: " << brief_text(e.what(), 3 * kBriefChars) << "\n";
-      return kExitBadInput;
+      return bad_input;
     }
   }
   stages.backend = render.backend = path.backend = *backend_from_name(backend);
@@ -325,7 +343,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     err << "relief: error: --backend " << backend
         << " does not apply to relief raster (its arithmetic is already exact, and the GL "
            "rasteriser is what it is compared with); allowed: simd, reference\n";
-    return kExitBadInput;
+    return bad_input;
   }
   raster_options.simd = render.backend == Backend::kSimd;
 
@@ -340,18 +358,23 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       if (!v.empty() && (v[2] < 1 || v[3] < 1 || v[2] > 16384 || v[3] > 16384)) {
         err << "relief: error: --viewport " << v[2] << "x" << v[3]
             << " is out of range; allowed 1 <= width, height <= 16384\n";
-        return kExitBadInput;
+        return bad_input;
       }
       return run_raster_command(raster_options, out);
     }
     // The scene is validated completely before any work starts.
     const Scene scene = resolve_scene(scene_args.scene, scene_args.overrides);
     if (scene_cmd->parsed()) {
+      // The files and the rules that need them (a planet's depth) are checked as render checks
+      // them: a scene that prints is one that renders.
+      check_memory(estimate_scene_resources_memory(scene), budget, "loading the scene's files",
+                   "Use smaller textures, sketch or basis images");
+      print_scene_notes(load_scene_resources(scene).notes, err);
       out << scene_json_text(scene);
       out.flush();
       if (!out) {  // a full disk or a closed pipe: the scene was not printed
         err << "relief: error: cannot write the scene to standard output\n";
-        return kExitOutputError;
+        return output_error;
       }
       return kExitOk;
     }
@@ -374,54 +397,35 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       return run_path_command(scene, path, out, err);
     }
     if (render_cmd->parsed()) {
-      const std::string& o = render.output;
-      if (!o.empty() && !has_extension(o, ".png")) {
-        err << "relief: error: -o " << brief_text(o)
-            << ": the image is written as PNG; give a file name ending in .png\n";
-        return kExitBadInput;
-      }
-      for (const auto& [name, value, extension] :
-           std::vector<std::tuple<const char*, const std::string*, const char*>>{
-               {"--float", &render.float_output, ".pfm or .exr"},
-               {"--depth", &render.depth_output, ".pfm or .exr"},
-               {"--primitive", &render.primitive_output, ".bin"},
-               {"--normal", &render.normal_output, ".pfm or .exr"},
-               {"--height", &render.height_output, ".pfm or .exr"},
-               {"--octaves", &render.octaves_output, ".pfm or .exr"}}) {
-        const bool floats = std::string_view(extension) != ".bin";
-        if (!value->empty() &&
-            !(floats ? float_format_of(*value).has_value() : has_extension(*value, extension))) {
-          err << "relief: error: " << name << " " << brief_text(*value) << ": give a file name "
-              << "ending in " << extension << "\n";
-          return kExitBadInput;
-        }
+      if (const int refused = check_render_paths(scene, scene_args.scene, render, err)) {
+        return refused;
       }
       return run_render_command(scene, render, out, err);
     }
   } catch (const SceneError& e) {
     err << "relief: error: " << e.what() << "\n";
-    return kExitBadInput;
+    return bad_input;
   } catch (const SoupError& e) {
     err << "relief: error: " << e.what() << "\n";
-    return kExitBadInput;
+    return bad_input;
   } catch (const MemoryLimitError& e) {
     err << "relief: error: " << e.what() << "\n";
-    return kExitBadInput;
+    return bad_input;
   } catch (const GlBackendError& e) {
     err << "relief: error: " << brief_text(e.what(), 4 * kBriefChars) << "\n";
-    return kExitBadInput;
+    return bad_input;
   } catch (const OutputError& e) {
     err << "relief: error: " << e.what() << "\n";
-    return kExitOutputError;
+    return output_error;
   } catch (const std::bad_alloc&) {
     // The estimate (job_memory.h) missed, or another process took the memory meanwhile.
     err << "relief: error: out of memory; nothing was written. Lower the image or grid size, or "
            "free memory and try again.\n";
-    return kExitOutputError;
+    return output_error;
   } catch (const std::exception& e) {
     err << "relief: internal error: " << brief_text(e.what(), 3 * kBriefChars)
         << "; nothing was written. Please report this with the command line.\n";
-    return kExitOutputError;
+    return output_error;
   }
   return kExitOk;
 }

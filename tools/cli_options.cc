@@ -33,7 +33,9 @@ void add_scene_args(CLI::App* command, SceneArgs& args) {
                    "applied in order. Example: --set terrain.H=0.85 --set grid.width=256")
       ->type_name("KEY=VALUE")
       ->expected(1)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      // One value per --set: "--set a=b lava" leaves lava to SCENE.
+      ->allow_extra_args(false);
 }
 
 void add_max_memory(CLI::App* command, std::string& max_memory) {
@@ -46,7 +48,7 @@ void add_max_memory(CLI::App* command, std::string& max_memory) {
           [](std::string& text) -> std::string {
             return parse_memory_size(text) ? ""
                                            : "a size from 1M to 1E: a number with an optional "
-                                             "unit K, M, G or T (powers of 1024)";
+                                             "unit K, M, G, T, P or E (powers of 1024)";
           },
           "SIZE"));
 }

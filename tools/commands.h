@@ -49,6 +49,12 @@ struct RenderOptions {
   std::string stats_json;  // the same as a JSON file (empty: none)
 };
 
+// Refuses (returns kExitBadInput with the message on `err`, 0 otherwise) output names of the
+// wrong kind and any output naming the same file as another output or an input of the scene
+// (the scene file `scene_arg`, textures, sketch, basis images).
+int check_render_paths(const Scene& scene, const std::string& scene_arg,
+                       const RenderOptions& options, std::ostream& err);
+
 // `relief render`: the whole frame to an sRGB PNG, with the stage times.
 int run_render_command(const Scene& scene, const RenderOptions& options, std::ostream& out,
                        std::ostream& err);
@@ -94,16 +100,26 @@ struct CrosscheckOptions {
   std::string out_dir;                   // the images, heat maps, table and JSON
   Backend cpu_backend = Backend::kSimd;  // the CPU side: simd or reference
   int repeat = 1;                        // frames per backend for the times (median)
-  // idiff's, on the sRGB images as values / 255. Defaults: a pixel more than one code apart
-  // fails, one code apart warns (docs/gl-shading.md: the paths may differ by one code).
+  // idiff's, on the sRGB images as values / 255, over the pixels both frames give the same
+  // triangle (crosscheck.h). Defaults: a pixel more than one code apart fails, one code apart
+  // warns (docs/gl-shading.md: the paths may differ by one code).
   CompareThresholds thresholds{1.5f / 255, 0, std::numeric_limits<float>::infinity(),
                                0.5f / 255, 0, std::numeric_limits<float>::infinity()};
+  bool all_pixels = false;  // judge every pixel, as idiff judges the two PNG files
   MemoryBudget budget;
 };
 
+// relief crosscheck's exit codes beyond idiff's verdicts (0 pass, 1 warning, 2 failure, 3 size
+// mismatch): bad input or no GL is 4, as relief compare's; an output that cannot be written 5,
+// so that a script tells each apart from a verdict.
+inline constexpr int kCrosscheckBadInput = 4;
+inline constexpr int kCrosscheckOutputError = 5;
+
 // `relief crosscheck`: the scene by the CPU backend and by the GL backend, compared stage by
 // stage (crosscheck.h). Returns idiff's exit code for the final images (0 pass, 1 warning,
-// 2 failure, 3 size mismatch). Throws GlBackendError when there is no GL.
+// 2 failure, 3 size mismatch), 2 also where a pixel changed triangle away from any triangle
+// boundary. Throws GlBackendError when there is no GL, OutputError when a file cannot be
+// written.
 int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options, std::ostream& out,
                            std::ostream& err);
 

@@ -6,6 +6,7 @@
 #include <ostream>
 #include <span>
 #include <string>
+#include <system_error>
 
 #include <CLI/CLI.hpp>
 
@@ -14,6 +15,7 @@
 #include "tools/atomic_file.h"
 #include "tools/commands.h"
 #include "tools/compare_report.h"
+#include "tools/distinct_paths.h"
 #include "tools/image_file.h"
 
 namespace relief {
@@ -70,7 +72,7 @@ MemoryEstimate compare_memory(const ImageFile& a, const ImageFile& b, bool heat_
 int compare(const CompareOptions& options, std::ostream& out) {
   ImageFile a_file(options.a);
   ImageFile b_file(options.b);
-  CompareReport report{options.a, options.b, nullptr, nullptr, options.thresholds, {}};
+  CompareReport report{options.a, options.b, nullptr, nullptr, options.thresholds, {}, {}, {}};
   FloatImage a, b;
   // Sizes first: different sizes are a verdict of their own (3), nothing is read.
   if (a_file.width() != b_file.width() || a_file.height() != b_file.height()) {
@@ -89,6 +91,8 @@ int compare(const CompareOptions& options, std::ostream& out) {
     b = b_file.read();
     report.a = &a;
     report.b = &b;
+    report.a_non_finite = count_non_finite(a);
+    report.b_non_finite = count_non_finite(b);
     report.result = compare_images(a, b, options.thresholds);
     if (report.result.verdict == CompareVerdict::kFileError) {
       throw ImageFileError(report.result.problem);
@@ -149,6 +153,14 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& options) {
 }
 
 int run_compare_command(const CompareOptions& options, std::ostream& out, std::ostream& err) {
+  if (const std::optional<std::string> conflict =
+          same_file_conflict({{"A", options.a, false},
+                              {"B", options.b, false},
+                              {"--diff", options.diff, true},
+                              {"--json", options.json, true}})) {
+    err << "relief: error: " << *conflict << "\n";
+    return kFileError;
+  }
   try {
     return compare(options, out);
   } catch (const ImageFileError& e) {
@@ -159,6 +171,10 @@ int run_compare_command(const CompareOptions& options, std::ostream& out, std::o
     err << "relief: error: " << e.what() << "\n";
   } catch (const std::bad_alloc&) {
     err << "relief: error: out of memory comparing the images; nothing was written\n";
+  } catch (const std::system_error& e) {
+    // OpenImageIO's threads could not start (an address-space or process limit).
+    err << "relief: error: cannot run the comparison: " << brief_text(e.what())
+        << "; nothing was written\n";
   }
   return kFileError;
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <ostream>
+#include <utility>
 
 #include "pipeline/image_io.h"
 #include "pipeline/image_metadata.h"
@@ -103,8 +104,15 @@ void print_compare_report(std::ostream& out, const CompareReport& r) {
       << g_text(r.thresholds.warn) << "\n";
   std::snprintf(percent, sizeof percent, "%1.3g", c.fail_percent());
   out << "  " << c.fail_pixels << " pixels (" << percent << "%) over " << g_text(r.thresholds.fail)
-      << "\n"
-      << verdict_name(c.verdict) << "\n";
+      << "\n";
+  for (const auto& [name, count] :
+       {std::pair{&r.a_name, &r.a_non_finite}, std::pair{&r.b_name, &r.b_non_finite}}) {
+    if (count->total() > 0) {
+      out << "  \"" << *name << "\" holds " << count->describe()
+          << " (the verdict, as idiff's, does not count a NaN difference)\n";
+    }
+  }
+  out << verdict_name(c.verdict) << "\n";
 }
 
 nlohmann::json compare_report_json(const CompareReport& r) {
@@ -155,6 +163,8 @@ nlohmann::json compare_report_json(const CompareReport& r) {
   j["warn_percent"] = c.warn_percent();
   j["fail_pixels"] = c.fail_pixels;
   j["fail_percent"] = c.fail_percent();
+  j["non_finite"] = {{"a", {{"nan", r.a_non_finite.nan}, {"infinite", r.a_non_finite.infinite}}},
+                     {"b", {{"nan", r.b_non_finite.nan}, {"infinite", r.b_non_finite.infinite}}}};
   return j;
 }
 

@@ -3,6 +3,7 @@
 // the final images as the exit code.
 #include <algorithm>
 #include <iomanip>
+#include <optional>
 #include <ostream>
 #include <sstream>
 #include <string>
@@ -71,7 +72,8 @@ nlohmann::json figures_json(const CompareResult& r) {
   return {{"verdict", std::string(verdict_name(r.verdict))},
           {"mean_error", r.mean_error},
           {"rms_error", r.rms_error},
-          {"psnr_db", std::isfinite(r.psnr) ? nlohmann::json(r.psnr) : nlohmann::json("inf")},
+          // null when infinite (equal images), as relief compare and relief error write it
+          {"psnr_db", std::isfinite(r.psnr) ? nlohmann::json(r.psnr) : nlohmann::json(nullptr)},
           {"max_error", r.max_error},
           {"max_at", {r.max_x, r.max_y, r.max_channel}},
           {"warn_pixels", r.warn_pixels},
@@ -85,7 +87,8 @@ int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options,
   // Two frames with every output, and two grids: twice a render's memory.
   MemoryEstimate estimate = estimate_render_memory(
       scene, options.cpu_backend, FrameOutputs{true, true, true, true, true, true});
-  estimate.add("the GL frame and the grids", estimate.total());
+  // The GL frame and the grids, and the CPU's trilinear frame of a bilinear scene.
+  estimate.add("the GL frame, the grids and the trilinear frame", 2 * estimate.total());
   check_memory(estimate, options.budget, "relief crosscheck", "Lower the viewport or grid size");
   const SceneResources resources = load_scene_resources(scene);
   print_scene_notes(resources.notes, err);
@@ -98,7 +101,18 @@ int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options,
   const GridBuffers<float> gl_grid =
       gl_terrain_stages(scene, resources.terrain_values(), resources.sketch_or_null());
   const GridDifference grid = compare_grids(cpu_terrain.grid, gl_grid);
-  const FrameDifference frame = compare_frames(cpu.image, gl.image, options.thresholds);
+  // Bilinear filtering switches mip level in a step: the CPU's trilinear frame sizes the step
+  // (crosscheck.h).
+  std::optional<Frame> cpu_trilinear;
+  if (scene.shading.texture_filter == TextureFilter::kBilinear && !options.all_pixels) {
+    Scene trilinear = scene;
+    trilinear.shading.texture_filter = TextureFilter::kTrilinear;
+    double trilinear_ms = 0;
+    cpu_trilinear = timed_frame(trilinear, resources, options.cpu_backend, 1, trilinear_ms);
+  }
+  const FrameDifference frame =
+      compare_frames(cpu.image, gl.image, options.thresholds,
+                     cpu_trilinear ? &cpu_trilinear->image : nullptr, options.all_pixels);
 
   const double amplitude = scene.terrain.amplitude;
   std::ostringstream table;
@@ -121,6 +135,11 @@ int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options,
         << "6 visibility         pixels whose triangle differs    "
         << frame.pixels.primitive_mismatch << " (" << 100.0 * frame.pixels.visibility_share()
         << "%)\n"
+        << "6 visibility         ... not on a CPU triangle boundary " << frame.unexplained_changes
+        << " (of " << frame.boundary_pixels << " boundary pixels)\n"
+        << "8 mip level          channels explained by a level switch "
+        << frame.level_switch_channels
+        << (cpu_trilinear ? "" : " (not judged: trilinear filtering)") << "\n"
         << "6-7 depth            max error (same triangle)        " << frame.pixels.max_depth_error
         << "\n"
         << "7 normal             max angle (deg, same triangle)   "
@@ -131,11 +150,15 @@ int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options,
         << "\n"
         << "8 linear radiance    max error, PSNR (dB)             " << frame.linear.max_error
         << ", " << frame.linear.psnr << "\n"
-        << "9 sRGB image         max error (codes), PSNR (dB)     " << frame.srgb.max_error * 255.0
-        << ", " << frame.srgb.psnr << "\n"
-        << "9 sRGB image         pixels over warn / fail          " << frame.srgb.warn_pixels
-        << " / " << frame.srgb.fail_pixels << "\n"
-        << verdict_name(frame.srgb.verdict) << "\n";
+        << "9 sRGB image         max error (codes), PSNR (dB)     "
+        << frame.srgb_all.max_error * 255.0 << ", " << frame.srgb_all.psnr << "\n"
+        << "9 sRGB image         pixels over warn / fail          " << frame.srgb_all.warn_pixels
+        << " / " << frame.srgb_all.fail_pixels << "\n"
+        << "9 sRGB, judged       max error (codes), over warn / fail "
+        << frame.srgb.max_error * 255.0 << ", " << frame.srgb.warn_pixels << " / "
+        << frame.srgb.fail_pixels << "  ("
+        << (options.all_pixels ? "every pixel" : "pixels whose triangle is the same") << ")\n"
+        << verdict_name(frame.verdict) << "\n";
 
   const nlohmann::json json = {
       {"cpu_backend", backend_label(options.cpu_backend)},
@@ -154,12 +177,18 @@ int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options,
       {"pixels",
        {{"count", frame.pixels.pixels},
         {"primitive_mismatch", frame.pixels.primitive_mismatch},
+        {"unexplained_changes", frame.unexplained_changes},
+        {"boundary_pixels", frame.boundary_pixels},
+        {"level_switch_channels", frame.level_switch_channels},
         {"max_depth_error", frame.pixels.max_depth_error},
         {"max_normal_angle_deg", frame.pixels.max_normal_angle_deg},
         {"max_height_error", frame.pixels.max_height_error},
         {"max_octave_error", frame.pixels.max_octave_error}}},
       {"linear", figures_json(frame.linear)},
-      {"srgb", figures_json(frame.srgb)}};
+      {"verdict", std::string(verdict_name(frame.verdict))},
+      {"judged", options.all_pixels ? "every pixel" : "pixels whose triangle is the same"},
+      {"srgb", figures_json(frame.srgb_all)},
+      {"srgb_judged", figures_json(frame.srgb)}};
 
   const std::filesystem::path dir = options.out_dir;
   OutputDirectory directory(dir);
@@ -197,7 +226,7 @@ int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options,
   directory.keep();
   out << text;
   out.flush();
-  return exit_code(frame.srgb.verdict);
+  return exit_code(frame.verdict);
 }
 
 }  // namespace relief

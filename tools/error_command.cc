@@ -3,9 +3,12 @@
 // values, and LDR-FLIP's mean and heat map. This file reads the images and writes the outputs.
 #include <cmath>
 #include <iomanip>
+#include <new>
+#include <optional>
 #include <ostream>
 #include <span>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -20,6 +23,7 @@
 #include "tools/cli.h"
 #include "tools/cli_options.h"
 #include "tools/colormap.h"
+#include "tools/distinct_paths.h"
 #include "tools/image_file.h"
 #include "tools/reference_command.h"
 
@@ -41,6 +45,12 @@ std::vector<float> linear_rgb(ImageFile& file, const std::string& path) {
                          " channel(s); relief error compares RGB images (3 or 4 channels)");
   }
   const FloatImage image = file.read();
+  // NaN or infinity is no radiance: clamped to the display's range it would pass as black or
+  // white and hide the defect the comparison is for.
+  if (const NonFiniteCount bad = count_non_finite(image); bad.total() > 0) {
+    throw ImageFileError(brief_text(path) + " holds " + bad.describe() +
+                         "; relief error measures finite radiance only");
+  }
   const std::size_t pixels = std::size_t(image.width) * image.height;
   std::vector<float> rgb(3 * pixels);
   for (std::size_t k = 0; k < pixels; ++k) {
@@ -174,6 +184,14 @@ int run_error_command(const ErrorOptions& options, std::ostream& out, std::ostre
         << ": the heat map is written as PNG; give a file name ending in .png\n";
     return kExitBadInput;
   }
+  if (const std::optional<std::string> conflict =
+          same_file_conflict({{"TEST", options.test, false},
+                              {"REFERENCE", options.reference, false},
+                              {"--map", options.map, true},
+                              {"--json", options.json, true}})) {
+    err << "relief: error: " << *conflict << "\n";
+    return kExitBadInput;
+  }
   // NaN fails both comparisons.
   if (!(options.pixels_per_degree >= kMinPixelsPerDegree &&
         options.pixels_per_degree <= kMaxPixelsPerDegree)) {
@@ -189,6 +207,18 @@ int run_error_command(const ErrorOptions& options, std::ostream& out, std::ostre
   } catch (const MemoryLimitError& e) {
     err << "relief: error: " << e.what() << "\n";
     return kExitBadInput;
+  } catch (const OutputError& e) {
+    err << "relief: error: " << e.what() << "\n";
+    return kExitOutputError;
+  } catch (const std::bad_alloc&) {
+    // The estimate missed (another process took the memory meanwhile).
+    err << "relief: error: out of memory comparing the images; nothing was written\n";
+    return kExitOutputError;
+  } catch (const std::system_error& e) {
+    // Threads that could not start (an address-space limit, a process limit).
+    err << "relief: error: cannot run the comparison: " << brief_text(e.what())
+        << "; nothing was written\n";
+    return kExitOutputError;
   }
 }
 

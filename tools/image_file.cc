@@ -1,5 +1,8 @@
 #include "tools/image_file.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include <OpenImageIO/imageio.h>
 
 #include "core/input_file.h"
@@ -60,6 +63,14 @@ std::string ImageFile::format() const {
   return input_->image->format_name();
 }
 
+std::optional<std::string> ImageFile::text(const std::string& key) const {
+  const OIIO::ParamValue* value = input_->image->spec().find_attribute(key, OIIO::TypeString);
+  if (value == nullptr) {
+    return std::nullopt;
+  }
+  return std::string(value->get_ustring().string());
+}
+
 std::uintmax_t ImageFile::float_bytes() const {
   return std::uintmax_t(width_) * std::uintmax_t(height_) * std::uintmax_t(channels_) *
          sizeof(float);
@@ -77,6 +88,31 @@ FloatImage ImageFile::read() {
                          " cannot be read: " + oiio_reason(input_->image->geterror()));
   }
   return image;
+}
+
+NonFiniteCount count_non_finite(const FloatImage& image) {
+  NonFiniteCount count;
+  const std::size_t channels = std::size_t(std::max(image.channels, 1));
+  for (std::size_t k = 0; k < image.pixels.size(); ++k) {
+    const float v = image.pixels[k];
+    if (std::isfinite(v)) {
+      continue;
+    }
+    if (count.total() == 0) {
+      const std::size_t pixel = k / channels;
+      count.x = int(pixel % std::size_t(std::max(image.width, 1)));
+      count.y = int(pixel / std::size_t(std::max(image.width, 1)));
+      count.channel = int(k % channels);
+    }
+    ++(std::isnan(v) ? count.nan : count.infinite);
+  }
+  return count;
+}
+
+std::string NonFiniteCount::describe() const {
+  return std::to_string(nan) + " NaN and " + std::to_string(infinite) +
+         " infinite channel value(s), the first at (" + std::to_string(x) + ", " +
+         std::to_string(y) + ") channel " + std::to_string(channel);
 }
 
 }  // namespace relief

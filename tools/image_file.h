@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -37,7 +38,10 @@ class ImageFile {
   int width() const { return width_; }
   int height() const { return height_; }
   int channels() const { return channels_; }
-  std::string format() const;          // OpenImageIO's name of it: "png", "openexr", "pnm"
+  std::string format() const;  // OpenImageIO's name of it: "png", "openexr", "pnm"
+  // A string attribute of the header ("relief:scene" of an EXR Relief wrote, a PNG's text
+  // chunk); nullopt where the file has none (PFM holds no metadata).
+  std::optional<std::string> text(const std::string& key) const;
   std::uintmax_t float_bytes() const;  // the pixels as floats
 
   // The pixels as floats, top row first (as the file stores them, and idiff counts rows).
@@ -49,5 +53,16 @@ class ImageFile {
   std::unique_ptr<Input> input_;
   int width_ = 0, height_ = 0, channels_ = 0;
 };
+
+// The channel values of an image that are not finite: how many are NaN, how many infinite,
+// and where the first is (x, y as stored, channel).
+struct NonFiniteCount {
+  std::uint64_t nan = 0, infinite = 0;
+  int x = 0, y = 0, channel = 0;
+  std::uint64_t total() const { return nan + infinite; }
+  // "3 NaN and 1 infinite channel value(s), the first at (x, y) channel c"
+  std::string describe() const;
+};
+NonFiniteCount count_non_finite(const FloatImage& image);
 
 }  // namespace relief

@@ -22,6 +22,7 @@
 #include "tools/cli.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
+#include "tools/distinct_paths.h"
 #include "tools/float_image_file.h"
 #include "tools/reference_command.h"
 #include "tools/render_report.h"
@@ -112,6 +113,13 @@ int run_reference_command(const Scene& scene, const ReferenceOptions& options, s
   if (!float_format_of(float_path)) {
     err << "relief: error: --float " << brief_text(float_path)
         << ": give a file name ending in .pfm or .exr\n";
+    return kExitBadInput;
+  }
+  std::vector<CommandPath> paths = scene_input_paths(options.scene_arg, scene);
+  paths.push_back({"-o", options.output});
+  paths.push_back({"--float", float_path});
+  if (const std::optional<std::string> conflict = same_file_conflict(paths)) {
+    err << "relief: error: " << *conflict << "\n";
     return kExitBadInput;
   }
   try {

@@ -1,9 +1,14 @@
 #include <algorithm>
 #include <chrono>
 #include <iomanip>
+#include <optional>
 #include <ostream>
+#include <string>
+#include <string_view>
+#include <tuple>
 #include <vector>
 
+#include "core/scene/json_input.h"
 #include "pipeline/build_info.h"
 #include "pipeline/frame.h"
 #include "pipeline/image_io.h"
@@ -11,7 +16,9 @@
 #include "pipeline/job_memory.h"
 #include "tools/atomic_file.h"
 #include "tools/cli.h"
+#include "tools/cli_options.h"
 #include "tools/commands.h"
+#include "tools/distinct_paths.h"
 #include "tools/float_image_file.h"
 #include "tools/render_report.h"
 
@@ -29,6 +36,47 @@ void print_scene_notes(const std::vector<std::string>& notes, std::ostream& err)
   for (const std::string& note : notes) {
     err << "relief: note: " << note << "\n";
   }
+}
+
+int check_render_paths(const Scene& scene, const std::string& scene_arg,
+                       const RenderOptions& options, std::ostream& err) {
+  const std::string& o = options.output;
+  if (!o.empty() && !has_extension(o, ".png")) {
+    err << "relief: error: -o " << brief_text(o)
+        << ": the image is written as PNG; give a file name ending in .png\n";
+    return kExitBadInput;
+  }
+  const std::vector<std::tuple<const char*, const std::string*, const char*>> extras = {
+      {"--float", &options.float_output, ".pfm or .exr"},
+      {"--depth", &options.depth_output, ".pfm or .exr"},
+      {"--primitive", &options.primitive_output, ".bin"},
+      {"--normal", &options.normal_output, ".pfm or .exr"},
+      {"--height", &options.height_output, ".pfm or .exr"},
+      {"--octaves", &options.octaves_output, ".pfm or .exr"}};
+  for (const auto& [name, value, extension] : extras) {
+    const bool floats = std::string_view(extension) != ".bin";
+    if (!value->empty() &&
+        !(floats ? float_format_of(*value).has_value() : has_extension(*value, extension))) {
+      err << "relief: error: " << name << " " << brief_text(*value) << ": give a file name "
+          << "ending in " << extension << "\n";
+      return kExitBadInput;
+    }
+  }
+  // Every file the render reads or writes, the scene's default outputs included.
+  std::vector<CommandPath> paths = scene_input_paths(scene_arg, scene);
+  paths.push_back({o.empty() ? "output.image" : "-o", o.empty() ? scene.output.image : o});
+  paths.push_back({options.float_output.empty() ? "output.float_image" : "--float",
+                   options.float_output.empty() ? scene.output.float_image.value_or("")
+                                                : options.float_output});
+  for (std::size_t k = 1; k < extras.size(); ++k) {
+    paths.push_back({std::get<0>(extras[k]), *std::get<1>(extras[k])});
+  }
+  paths.push_back({"--stats-json", options.stats_json});
+  if (const std::optional<std::string> conflict = same_file_conflict(paths)) {
+    err << "relief: error: " << *conflict << "\n";
+    return kExitBadInput;
+  }
+  return kExitOk;
 }
 
 int run_render_command(const Scene& scene, const RenderOptions& options, std::ostream& out,
@@ -111,7 +159,10 @@ int run_render_command(const Scene& scene, const RenderOptions& options, std::os
   }
   const raster::RasterStats& s = frame.stats.raster;
   out << "  scene set-up (lattice, textures, mip chains) " << setup_ms << " ms, once\n"
-      << "  triangles submitted " << s.triangles << ", set up " << s.setup << "\n"
+      << "  triangles submitted " << s.triangles
+      << (request.backend == Backend::kGl ? " (to GL's rasteriser)"
+                                          : ", set up " + std::to_string(s.setup))
+      << "\n"
       << "wrote " << path << (float_path.empty() ? "" : " and " + float_path) << "\n";
   return kExitOk;
 }

@@ -88,11 +88,16 @@ nlohmann::json stage_stats_json(const Scene& scene, Backend backend, const Rende
           {"setup_ms", runs.setup_ms},
           {"stages", std::move(stages)},
           {"tile_parts", std::move(parts)},
-          {"raster",
-           {{"triangles", r.triangles},
-            {"set_up", r.setup},
-            {"bin_entries", r.bin_entries},
-            {"bin_bytes", r.bin_bytes}}}};
+          {"raster", backend == Backend::kGl
+                         // GL's own rasteriser: no software set-up pieces or bins (null).
+                         ? nlohmann::json{{"triangles", r.triangles},
+                                          {"set_up", nullptr},
+                                          {"bin_entries", nullptr},
+                                          {"bin_bytes", nullptr}}
+                         : nlohmann::json{{"triangles", r.triangles},
+                                          {"set_up", r.setup},
+                                          {"bin_entries", r.bin_entries},
+                                          {"bin_bytes", r.bin_bytes}}}};
 }
 
 }  // namespace relief

@@ -14,6 +14,7 @@
 #include <CLI/CLI.hpp>
 
 #include "core/scene/scene_json.h"
+#include "pipeline/job_memory.h"
 #include "pipeline/memory_budget.h"
 #include "pipeline/process_memory.h"
 #include "pipeline/stress_run.h"
@@ -147,6 +148,21 @@ int run_stress_command(const Scene& scene, const StressOptions& options, std::os
       settings.backends.push_back(backend);
     }
   }
+  // A backend asked for by name that cannot run here is bad input: a run in which it only
+  // skipped would check nothing.
+  if (!settings.gl_unavailable.empty() &&
+      std::find(options.backends.begin(), options.backends.end(), "gl") != options.backends.end()) {
+    err << "relief: error: --backend gl cannot run here: " << settings.gl_unavailable
+        << "; nothing ran\n";
+    return kExitBadInput;
+  }
+  // The budget must hold the base scene itself: below it every case would be refused one by one.
+  for (Backend backend : settings.backends) {
+    check_memory(
+        estimate_render_memory(base, backend, {}), settings.budget,
+        "the stress suite's base scene on the " + std::string(backend_name(backend)) + " backend",
+        "Lower --viewport or --grid");
+  }
   std::vector<StressCase> cases;
   for (StressCase& c : make_stress_cases(base, settings.budget.bytes, settings.backends)) {
     if (options.axes.empty() ||
@@ -173,6 +189,7 @@ int run_stress_command(const Scene& scene, const StressOptions& options, std::os
   out << header << "\n";
   std::vector<std::string> notes;
   int failed = 0;
+  std::size_t ran = 0;  // rows rendered and checked (not refused or skipped)
   for (std::size_t k = 0; k < cases.size(); ++k) {
     if (progress) {
       err << "\r[" << k + 1 << "/" << cases.size() << "] " << cases[k].axis << ": " << cases[k].name
@@ -182,6 +199,7 @@ int run_stress_command(const Scene& scene, const StressOptions& options, std::os
     for (const StressRow& row : rows) {
       print_row(out, row, notes);
       failed += !row.passed();
+      ran += row.status == StressStatus::kOk;
     }
     if (settings.keep_images) {
       sheet.add_case(rows, "simd");
@@ -200,6 +218,10 @@ int run_stress_command(const Scene& scene, const StressOptions& options, std::os
                                               " cases in the table's order"));
     files.commit();
     out << "wrote " << options.sheet << "\n";
+  }
+  if (ran == 0) {
+    out << "no case ran (every row was refused or skipped): nothing was checked\n";
+    return 1;
   }
   out << (failed == 0 ? "every check holds" : std::to_string(failed) + " row(s) failed") << "\n";
   return failed == 0 ? kExitOk : 1;

@@ -13,8 +13,10 @@
 
 #include <tbb/task_arena.h>
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "core/scene/json_input.h"
+#include "core/scene/scene_json.h"
 #include "core/srgb.h"
 #include "pipeline/image_io.h"
 #include "pipeline/image_metadata.h"
@@ -22,6 +24,7 @@
 #include "tools/atomic_file.h"
 #include "tools/cli.h"
 #include "tools/cli_options.h"
+#include "tools/distinct_paths.h"
 #include "tools/float_image_file.h"
 #include "tools/gnuplot.h"
 #include "tools/image_file.h"
@@ -58,7 +61,27 @@ Reference read_reference(const std::string& path, const Scene& scene) {
     throw ImageFileError("--reference " + brief_text(path) + " has " +
                          std::to_string(file.channels()) + " channel(s); give an RGB image");
   }
+  // The scene the reference was made of (its metadata; PFM holds none) must be this one, output
+  // paths apart: a reference of another scene measures nothing.
+  if (const std::optional<std::string> text = file.text(std::string(kSceneKey))) {
+    nlohmann::json made = nlohmann::json::parse(*text, nullptr, false);
+    nlohmann::json here = nlohmann::json::parse(scene_json_text(scene));
+    if (made.is_object()) {
+      made.erase("output");
+    }
+    here.erase("output");
+    if (made != here) {
+      throw ImageFileError("--reference " + brief_text(path) + " was rendered from another " +
+                           "scene (its " + std::string(kSceneKey) + " metadata differs from " +
+                           "this scene); render the reference of this scene, or leave " +
+                           "--reference out");
+    }
+  }
   const FloatImage image = file.read();  // top row first
+  if (const NonFiniteCount bad = count_non_finite(image); bad.total() > 0) {
+    throw ImageFileError("--reference " + brief_text(path) + " holds " + bad.describe() +
+                         "; a reference is finite radiance");
+  }
   Reference out;
   out.origin = "read from " + fs::path(path).filename().string();
   out.linear.resize(3 * std::size_t(image.width) * image.height);
@@ -146,6 +169,15 @@ int run_sweep_command(const Scene& scene, const SweepOptions& options, std::ostr
       return kExitBadInput;
     }
   }
+  std::vector<CommandPath> paths = {{"--reference", options.reference, false}};
+  for (const char* name :
+       {"reference.png", "reference.exr", "sweep.csv", "sweep.gp", "sweep.png"}) {
+    paths.push_back({"--out's " + std::string(name), fs::path(options.out_dir) / name});
+  }
+  if (const std::optional<std::string> conflict = same_file_conflict(paths)) {
+    err << "relief: error: " << *conflict << "\n";
+    return kExitBadInput;
+  }
   std::error_code ec;
   if (fs::exists(options.out_dir, ec) && !fs::is_directory(options.out_dir, ec)) {
     err << "relief: error: --out " << brief_text(options.out_dir)
@@ -157,8 +189,18 @@ int run_sweep_command(const Scene& scene, const SweepOptions& options, std::ostr
     try {
       validate_ground_truth(scene, options.settings);
     } catch (const GroundTruthError& e) {
-      err << "relief: error: " << e.what() << " (as --reference-supersample, --reference-"
-          << "grid-scale)\n";
+      // The ground truth names its own options (--supersample, --grid-scale): here they are
+      // --reference-supersample and --reference-grid-scale.
+      std::string message = e.what();
+      for (const auto& [own, here] :
+           {std::pair<std::string, std::string>{"--supersample", "--reference-supersample"},
+            {"--grid-scale", "--reference-grid-scale"}}) {
+        for (std::size_t at = message.find(own); at != std::string::npos;
+             at = message.find(own, at + here.size())) {
+          message.replace(at, own.size(), here);
+        }
+      }
+      err << "relief: error: " << message << "\n";
       return kExitBadInput;
     }
   }

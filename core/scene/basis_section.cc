@@ -2,6 +2,7 @@
 // Whether the images can be read, and their sizes, are checked when they are loaded
 // (pipeline/basis_resources.cc).
 #include <bit>
+#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -34,11 +35,18 @@ BasisImageSettings read_basis_image(const LayerReader& in, const json& value,
              if (v.is_string()) {
                image.weight_image = resolve_scene_path(in.string(v, p), base_dir);
              } else {
-               image.weight = in.number(v, p, Range{0.0, limits::kMaxBasisWeight});
-               if (image.weight > 0.0 && image.weight < limits::kMinBasisWeight) {
-                 in.fail(p, p + " = " + brief(v) + " is too small to weigh; allowed 0 or " +
-                                format_number(limits::kMinBasisWeight) + " <= " + p +
-                                " <= " + format_number(limits::kMaxBasisWeight));
+               // One rule, one message, whichever side is crossed (README's scene table).
+               const std::string allowed =
+                   "allowed 0, or " + format_number(limits::kMinBasisWeight) + " <= " + p +
+                   " <= " + format_number(limits::kMaxBasisWeight) + ", or a grey PNG's path";
+               if (!v.is_number() || !std::isfinite(v.get<double>())) {
+                 in.fail(p, p + " = " + brief(v) + " is not a finite number; " + allowed);
+               }
+               image.weight = v.get<double>();
+               if (image.weight != 0.0 && !(image.weight >= limits::kMinBasisWeight &&
+                                            image.weight <= limits::kMaxBasisWeight)) {
+                 in.fail(p,
+                         p + " = " + format_number(image.weight) + " is out of range; " + allowed);
                }
                image.weight_image.clear();
              }
@@ -113,7 +121,10 @@ void validate_basis(const BasisSettings& basis, double coarsest_reach) {
   if (!any_weight) {
     throw SceneError("terrain.basis.images",
                      "scene: every terrain.basis.images[k].weight is 0, so the weights sum to 0 "
-                     "everywhere; allowed: weights >= 0 with at least one > 0");
+                     "everywhere; allowed: each weight 0, or " +
+                         format_number(limits::kMinBasisWeight) + " to " +
+                         format_number(limits::kMaxBasisWeight) +
+                         ", or a grey PNG's path, with at least one not 0");
   }
   // The stage-3 period P is not known before the images are read: the bound holds for every
   // P up to kMaxLatticeSize (a smaller P gives a larger cell and a smaller period).

@@ -362,7 +362,10 @@ json parse_override(std::string_view assignment) {
   const std::string key(assignment.substr(0, equals));
   const std::string text(assignment.substr(equals + 1));
   json value;
-  if (json::accept(text)) {
+  // An object, array or string that does not parse is a JSON error, not a bare word.
+  const std::size_t first = text.find_first_not_of(" \t\r\n");
+  if (json::accept(text) || (first != std::string::npos &&
+                             std::string_view("{[\"").find(text[first]) != std::string::npos)) {
     value = parse_json_strictly(text, source);
   } else {
     // Not JSON: a number beyond double's range, NaN or Infinity are errors; anything else is a
