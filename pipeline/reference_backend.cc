@@ -367,26 +367,9 @@ void ReferenceBackend<Real>::after(StageId id) {
     case StageId::kDrawNeeds:
       params_.surface.water_enabled = water_in_view() ? 1 : 0;
       return;
-    case StageId::kTriangleSetup: {
-      raster_stats_.triangles = triangles().count();
-      for (const raster::SetupChunk& chunk : chunks_) {
-        raster_stats_.setup += chunk.triangles.size();
-        raster_stats_.setup_bytes += chunk.triangles.capacity() * sizeof(raster::RasterTriangle);
-      }
-      const raster::BinSize bins = raster::bin_size(chunks_, tiles_);
-      raster_stats_.bin_entries = bins.entries;
-      raster_stats_.bin_bytes = bins.bytes;
-      // The set-up triangles and the bins depend on the frame's triangles: counted here, not
-      // in the up-front estimate (pipeline/job_memory.h).
-      if (bins.bytes + raster_stats_.setup_bytes > request_.max_bin_bytes) {
-        raster_stats_.bins_refused = true;
-        throw MemoryLimitError("the rasteriser's set-up triangles and bins for this frame need " +
-                               format_bytes(bins.bytes + raster_stats_.setup_bytes) +
-                               ", more than the " + format_bytes(request_.max_bin_bytes) +
-                               " left of the memory budget; lower viewport.width/height");
-      }
+    case StageId::kTriangleSetup:
+      tally_setup();
       return;
-    }
     default:
       return;
   }

@@ -63,6 +63,9 @@ class ReferenceBackend final : public FrameBackend {
   void tally_rows(RowRange rows, const NeedCount& count);
   void tally_fbm(const FbmWork& work);
   void tally_draws(RowRange rows, const NeedCount& count);
+  // After set-up: the triangles set up and the bins they need, refused (MemoryLimitError)
+  // beyond what the frame's estimate left of the budget.
+  void tally_setup();
   bool water_in_view() const;
 
   const Scene& scene_;

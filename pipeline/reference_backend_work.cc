@@ -1,13 +1,37 @@
 // ReferenceBackend's bookkeeping (reference_backend.h): the work each stage did, tallied as
-// its units run on whatever threads, and the counters a stage's time reports.
+// its units run on whatever threads, the counters a stage's time reports, and the set-up
+// triangles and bins checked against the memory budget.
 #include <algorithm>
 #include <cmath>
 #include <mutex>
 
+#include "core/input_file.h"
 #include "core/octave_coordinates.h"
+#include "pipeline/memory_budget.h"
 #include "pipeline/reference_backend.h"
 
 namespace relief {
+
+template <class Real>
+void ReferenceBackend<Real>::tally_setup() {
+  raster_stats_.triangles = triangles().count();
+  for (const raster::SetupChunk& chunk : chunks_) {
+    raster_stats_.setup += chunk.triangles.size();
+    raster_stats_.setup_bytes += chunk.triangles.capacity() * sizeof(raster::RasterTriangle);
+  }
+  const raster::BinSize bins = raster::bin_size(chunks_, tiles_);
+  raster_stats_.bin_entries = bins.entries;
+  raster_stats_.bin_bytes = bins.bytes;
+  // The set-up triangles and the bins depend on the frame's triangles: counted here, not in
+  // the up-front estimate (pipeline/job_memory.h).
+  if (bins.bytes + raster_stats_.setup_bytes > request_.max_bin_bytes) {
+    raster_stats_.bins_refused = true;
+    throw MemoryLimitError("the rasteriser's set-up triangles and bins for this frame need " +
+                           format_bytes(bins.bytes + raster_stats_.setup_bytes) +
+                           ", more than the " + format_bytes(request_.max_bin_bytes) +
+                           " left of the memory budget; lower viewport.width/height");
+  }
+}
 
 template <class Real>
 void ReferenceBackend<Real>::tally_rows(RowRange rows, const NeedCount& count) {
@@ -130,6 +154,7 @@ void ReferenceBackend<Real>::describe(StageId id, StageTime& time) const {
   template void ReferenceBackend<Real>::tally_rows(RowRange, const NeedCount&);  \
   template void ReferenceBackend<Real>::tally_fbm(const FbmWork&);               \
   template void ReferenceBackend<Real>::tally_draws(RowRange, const NeedCount&); \
+  template void ReferenceBackend<Real>::tally_setup();                           \
   template void ReferenceBackend<Real>::describe(StageId, StageTime&) const;
 RELIEF_INSTANTIATE_WORK(float)
 RELIEF_INSTANTIATE_WORK(double)

@@ -150,3 +150,25 @@ TEST_CASE("memorySizesReachOneExbibyte", "[cli]") {
 }
 
 }  // namespace relief
+
+namespace relief {
+
+TEST_CASE("outputsNamedAfterAnInputOfRasterOrCrosscheckAreRefused", "[cli]") {
+  test::TempDir dir("alias-inputs");
+  // relief raster s.json --out s would write s.json over the soup.
+  const std::string soup = test::write_file(dir.path() / "s.json", "4 4\n");
+  const CliResult raster = run({"raster", soup, "--out", (dir.path() / "s").string()});
+  CHECK(raster.code == 2);
+  CHECK_THAT(raster.err, Contains("name the same file"));
+  CHECK(test::read_bytes(soup).size() == 4);
+  // A scene file inside crosscheck's --out under one of its output names.
+  const CliResult printed = run({"scene", "--set", "viewport.width=64"});
+  REQUIRE(printed.code == 0);
+  const std::string scene = test::write_file(dir.path() / "crosscheck.json", printed.out);
+  const CliResult crosscheck = run({"crosscheck", scene, "--out", dir.path().string()});
+  CHECK(crosscheck.code == 4);
+  CHECK_THAT(crosscheck.err, Contains("SCENE") && Contains("name the same file"));
+  CHECK(test::read_bytes(scene).size() == printed.out.size());
+}
+
+}  // namespace relief

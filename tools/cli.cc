@@ -74,21 +74,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   std::string backend = "simd";
   std::string simd_target;
   add_backend(stages_cmd, backend, simd_target);
-  stages_cmd
-      ->add_option("--float-format", stages.raw_format,
-                   "Format of the float files: pfm (the default) or exr (OpenEXR, 32-bit float)")
-      ->transform(CLI::Validator(
-          [](std::string& text) -> std::string {
-            // The name to the enum's value, which CLI11 then converts; the message names the
-            // option's own values (CLI11's own transformer printed its internal table).
-            const std::string name = CLI::detail::to_lower(text);
-            if (name != "pfm" && name != "exr") {
-              return "'" + brief_text(text) + "' is not a float format; allowed: pfm, exr";
-            }
-            text = std::to_string(int(name == "pfm" ? FloatFormat::kPfm : FloatFormat::kExr));
-            return "";
-          },
-          "pfm|exr"));
+  add_float_format(stages_cmd, stages.raw_format);
 
   RenderOptions render;
   CLI::App* render_cmd =
@@ -172,30 +158,8 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   CLI::App* compare_cmd = add_compare_command(app, compare);
 
   CrosscheckOptions crosscheck;
-  std::string cpu_backend = "simd";
-  CLI::App* crosscheck_cmd = app.add_subcommand(
-      "crosscheck",
-      "Render the scene with a CPU backend and with the GL backend (a GPU, or Mesa's "
-      "llvmpipe) and compare them stage by stage: heights, normals and octave counts at the "
-      "grid's vertices, the triangle at each pixel, the per-pixel outputs, the final images. "
-      "Writes both images, heat maps, a table and its JSON into --out; exits as idiff does on "
-      "the final images over the pixels both draw with the same triangle (0 pass, 1 warning, 2 "
-      "failure; 2 also for a pixel that changed triangle away from any triangle boundary), 4 "
-      "for bad input or no GL, 5 when an output cannot be written.");
+  CLI::App* crosscheck_cmd = add_crosscheck_command(app, crosscheck);
   add_scene_args(crosscheck_cmd, scene_args);
-  const CLI::Option* crosscheck_out =
-      crosscheck_cmd->add_option("--out", crosscheck.out_dir, "Output directory")->required();
-  crosscheck_cmd
-      ->add_option("--cpu-backend", cpu_backend, "The CPU side: simd (the default) or reference")
-      ->check(CLI::IsMember({"simd", "reference"}));
-  crosscheck_cmd
-      ->add_option("--repeat", crosscheck.repeat,
-                   "Render each backend this many times for the frame times (median)")
-      ->check(CLI::Range(1, 100));
-  add_compare_thresholds(crosscheck_cmd, crosscheck.thresholds);
-  crosscheck_cmd->add_flag("--all-pixels", crosscheck.all_pixels,
-                           "Judge every pixel, also where the two frames draw another triangle "
-                           "(as idiff judges cpu.png and gl.png; may fail on a conforming GL)");
   add_threads(crosscheck_cmd, threads);
   add_max_memory(crosscheck_cmd, max_memory);
 
@@ -266,7 +230,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   std::vector<std::pair<const CLI::Option*, std::string>> named = {
       {stages_out, stages.out_dir},        {render_out, render.output},
       {render_float, render.float_output}, {render_stats_json, render.stats_json},
-      {raster_out, raster_options.prefix}, {crosscheck_out, crosscheck.out_dir}};
+      {raster_out, raster_options.prefix}, {crosscheck.out_option, crosscheck.out_dir}};
   for (std::size_t k = 0; k < extra_options.size(); ++k) {
     named.emplace_back(extra_options[k], *std::get<1>(extra_outputs[k]));
   }
@@ -301,11 +265,11 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   const MemoryBudget budget = memory_budget(parse_memory_size(max_memory), max_memory);
   stages.budget = render.budget = raster_options.budget = crosscheck.budget = budget;
   reference.budget = error_options.budget = sweep.budget = path.budget = budget;
-  reference.scene_arg = scene_args.scene;
+  reference.scene_arg = crosscheck.scene_arg = scene_args.scene;
   if (error_cmd->parsed()) {
     return run_error_command(error_options, out, err);
   }
-  crosscheck.cpu_backend = *backend_from_name(cpu_backend);
+  crosscheck.cpu_backend = *backend_from_name(crosscheck.cpu_backend_name);
   if (info_cmd->parsed()) {
     return run_info_command(out);
   }

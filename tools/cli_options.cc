@@ -111,4 +111,22 @@ void add_threads(CLI::App* command, int& threads) {
       ->check(CLI::Range(1, 1024));
 }
 
+void add_float_format(CLI::App* command, FloatFormat& format) {
+  command
+      ->add_option("--float-format", format,
+                   "Format of the float files: pfm (the default) or exr (OpenEXR, 32-bit float)")
+      ->transform(CLI::Validator(
+          [](std::string& text) -> std::string {
+            // The name to the enum's value, which CLI11 then converts; the message names the
+            // option's own values (CLI11's own transformer printed its internal table).
+            const std::string name = CLI::detail::to_lower(text);
+            if (name != "pfm" && name != "exr") {
+              return "'" + brief_text(text) + "' is not a float format; allowed: pfm, exr";
+            }
+            text = std::to_string(int(name == "pfm" ? FloatFormat::kPfm : FloatFormat::kExr));
+            return "";
+          },
+          "pfm|exr"));
+}
+
 }  // namespace relief

@@ -8,6 +8,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "tools/float_image_file.h"
+
 namespace relief {
 
 // SCENE and --set, shared by every command that renders a scene.
@@ -36,5 +38,8 @@ bool given_empty(const CLI::Option* option, const std::string& value);
 void add_backend(CLI::App* command, std::string& backend, std::string& simd_target);
 
 void add_threads(CLI::App* command, int& threads);
+
+// --float-format pfm|exr (any letter case): the format of relief stages' float files.
+void add_float_format(CLI::App* command, FloatFormat& format);
 
 }  // namespace relief

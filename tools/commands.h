@@ -14,7 +14,8 @@
 
 namespace CLI {
 class App;
-}
+class Option;
+}  // namespace CLI
 
 namespace relief {
 
@@ -107,7 +108,13 @@ struct CrosscheckOptions {
                                0.5f / 255, 0, std::numeric_limits<float>::infinity()};
   bool all_pixels = false;  // judge every pixel, as idiff judges the two PNG files
   MemoryBudget budget;
+  std::string cpu_backend_name = "simd";    // --cpu-backend as given
+  std::string scene_arg;                    // SCENE as given: a file is an input
+  const CLI::Option* out_option = nullptr;  // to tell --out "" from no --out
 };
+
+// Adds the command and its own options (SCENE, --set, --threads and --max-memory: cli.cc).
+CLI::App* add_crosscheck_command(CLI::App& app, CrosscheckOptions& options);
 
 // relief crosscheck's exit codes beyond idiff's verdicts (0 pass, 1 warning, 2 failure, 3 size
 // mismatch): bad input or no GL is 4, as relief compare's; an output that cannot be written 5,

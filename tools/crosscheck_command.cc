@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "pipeline/build_info.h"
@@ -23,6 +24,7 @@
 #include "tools/commands.h"
 #include "tools/compare_report.h"
 #include "tools/crosscheck.h"
+#include "tools/distinct_paths.h"
 
 namespace relief {
 
@@ -82,8 +84,45 @@ nlohmann::json figures_json(const CompareResult& r) {
 
 }  // namespace
 
+CLI::App* add_crosscheck_command(CLI::App& app, CrosscheckOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "crosscheck",
+      "Render the scene with a CPU backend and with the GL backend (a GPU, or Mesa's "
+      "llvmpipe) and compare them stage by stage: heights, normals and octave counts at the "
+      "grid's vertices, the triangle at each pixel, the per-pixel outputs, the final images. "
+      "Writes both images, heat maps, a table and its JSON into --out; exits as idiff does on "
+      "the final images over the pixels both draw with the same triangle (0 pass, 1 warning, 2 "
+      "failure; 2 also for a pixel that changed triangle away from any triangle boundary), 4 "
+      "for bad input or no GL, 5 when an output cannot be written.");
+  options.out_option =
+      command->add_option("--out", options.out_dir, "Output directory")->required();
+  command
+      ->add_option("--cpu-backend", options.cpu_backend_name,
+                   "The CPU side: simd (the default) or reference")
+      ->check(CLI::IsMember({"simd", "reference"}));
+  command
+      ->add_option("--repeat", options.repeat,
+                   "Render each backend this many times for the frame times (median)")
+      ->check(CLI::Range(1, 100));
+  add_compare_thresholds(command, options.thresholds);
+  command->add_flag("--all-pixels", options.all_pixels,
+                    "Judge every pixel, also where the two frames draw another triangle (as "
+                    "idiff judges cpu.png and gl.png; may fail on a conforming GL)");
+  return command;
+}
+
 int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options, std::ostream& out,
                            std::ostream& err) {
+  std::vector<CommandPath> paths = scene_input_paths(options.scene_arg, scene);
+  for (const char* name : {"cpu.png", "gl.png", "image_difference.png", "visibility_difference.png",
+                           "height_difference.png", "crosscheck.txt", "crosscheck.json"}) {
+    paths.push_back(
+        {"--out's " + std::string(name), std::filesystem::path(options.out_dir) / name});
+  }
+  if (const std::optional<std::string> conflict = same_file_conflict(paths)) {
+    err << "relief: error: " << *conflict << "\n";
+    return kCrosscheckBadInput;
+  }
   // Two frames with every output, and two grids: twice a render's memory.
   MemoryEstimate estimate = estimate_render_memory(
       scene, options.cpu_backend, FrameOutputs{true, true, true, true, true, true});

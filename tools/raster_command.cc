@@ -15,6 +15,7 @@
 #include "tools/atomic_file.h"
 #include "tools/cli.h"
 #include "tools/commands.h"
+#include "tools/distinct_paths.h"
 #include "tools/soup.h"
 
 namespace relief {
@@ -50,6 +51,15 @@ std::span<const unsigned char> bytes_of(const std::string& text) {
 }  // namespace
 
 int run_raster_command(const RasterOptions& options, std::ostream& out) {
+  // An output named like the soup (relief raster s.json --out s) would replace it.
+  std::vector<CommandPath> paths = {{"FILE", options.soup, false}};
+  for (const char* suffix :
+       {".primitive.bin", ".depth.pfm", ".barycentric.pfm", ".coverage.png", ".json"}) {
+    paths.push_back({"--out's " + std::string(suffix + 1), options.prefix + suffix});
+  }
+  if (const std::optional<std::string> conflict = same_file_conflict(paths)) {
+    throw SoupError(*conflict);
+  }
   const TriangleSoup soup = read_triangle_soup(options.soup, [&](std::uintmax_t file_bytes) {
     check_memory(estimate_soup_memory(file_bytes), options.budget, "reading this soup",
                  "Split the soup");
