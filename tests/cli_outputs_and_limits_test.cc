@@ -254,7 +254,7 @@ TEST_CASE("maxMemoryAcceptsUpToOneExbibyte", "[cli]") {
   const CliResult r = render_small({"--max-memory", "2E", "-o", out.string()});
   INFO(r.err);
   CHECK(r.code == kExitBadInput);
-  CHECK_THAT(r.err, Contains("--max-memory: a size from 1M to 1E"));
+  CHECK_THAT(r.err, Contains("--max-memory: '2E' is not a size from 1M to 1E"));
   CHECK_FALSE(fs::exists(out));
 }
 
@@ -310,4 +310,32 @@ TEST_CASE("crosscheckBadInputExits4", "[cli]") {
 }
 
 }  // namespace
+}  // namespace relief
+
+namespace relief {
+
+TEST_CASE("aReportLostOnStandardOutputIsAnOutputThatCannotBeWritten", "[cli]") {
+  const std::filesystem::path binary = test::relief_binary();
+  if (binary.empty()) {
+    WARN("skipped: no relief binary in this build");
+    return;
+  }
+  test::TempDir dir("cli-stdout-full");
+  // relief info said nothing and relief error exited 0 with its whole report lost.
+  const test::Exit info = test::run_binary(binary, ":", "info >/dev/full", dir.path());
+  CHECK(info.code == 1);
+  CHECK_THAT(info.err, Catch::Contains("cannot write to standard output"));
+  const test::Exit scene = test::run_binary(binary, ":", "scene >/dev/full", dir.path());
+  CHECK(scene.code == 1);
+  // compare's own code for what is not a comparison.
+  const std::string png = (dir.path() / "a.png").string();
+  REQUIRE(run({"render", "--set", "viewport.width=16", "--set", "viewport.height=16", "--set",
+               "grid.width=8", "--set", "grid.height=8", "-o", png})
+              .code == 0);
+  const test::Exit compare =
+      test::run_binary(binary, ":", "compare '" + png + "' '" + png + "' >/dev/full", dir.path());
+  CHECK(compare.code == 4);
+  CHECK_THAT(compare.err, Catch::Contains("cannot write to standard output"));
+}
+
 }  // namespace relief

@@ -172,3 +172,75 @@ TEST_CASE("outputsNamedAfterAnInputOfRasterOrCrosscheckAreRefused", "[cli]") {
 }
 
 }  // namespace relief
+
+namespace relief {
+
+TEST_CASE("noOutputOfACommandReplacesItsSceneOrTheFilesItReads", "[cli]") {
+  // stages once wrote stages.json over a scene file of that name in its --out, and a picture
+  // over a sketch image there; every command's outputs now refuse the scene's inputs.
+  test::TempDir dir("protected-inputs");
+  const CliResult printed = run(with_small({"scene"}));
+  REQUIRE(printed.code == 0);
+  const std::string scene = test::write_file(dir.path() / "stages.json", printed.out);
+  const CliResult stages = run({"stages", scene, "--out", dir.path().string()});
+  CHECK(stages.code == 2);
+  CHECK_THAT(stages.err, Contains("names the same file as the input SCENE"));
+  CHECK(test::read_bytes(scene).size() == printed.out.size());
+  CHECK_FALSE(std::filesystem::exists(dir.path() / "height.png"));
+  // The same through the scene's own default, output.stages_dir.
+  const CliResult here =
+      run({"stages", scene, "--set", "output.stages_dir=\"" + dir.path().string() + "\""});
+  CHECK(here.code == 2);
+  CHECK(test::read_bytes(scene).size() == printed.out.size());
+}
+
+TEST_CASE("stressRefusesErrorBoundsItCannotCheck", "[cli]") {
+  // The distance axis's bounds compare with reference-double; without it the table said every
+  // check holds.
+  const CliResult r = run({"stress", "--axis", "distance", "--backend", "simd", "--viewport", "32",
+                           "24", "--grid", "16"});
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Contains("checks its error bounds against reference-double"));
+  CHECK(r.out.empty());
+}
+
+TEST_CASE("sweepIntoARegularFileIsAnOutputThatCannotBeWritten", "[cli]") {
+  test::TempDir dir("sweep-file");
+  const std::string file = test::write_file(dir.path() / "f.txt", "x");
+  const CliResult r = run({"sweep", "--out", file, "--quick"});
+  CHECK(r.code == 1);
+  CHECK_THAT(r.err, Contains("cannot write into") && Contains("it exists and is not a directory"));
+  CHECK(test::read_bytes(file).size() == 1);
+}
+
+TEST_CASE("optionValuesOfTheWrongFormAreNamedWithTheirRange", "[cli]") {
+  const auto refused = [](std::vector<std::string> args, const std::string& message) {
+    const CliResult r = run(std::move(args));
+    INFO(r.err);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Contains(message));
+  };
+  refused({"render", "--repeat", "1e3"}, "--repeat: '1e3' is not a whole number from 1 to 1000");
+  refused({"render", "--threads", "1.5"}, "--threads: '1.5' is not a whole number from 1 to 1024");
+  refused({"reference", "--supersample", "2.5"}, "--supersample: '2.5' is not a whole number");
+  refused({"render", "--backend", "vulkan"}, "--backend: 'vulkan' is not a backend; allowed: ");
+  refused({"render", "--max-memory", "7Q"}, "--max-memory: '7Q' is not a size from 1M to 1E");
+  refused({"stress", "--max-memory", "7Q"}, "--max-memory: '7Q' is not a size from 1M to 1E");
+  refused({"render", "--simd", ""}, "--simd: empty; give a target");
+}
+
+TEST_CASE("jsonParseErrorsSpeakPlainlyAndEscapeBytesThatAreNotUtf8", "[cli]") {
+  test::TempDir dir("json-errors");
+  const std::string bad = test::write_file(dir.path() / "bad.json", "{\"a\": \"\xff\"}");
+  const CliResult r = run({"scene", bad});
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Contains("not valid JSON: parse error") && Contains("\\xff"));
+  CHECK(r.err.find("[json.exception") == std::string::npos);
+  CHECK(r.err.find('\xff') == std::string::npos);
+  CHECK(r.err.find("NaN and Infinity") == std::string::npos);
+  // The hint stays where the text holds something like NaN.
+  const std::string nan = test::write_file(dir.path() / "nan.json", "{\"terrain\": {\"H\": NaN}}");
+  CHECK_THAT(run({"scene", nan}).err, Contains("NaN and Infinity are not JSON"));
+}
+
+}  // namespace relief

@@ -23,6 +23,12 @@ std::string quoted(const std::filesystem::path& path) {
 
 // A temporary name in the target's directory, short whatever the target's name is (a name
 // derived from it could pass the file system's 255-byte limit).
+// The inputs of the command running now (ProtectedInputs).
+std::vector<CommandPath>& protected_inputs() {
+  static std::vector<CommandPath> inputs;
+  return inputs;
+}
+
 std::filesystem::path temporary_for(const std::filesystem::path& path) {
   static std::atomic<unsigned> counter{0};
   return path.parent_path() /
@@ -75,7 +81,23 @@ void OutputSet::discard() {
   files_.clear();
 }
 
+ProtectedInputs::ProtectedInputs(std::vector<CommandPath> inputs) {
+  protected_inputs() = std::move(inputs);
+}
+
+ProtectedInputs::~ProtectedInputs() {
+  protected_inputs().clear();
+}
+
 void OutputSet::add(const std::filesystem::path& path, std::span<const unsigned char> bytes) {
+  for (const CommandPath& input : protected_inputs()) {
+    if (!input.path.empty() && same_file(path, input.path)) {
+      discard();
+      throw OutputAliasError("the output " + quoted(path) + " names the same file as the input " +
+                             input.option + " " + quoted(input.path) +
+                             "; nothing was written. Give another output name");
+    }
+  }
   std::error_code ec;
   const std::filesystem::file_status status = std::filesystem::status(path, ec);
   if (std::filesystem::is_directory(status)) {

@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "tools/distinct_paths.h"
+
 namespace relief {
 
 // An output could not be written (disk full, no permission, missing directory). The message
@@ -42,6 +44,25 @@ class OutputSet {
   void discard();
 
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> files_;  // temp, target
+};
+
+// An output that would replace one of the process's protected inputs (ProtectedInputs): bad
+// input (exit 2), found before anything is renamed into place, so nothing is written.
+class OutputAliasError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// While one lives, OutputSet::add refuses (OutputAliasError) any output naming the same file as
+// one of `inputs` (distinct_paths.h: links resolved): the files a command reads, its scene's
+// above all, are never replaced by its outputs, whatever output a command forgot to check up
+// front (a stress --sheet, a file inside stages' or sweep's --out). One at a time.
+class ProtectedInputs {
+ public:
+  explicit ProtectedInputs(std::vector<CommandPath> inputs);
+  ~ProtectedInputs();
+  ProtectedInputs(const ProtectedInputs&) = delete;
+  ProtectedInputs& operator=(const ProtectedInputs&) = delete;
 };
 
 // One file on its own: an OutputSet of one.

@@ -1,13 +1,10 @@
 #include "tools/cli.h"
 
-#include <algorithm>
 #include <filesystem>
-#include <map>
 #include <memory>
 #include <new>
 #include <ostream>
 #include <string>
-#include <string_view>
 #include <tuple>
 #include <vector>
 
@@ -42,7 +39,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   app.require_subcommand(1);
   app.footer(
       "Exit codes: 0 success, 2 bad input (nothing written), 1 output not written; compare "
-      "exits as idiff does (relief compare --help).\n"
+      "and crosscheck exit as idiff does (their --help).\n"
       "Run 'relief COMMAND --help' for the options of one command.");
 
   SceneArgs scene_args;
@@ -67,7 +64,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   stages_cmd
       ->add_option("--repeat", stages.repeat,
                    "Run the stages this many times and report the median stage times")
-      ->check(CLI::Range(1, 1000));
+      ->check(integer_in(1, 1000));
   add_threads(stages_cmd, threads);
   std::string max_memory;
   add_max_memory(stages_cmd, max_memory);
@@ -106,7 +103,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   render_cmd
       ->add_option("--repeat", render.repeat,
                    "Render this many times and report the median stage times")
-      ->check(CLI::Range(1, 1000));
+      ->check(integer_in(1, 1000));
   add_threads(render_cmd, threads);
   add_max_memory(render_cmd, max_memory);
   add_backend(render_cmd, backend, simd_target);
@@ -193,14 +190,15 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   add_backend(path_cmd, backend, simd_target);
 
   // CLI11 answers an unknown command with "A subcommand is required"; say what is wrong.
-  const std::vector<std::string> commands = {"scene", "stages",  "render",     "raster",
-                                             "info",  "compare", "crosscheck", "reference",
-                                             "error", "sweep",   "stress",     "path"};
-  if (args.size() > 1 && !args[1].empty() && args[1][0] != '-' &&
-      std::find(commands.begin(), commands.end(), args[1]) == commands.end()) {
-    err << "relief: error: unknown command '" << brief_text(args[1])
-        << "'; commands: scene, stages, render, raster, info, compare, crosscheck, reference, "
-           "error, sweep, stress, path\nRun 'relief --help' for usage.\n";
+  std::string commands;
+  bool known = false;
+  for (const CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
+    commands += (commands.empty() ? "" : ", ") + command->get_name();
+    known = known || (args.size() > 1 && args[1] == command->get_name());
+  }
+  if (args.size() > 1 && !args[1].empty() && args[1][0] != '-' && !known) {
+    err << "relief: error: unknown command '" << brief_text(args[1]) << "'; commands: " << commands
+        << "\nRun 'relief --help' for usage.\n";
     return kExitBadInput;
   }
   // compare and crosscheck exit as idiff does, where 2 means the images differ: their bad
@@ -328,6 +326,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     }
     // The scene is validated completely before any work starts.
     const Scene scene = resolve_scene(scene_args.scene, scene_args.overrides);
+    const ProtectedInputs inputs(scene_input_paths(scene_args.scene, scene));
     if (scene_cmd->parsed()) {
       // The files and the rules that need them (a planet's depth) are checked as render checks
       // them: a scene that prints is one that renders.
@@ -377,6 +376,9 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     return bad_input;
   } catch (const GlBackendError& e) {
     err << "relief: error: " << brief_text(e.what(), 4 * kBriefChars) << "\n";
+    return bad_input;
+  } catch (const OutputAliasError& e) {
+    err << "relief: error: " << e.what() << "\n";
     return bad_input;
   } catch (const OutputError& e) {
     err << "relief: error: " << e.what() << "\n";

@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <charconv>
+#include <climits>
 #include <cmath>
 
 #include "core/scene/json_input.h"
@@ -46,9 +47,11 @@ void add_max_memory(CLI::App* command, std::string& max_memory) {
       ->type_name("SIZE")
       ->check(CLI::Validator(
           [](std::string& text) -> std::string {
-            return parse_memory_size(text) ? ""
-                                           : "a size from 1M to 1E: a number with an optional "
-                                             "unit K, M, G, T, P or E (powers of 1024)";
+            return parse_memory_size(text)
+                       ? ""
+                       : "'" + brief_text(text) +
+                             "' is not a size from 1M to 1E: a number with an optional unit K, "
+                             "M, G, T, P or E (powers of 1024)";
           },
           "SIZE"));
 }
@@ -64,6 +67,26 @@ const CLI::Validator kFiniteViewportValue = CLI::Validator(
       return "";
     },
     "NUMBER in [-1e6, 1e6]");
+
+CLI::Validator integer_in(long long lo, long long hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        long long v = 0;
+        const char* first = text.data() + (!text.empty() && text[0] == '+' ? 1 : 0);
+        const auto [end, ec] = std::from_chars(first, text.data() + text.size(), v);
+        if (text.empty() || ec != std::errc() || end != text.data() + text.size() || v < lo ||
+            v > hi) {
+          // A command that checks the range itself (with the option's own advice) asks for any
+          // int: the message then speaks of the form alone.
+          const bool any_int = lo <= INT_MIN && hi >= INT_MAX;
+          return "'" + brief_text(text) + "' is not a whole number" +
+                 (any_int ? std::string() : " from " + std::to_string(lo) + " to " +
+                                                std::to_string(hi));
+        }
+        return "";
+      },
+      "INT in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+}
 
 bool has_extension(const std::string& name, std::string_view extension) {
   if (name.size() < extension.size()) {
@@ -83,10 +106,16 @@ bool given_empty(const CLI::Option* option, const std::string& value) {
 }
 
 void add_backend(CLI::App* command, std::string& backend, std::string& simd_target) {
-  command->add_option("--simd", simd_target,
-                      "Run the simd backend on this Highway target (AVX3, AVX2, SSE4, SSSE3, "
-                      "SCALAR: relief info lists those compiled in and those this CPU runs); "
-                      "every target gives the same bytes");
+  command
+      ->add_option("--simd", simd_target,
+                   "Run the simd backend on this Highway target (AVX3, AVX2, SSE4, SSSE3, "
+                   "SCALAR: relief info lists those compiled in and those this CPU runs); "
+                   "every target gives the same bytes")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            return text.empty() ? "empty; give a target (relief info lists them)" : "";
+          },
+          "TARGET"));
   std::string names;
   for (std::string_view name : backend_names()) {
     names += (names.empty() ? "" : ", ") + std::string(name);
@@ -99,7 +128,9 @@ void add_backend(CLI::App* command, std::string& backend, std::string& simd_targ
                    "(the GLSL twins on OpenGL 4.5: a GPU, or Mesa's llvmpipe)")
       ->check(CLI::Validator(
           [names](std::string& text) -> std::string {
-            return backend_from_name(text) ? "" : "unknown backend; allowed: " + names;
+            return backend_from_name(text)
+                       ? ""
+                       : "'" + brief_text(text) + "' is not a backend; allowed: " + names;
           },
           "NAME"));
 }
@@ -108,7 +139,7 @@ void add_threads(CLI::App* command, int& threads) {
   command
       ->add_option("--threads", threads,
                    "Worker threads (default: all cores). Results are bit-identical for any count.")
-      ->check(CLI::Range(1, 1024));
+      ->check(integer_in(1, 1024));
 }
 
 void add_float_format(CLI::App* command, FloatFormat& format) {

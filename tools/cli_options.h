@@ -27,6 +27,11 @@ void add_max_memory(CLI::App* command, std::string& max_memory);
 // false).
 extern const CLI::Validator kFiniteViewportValue;
 
+// A whole number written in digits (an optional sign) from lo to hi; the message names the
+// value and the range. CLI::Range let "1e3" and "1.5" through to a message about the range,
+// and a value CLI11 could not convert reached the user as "Could not convert".
+CLI::Validator integer_in(long long lo, long long hi);
+
 // `name` ends in `extension` (lower case), in any letter case.
 bool has_extension(const std::string& name, std::string_view extension);
 

@@ -20,6 +20,7 @@
 #include "pipeline/scene_resources.h"
 #include "tools/atomic_file.h"
 #include "tools/cli.h"
+#include "tools/cli_options.h"
 #include "tools/colormap.h"
 #include "tools/commands.h"
 #include "tools/compare_report.h"
@@ -103,7 +104,7 @@ CLI::App* add_crosscheck_command(CLI::App& app, CrosscheckOptions& options) {
   command
       ->add_option("--repeat", options.repeat,
                    "Render each backend this many times for the frame times (median)")
-      ->check(CLI::Range(1, 100));
+      ->check(integer_in(1, 100));
   add_compare_thresholds(command, options.thresholds);
   command->add_flag("--all-pixels", options.all_pixels,
                     "Judge every pixel, also where the two frames draw another triangle (as "

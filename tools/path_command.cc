@@ -17,6 +17,7 @@
 #include "pipeline/job_memory.h"
 #include "tools/atomic_file.h"
 #include "tools/cli.h"
+#include "tools/cli_options.h"
 #include "tools/terminal_progress.h"
 
 namespace relief {
@@ -35,7 +36,9 @@ CLI::App* add_path_command(CLI::App& app, PathOptions& options) {
       "altitude above terrain.base_height log-uniform from --from-altitude to --to-altitude, "
       "the pitch easing from the scene's to --to-pitch");
   cmd->add_option("--out", options.out_dir, "Directory for the frames")->required();
-  cmd->add_option("--frames", options.frames, "Number of frames (1 to 10000)")->required();
+  cmd->add_option("--frames", options.frames, "Number of frames (1 to 10000)")
+      ->required()
+      ->check(integer_in(1, kMaxFrames));
   cmd->add_option("--from-altitude", options.from_altitude,
                   "Altitude of the first frame above terrain.base_height (> 0, <= 1e9)")
       ->required();

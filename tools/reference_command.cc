@@ -2,6 +2,7 @@
 // (pipeline/ground_truth.h; docs/ground-truth.md). This file parses its options and writes its
 // files; the render is the pipeline's.
 #include <chrono>
+#include <climits>
 #include <iomanip>
 #include <optional>
 #include <ostream>
@@ -76,11 +77,13 @@ CLI::App* add_reference_command(CLI::App& app, ReferenceOptions& options) {
       ->add_option("--supersample", options.settings.supersample,
                    "N: N x N samples per pixel, averaged with a box filter in linear radiance "
                    "(1-16, and the supersampled viewport at most 16384 a side)")
+      ->check(integer_in(INT_MIN, INT_MAX))  // the range: validate_ground_truth
       ->capture_default_str();
   command
       ->add_option("--grid-scale", options.settings.grid_scale,
                    "Projected-grid vertices per axis: the scene's times this (1-16, and at most "
                    "8192 a side)")
+      ->check(integer_in(INT_MIN, INT_MAX))  // the range: validate_ground_truth
       ->capture_default_str();
   command
       ->add_option("--octave-epsilon", options.settings.octave_epsilon,

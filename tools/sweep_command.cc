@@ -143,7 +143,7 @@ CLI::App* add_sweep_command(CLI::App& app, SweepOptions& options) {
   command
       ->add_option("--repeat", options.repeat,
                    "Frames per configuration; the median time is reported (1-1000)")
-      ->check(CLI::Range(1, 1000))
+      ->check(integer_in(1, 1000))
       ->capture_default_str();
   command->add_flag("--quick", options.quick,
                     "A small subset of the configurations (for tests and a first look)");
@@ -180,9 +180,10 @@ int run_sweep_command(const Scene& scene, const SweepOptions& options, std::ostr
   }
   std::error_code ec;
   if (fs::exists(options.out_dir, ec) && !fs::is_directory(options.out_dir, ec)) {
-    err << "relief: error: --out " << brief_text(options.out_dir)
-        << " exists and is not a directory\n";
-    return kExitBadInput;
+    // An output that cannot be written, as stages, path and crosscheck say it (exit 1).
+    err << "relief: error: cannot write into " << brief_text(options.out_dir)
+        << ": it exists and is not a directory\n";
+    return kExitOutputError;
   }
   const bool render_truth = options.reference.empty();
   if (render_truth) {

@@ -1,5 +1,7 @@
 #include "core/scene/json_input.h"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cstdint>
 #include <set>
@@ -192,8 +194,31 @@ json parse_json_strictly(std::string_view text, const std::string& source) {
   try {
     return json::parse(text, on_event);
   } catch (const json::exception& e) {
-    throw SceneError("", source + ": not valid JSON: " + brief_text(e.what(), 3 * kBriefChars) +
-                             " (numbers must be finite; NaN and Infinity are not JSON)");
+    // nlohmann's text without its "[json.exception.parse_error.101] " tag, a byte that is not
+    // UTF-8 as \xNN (it may quote the offending byte), and the hint on NaN only where the text
+    // holds something like it.
+    std::string reason = e.what();
+    if (reason.rfind("[json.exception.", 0) == 0 && reason.find("] ") != std::string::npos) {
+      reason.erase(0, reason.find("] ") + 2);
+    }
+    std::string printable;
+    for (const unsigned char c : reason) {
+      if (c < 0x80) {
+        printable += char(c);
+      } else {
+        static constexpr char kHex[] = "0123456789abcdef";
+        printable += std::string("\\x") + kHex[c >> 4] + kHex[c & 15];
+      }
+    }
+    std::string lower(text);
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    const bool non_finite = lower.find("nan") != std::string::npos ||
+                            lower.find("inf") != std::string::npos;
+    throw SceneError("", source + ": not valid JSON: " + brief_text(printable, 3 * kBriefChars) +
+                             (non_finite ? " (numbers must be finite; NaN and Infinity are not "
+                                           "JSON)"
+                                         : ""));
   }
 }
 
