@@ -28,8 +28,10 @@ RENDER_PACKAGES := cmake make g++ pkg-config \
                    libopenimageio-dev openimageio-tools
 # gnuplot-nox draws relief sweep's plot (an external program, run only by that command; the
 # tests require it).
+# python3 runs the independent transcriptions that the golden numbers of the tests come from
+# (tests/oracles/, standard library only).
 PACKAGES := $(RENDER_PACKAGES) catch2 libbenchmark-dev \
-            libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri gnuplot-nox
+            libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri gnuplot-nox python3
 
 # make fuzz alone: libFuzzer comes with clang (Debian's clang is clang 14; its runtime
 # libraries, libFuzzer among them, are libclang-rt-14-dev). Not needed by make test.

@@ -1,7 +1,8 @@
 // The frame: a scene's stages run in order by a backend, with the outputs a caller asks for.
 //
 // This is the seam every backend plugs into (pipeline/stage_table.h lists the stages): the
-// reference backend in float, the same in double, and later SIMD and GL. A frame renders
+// reference backend in float, the same in double, the simd backend (the float reference with
+// Highway kernels) and GL (the GLSL twins, pipeline/gl_backend.h). A frame renders
 // bit-identically for every thread count; the float and double backends differ by the float
 // error that docs/architecture.md measures.
 #pragma once

@@ -1,7 +1,8 @@
 // What a backend supplies to the frame runner: the units of work of each stage of the table
 // (stage_table.h), and the work of any range of them. The runner schedules; the backend
 // computes. The reference backends (reference_backend.h) run the scalar stages of core/ in
-// float or double; a SIMD or GL backend implements the same entries.
+// float or double, and the simd backend their Highway kernels where a stage has them (the same
+// class, Backend::kSimd); the GL backend (gl_backend.h) runs the GLSL twins.
 #pragma once
 
 #include <cstddef>

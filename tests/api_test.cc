@@ -154,7 +154,6 @@ TEST_CASE("renderReturnsOnlyTheSrgbImageWhenNoOutputIsAskedFor", "[api]") {
   // The work counters reach the caller: every pixel is shaded once, as terrain or background.
   std::uint64_t shaded = 0;
   for (const api::StageReport& stage : stats.stages) {
-    CHECK(stage.ms >= 0);
     for (const auto& [name, value] : stage.counters) {
       if (name == "pixels shaded as terrain" || name == "pixels shaded as background") {
         shaded += value;
@@ -163,7 +162,6 @@ TEST_CASE("renderReturnsOnlyTheSrgbImageWhenNoOutputIsAskedFor", "[api]") {
   }
   CHECK(shaded == 64u * 48u);
   CHECK(stats.total_ms > 0);
-  CHECK(stats.setup_ms >= 0);
   CHECK(stats.triangles_submitted == 2u * 31u * 31u);
   CHECK(stats.triangles_set_up > 0);
 }

@@ -133,7 +133,8 @@ TEST_CASE("floatHeightErrorAtTheVerticesIsSmall", "[ground-truth]") {
   const SceneResources resources = load_scene_resources(scene);
   const VertexHeightError e = vertex_height_error(scene, resources.lattice, Backend::kReference);
   CHECK(e.vertices > 0);
-  CHECK(e.rms <= e.max);
+  // Float and double differ (were both sides double, the bound below would hold vacuously).
+  CHECK(e.max > 0);
   // Camera-relative float heights: within 1e-4 of the amplitude (docs/ground-truth.md).
   CHECK(e.max < 1e-4 * e.amplitude);
 }

@@ -204,6 +204,10 @@ bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
 
 TEST_CASE("planetFramesAreBitIdenticalOnTheSimdBackendOnEveryTargetAndThreadCount",
           "[planet][simd]") {
+  // What this compares across targets: on a planet the simd backend runs stage 2 (the sphere)
+  // and the tiles (rasterise, resolve, shade: the simd resolve carries no drop) as the portable
+  // loops, equal by construction; the Highway kernels it exercises are stage 3's fractal, stage
+  // 4's surface, stage 5's transform of the bent positions and the triangle set-up's snapping.
   const EachTarget targets;
   for (const double altitude : {2e6, 6e4, 700.0}) {
     const Scene scene = test::planet_scene(altitude, {"camera.pitch_deg=-35"}, 56);

@@ -61,8 +61,8 @@ TEST_CASE("floatErrorDoesNotGrowWithTheCameraDistanceUpTo1e12", "[stress]") {
     }
     INFO(row.name);
     REQUIRE(row.height_error.has_value());
-    CHECK(*row.height_error <= kStressHeightErrorBound);
-    CHECK(*row.srgb_share <= kStressSrgbShareBound);
+    CHECK(*row.height_error <= test::kTestHeightErrorBound);
+    CHECK(*row.srgb_share <= test::kTestSrgbShareBound);
     if (row.name != "x + 1000") {  // 1000 is less than a period: other terrain
       CHECK(*row.height_error <= 1.5 * *origin->height_error + 1e-6);
       ++far_rows;
