@@ -38,7 +38,7 @@ struct GlSession {
 };
 
 // The address space a GL driver maps beyond the frame's own memory (current_context).
-constexpr std::uintmax_t kGlDriverAddressSpace = std::uintmax_t{640} << 20;
+constexpr std::uintmax_t kGlDriverAddressSpace = std::uintmax_t{768} << 20;
 
 GlSession& session() {
   static GlSession* const state = new GlSession;  // never destroyed: the driver outlives it
@@ -50,8 +50,9 @@ gpu::HeadlessGl& current_context(GlSession& s) {
   if (s.gl == nullptr && s.error.empty()) {
     // Under an address-space limit (ulimit -v) Mesa's llvmpipe crashes (SIGSEGV in its shader
     // compiler) instead of failing: refuse before the driver loads. Measured on llvmpipe (Mesa
-    // 22.3, 2 cores): the process maps 515 MiB more with GL than without; kGlDriverAddressSpace
-    // adds room for the rasteriser threads' stacks of a larger machine (8 MiB each).
+    // 22.3, 2 cores): a small GL render dies with 691 MiB of address space left at this point
+    // and succeeds with 730 MiB; kGlDriverAddressSpace, and 8 MiB for each rasteriser thread's
+    // stack of a larger machine.
     const std::uintmax_t need =
         kGlDriverAddressSpace + (std::uintmax_t{8} << 20) * std::thread::hardware_concurrency();
     if (const std::optional<std::uintmax_t> left = address_space_remaining();

@@ -94,10 +94,10 @@ TEST_CASE("anAddressSpaceTooSmallForTheGlDriverIsRefusedNotCrashed", "[gl]") {
   }
   test::TempDir dir("gl-ulimit");
   const std::filesystem::path out = dir.path() / "u.png";
-  // 800000 KiB: the frame's estimate fits, llvmpipe's compiler and threads do not (it died of
+  // 700000 KiB: the frame's estimate fits, llvmpipe's compiler and threads do not (it died of
   // SIGSEGV in its shader compiler).
   const test::Exit r = test::run_limited(
-      binary, 800000,
+      binary, 700000,
       "render --backend gl --set viewport.width=512 --set viewport.height=384 -o '" + out.string() +
           "'",
       dir.path());

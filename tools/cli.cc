@@ -22,6 +22,7 @@
 #include "tools/atomic_file.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
+#include "tools/image_library.h"
 #include "tools/path_command.h"
 #include "tools/reference_command.h"
 #include "tools/soup.h"
@@ -365,23 +366,22 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       }
       return run_render_command(scene, render, out, err);
     }
-  } catch (const SceneError& e) {
-    err << "relief: error: " << e.what() << "\n";
-    return bad_input;
-  } catch (const SoupError& e) {
-    err << "relief: error: " << e.what() << "\n";
-    return bad_input;
-  } catch (const MemoryLimitError& e) {
-    err << "relief: error: " << e.what() << "\n";
-    return bad_input;
-  } catch (const GlBackendError& e) {
-    err << "relief: error: " << brief_text(e.what(), 4 * kBriefChars) << "\n";
-    return bad_input;
-  } catch (const OutputAliasError& e) {
-    err << "relief: error: " << e.what() << "\n";
-    return bad_input;
-  } catch (const OutputError& e) {
-    err << "relief: error: " << e.what() << "\n";
+  } catch (const std::runtime_error& e) {
+    // What the user can act on (the scene, the soup, the memory, GL or OpenImageIO missing, an
+    // output naming an input) is bad input; the rest falls through to the handlers below.
+    if (dynamic_cast<const SceneError*>(&e) || dynamic_cast<const SoupError*>(&e) ||
+        dynamic_cast<const MemoryLimitError*>(&e) || dynamic_cast<const GlBackendError*>(&e) ||
+        dynamic_cast<const ImageLibraryError*>(&e) || dynamic_cast<const OutputAliasError*>(&e)) {
+      const bool gl = dynamic_cast<const GlBackendError*>(&e) != nullptr;  // a driver's log
+      err << "relief: error: " << (gl ? brief_text(e.what(), 4 * kBriefChars) : e.what()) << "\n";
+      return bad_input;
+    }
+    if (dynamic_cast<const OutputError*>(&e)) {
+      err << "relief: error: " << e.what() << "\n";
+      return output_error;
+    }
+    err << "relief: internal error: " << brief_text(e.what(), 3 * kBriefChars)
+        << "; nothing was written. Please report this with the command line.\n";
     return output_error;
   } catch (const std::bad_alloc&) {
     // The estimate (job_memory.h) missed, or another process took the memory meanwhile.

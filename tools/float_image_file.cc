@@ -4,11 +4,9 @@
 #include <cctype>
 #include <string>
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
-
 #include "pipeline/image_io.h"
 #include "tools/atomic_file.h"
+#include "tools/image_library.h"
 
 namespace relief {
 
@@ -24,44 +22,16 @@ bool ends_with(std::string_view name, std::string_view extension) {
 std::vector<unsigned char> encode_exr(int width, int height, int channels,
                                       std::span<const float> values, std::size_t stride,
                                       std::span<const ImageText> metadata) {
-  OIIO::ImageSpec spec(width, height, channels, OIIO::TypeFloat);
-  spec.channelnames =
-      channels == 3 ? std::vector<std::string>{"R", "G", "B"} : std::vector<std::string>{"Y"};
-  spec.attribute("compression", "zip");
-  // OpenImageIO stamps the time of writing unless DateTime is given; empty, it writes none, so
-  // the same scene gives the same bytes on every run (docs/architecture.md, "Determinism").
-  spec.attribute("DateTime", "");
-  for (const ImageText& entry : metadata) {
-    spec.attribute(entry.keyword, entry.text);
-  }
-  // Encoded in memory, so that the file is written like every other output (atomic_file.h).
-  // Reserved for the uncompressed floats and headers: ZIP output stays within that (it stores
-  // a block that would not shrink), so the vector does not double as it grows.
-  std::size_t reserve =
-      std::size_t(width) * std::size_t(height) * std::size_t(channels) * 4 + (std::size_t{1} << 20);
-  for (const ImageText& entry : metadata) {
-    reserve += entry.keyword.size() + entry.text.size();
-  }
+  std::string error;
   std::vector<unsigned char> bytes;
-  bytes.reserve(reserve);
-  OIIO::Filesystem::IOVecOutput proxy(bytes);
-  const std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create("relief.exr");
-  const auto fail = [&](const std::string& reason) {
-    return OutputError("cannot encode the EXR image: " +
-                       (reason.empty() ? std::string("OpenImageIO gave no reason") : reason));
-  };
-  if (!out) {
-    throw fail(OIIO::geterror());
+  try {
+    bytes = image_library().encode_exr(width, height, channels, values, stride, metadata, error);
+  } catch (const ImageLibraryError& e) {
+    error = e.what();
   }
-  if (!out->set_ioproxy(&proxy) || !out->open("relief.exr", spec)) {
-    throw fail(out->geterror());
-  }
-  // Row 0 of `values` is the bottom row and EXR stores the top row first: start at the last
-  // row and step backwards.
-  const auto row_bytes = static_cast<OIIO::stride_t>(stride * sizeof(float));
-  const float* top_row = values.data() + std::size_t(height - 1) * stride;
-  if (!out->write_image(OIIO::TypeFloat, top_row, OIIO::AutoStride, -row_bytes) || !out->close()) {
-    throw fail(out->geterror());
+  if (bytes.empty()) {
+    throw OutputError("cannot encode the EXR image: " +
+                      (error.empty() ? std::string("OpenImageIO gave no reason") : error));
   }
   return bytes;
 }

@@ -1,21 +1,10 @@
 #include "tools/image_compare.h"
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
+#include "tools/image_library.h"
 
 namespace relief {
 
 namespace {
-
-// An ImageBuf over the image's floats, without a copy. ImageBuf wraps only mutable buffers;
-// compare, absdiff and maxchan read their sources and never write them.
-OIIO::ImageBuf wrap(const FloatImage& image) {
-  OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeFloat);
-  if (image.channel_names.size() == static_cast<std::size_t>(image.channels)) {
-    spec.channelnames = image.channel_names;
-  }
-  return OIIO::ImageBuf(spec, const_cast<float*>(image.pixels.data()));
-}
 
 std::string size_text(const FloatImage& image) {
   return std::to_string(image.width) + " x " + std::to_string(image.height);
@@ -88,34 +77,25 @@ CompareResult compare_images(const FloatImage& a, const FloatImage& b,
         "the images are empty (" + size_text(a) + ", " + std::to_string(a.channels) + " channels)";
     return result;
   }
-  // One thread (OIIO 2.4's compare runs serially anyway, in batches of 4096 pixels): the sums
-  // are taken in one fixed order, the figures the same on every run.
-  const OIIO::ImageBufAlgo::CompareResults cr = OIIO::ImageBufAlgo::compare(
-      wrap(a), wrap(b), thresholds.fail, thresholds.warn, 0.0f, 0.0f, OIIO::ROI::All(), 1);
-  // cr.error is set when a pixel fails (OIIO returns "nfail == 0" as success), not on an error:
-  // the verdict below decides.
+  // OpenImageIO's ImageBufAlgo::compare (image_library.h), serially: the same figures on every
+  // run.
+  const ImageComparison cr = image_library().compare(a, b, thresholds.fail, thresholds.warn);
   result.pixels = static_cast<std::uint64_t>(a.width) * static_cast<std::uint64_t>(a.height);
-  result.mean_error = cr.meanerror;
+  result.mean_error = cr.mean_error;
   result.rms_error = cr.rms_error;
-  result.psnr = cr.PSNR;
-  result.max_error = cr.maxerror;
-  result.max_x = cr.maxx;
-  result.max_y = cr.maxy;
-  result.max_channel = cr.maxc;
-  result.warn_pixels = cr.nwarn;
-  result.fail_pixels = cr.nfail;
+  result.psnr = cr.psnr;
+  result.max_error = cr.max_error;
+  result.max_x = cr.max_x;
+  result.max_y = cr.max_y;
+  result.max_channel = cr.max_channel;
+  result.warn_pixels = cr.warn_pixels;
+  result.fail_pixels = cr.fail_pixels;
   result.verdict = verdict(result, thresholds);
   return result;
 }
 
 std::vector<float> largest_channel_difference(const FloatImage& a, const FloatImage& b) {
-  // Every thread: each pixel is computed on its own, the same whichever thread computes it.
-  const OIIO::ImageBuf difference =
-      OIIO::ImageBufAlgo::absdiff(wrap(a), wrap(b), OIIO::ROI::All(), 0);
-  const OIIO::ImageBuf largest = OIIO::ImageBufAlgo::maxchan(difference, OIIO::ROI::All(), 0);
-  std::vector<float> out(static_cast<std::size_t>(a.width) * static_cast<std::size_t>(a.height));
-  largest.get_pixels(OIIO::ROI(0, a.width, 0, a.height, 0, 1, 0, 1), OIIO::TypeFloat, out.data());
-  return out;
+  return image_library().largest_channel_difference(a, b);
 }
 
 }  // namespace relief

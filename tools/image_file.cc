@@ -3,15 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
-#include <OpenImageIO/imageio.h>
-
 #include "core/input_file.h"
 #include "core/scene/json_input.h"
+#include "tools/image_library.h"
 
 namespace relief {
 
 struct ImageFile::Input {
-  std::unique_ptr<OIIO::ImageInput> image;
+  std::unique_ptr<ImageReader> image;
 };
 
 namespace {
@@ -39,36 +38,36 @@ ImageFile::ImageFile(const std::filesystem::path& path)
   } catch (const InputFileError& e) {
     throw ImageFileError(named(path) + " " + e.what());
   }
-  input_->image = OIIO::ImageInput::open(path.string());
-  if (!input_->image) {
-    throw ImageFileError(named(path) +
-                         " cannot be read as an image: " + oiio_reason(OIIO::geterror()));
+  std::string error;
+  try {
+    input_->image = image_library().open(path.string(), error);
+  } catch (const ImageLibraryError& e) {
+    throw ImageFileError(named(path) + " cannot be read: " + e.what());
   }
-  const OIIO::ImageSpec& spec = input_->image->spec();
-  if (spec.deep || spec.depth != 1) {
-    throw ImageFileError(named(path) + " is a " + (spec.deep ? "deep" : "volume") +
+  if (!input_->image) {
+    throw ImageFileError(named(path) + " cannot be read as an image: " + oiio_reason(error));
+  }
+  const ImageHeader& header = input_->image->header();
+  if (header.deep || header.depth != 1) {
+    throw ImageFileError(named(path) + " is a " + (header.deep ? "deep" : "volume") +
                          " image; only flat 2-D images are compared");
   }
-  if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1) {
+  if (header.width < 1 || header.height < 1 || header.channels < 1) {
     throw ImageFileError(named(path) + " holds no pixels");
   }
-  width_ = spec.width;
-  height_ = spec.height;
-  channels_ = spec.nchannels;
+  width_ = header.width;
+  height_ = header.height;
+  channels_ = header.channels;
 }
 
 ImageFile::~ImageFile() = default;
 
 std::string ImageFile::format() const {
-  return input_->image->format_name();
+  return input_->image->header().format;
 }
 
 std::optional<std::string> ImageFile::text(const std::string& key) const {
-  const OIIO::ParamValue* value = input_->image->spec().find_attribute(key, OIIO::TypeString);
-  if (value == nullptr) {
-    return std::nullopt;
-  }
-  return std::string(value->get_ustring().string());
+  return input_->image->text(key);
 }
 
 std::uintmax_t ImageFile::float_bytes() const {
@@ -81,11 +80,11 @@ FloatImage ImageFile::read() {
   image.width = width_;
   image.height = height_;
   image.channels = channels_;
-  image.channel_names = input_->image->spec().channelnames;
+  image.channel_names = input_->image->header().channel_names;
   image.pixels.resize(float_bytes() / sizeof(float));
-  if (!input_->image->read_image(0, 0, 0, channels_, OIIO::TypeFloat, image.pixels.data())) {
-    throw ImageFileError(named(path_) +
-                         " cannot be read: " + oiio_reason(input_->image->geterror()));
+  std::string error;
+  if (!input_->image->read(image.pixels.data(), error)) {
+    throw ImageFileError(named(path_) + " cannot be read: " + oiio_reason(error));
   }
   return image;
 }

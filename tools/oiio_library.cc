@@ -1,0 +1,158 @@
+// librelief_images.so: every OpenImageIO call of the command line (image_library.h), loaded
+// with dlopen only by the commands that need it. The code is what image_file.cc,
+// image_compare.cc and float_image_file.cc ran when OpenImageIO was linked into the binary.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+
+#include "tools/image_library.h"
+
+namespace relief {
+
+namespace {
+
+class OiioReader : public ImageReader {
+ public:
+  explicit OiioReader(std::unique_ptr<OIIO::ImageInput> input) : input_(std::move(input)) {
+    const OIIO::ImageSpec& spec = input_->spec();
+    header_.width = spec.width;
+    header_.height = spec.height;
+    header_.depth = spec.depth;
+    header_.channels = spec.nchannels;
+    header_.deep = spec.deep;
+    header_.format = input_->format_name();
+    header_.channel_names = spec.channelnames;
+  }
+  const ImageHeader& header() const override { return header_; }
+  std::optional<std::string> text(const std::string& key) const override {
+    const OIIO::ParamValue* value = input_->spec().find_attribute(key, OIIO::TypeString);
+    if (value == nullptr) {
+      return std::nullopt;
+    }
+    return std::string(value->get_ustring().string());
+  }
+  bool read(float* pixels, std::string& error) override {
+    if (!input_->read_image(0, 0, 0, header_.channels, OIIO::TypeFloat, pixels)) {
+      error = input_->geterror();
+      return false;
+    }
+    return true;
+  }
+
+ private:
+  std::unique_ptr<OIIO::ImageInput> input_;
+  ImageHeader header_;
+};
+
+// An ImageBuf over the image's floats, without a copy. ImageBuf wraps only mutable buffers;
+// compare, absdiff and maxchan read their sources and never write them.
+OIIO::ImageBuf wrap(const FloatImage& image) {
+  OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeFloat);
+  if (image.channel_names.size() == static_cast<std::size_t>(image.channels)) {
+    spec.channelnames = image.channel_names;
+  }
+  return OIIO::ImageBuf(spec, const_cast<float*>(image.pixels.data()));
+}
+
+class OiioLibrary : public ImageLibrary {
+ public:
+  std::unique_ptr<ImageReader> open(const std::string& path, std::string& error) const override {
+    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
+    if (!input) {
+      error = OIIO::geterror();
+      return nullptr;
+    }
+    return std::make_unique<OiioReader>(std::move(input));
+  }
+
+  ImageComparison compare(const FloatImage& a, const FloatImage& b, float fail,
+                          float warn) const override {
+    // One thread (OIIO 2.4's compare runs serially anyway, in batches of 4096 pixels): the sums
+    // are taken in one fixed order, the figures the same on every run.
+    const OIIO::ImageBufAlgo::CompareResults cr =
+        OIIO::ImageBufAlgo::compare(wrap(a), wrap(b), fail, warn, 0.0f, 0.0f, OIIO::ROI::All(), 1);
+    ImageComparison c;
+    c.mean_error = cr.meanerror;
+    c.rms_error = cr.rms_error;
+    c.psnr = cr.PSNR;
+    c.max_error = cr.maxerror;
+    c.max_x = cr.maxx;
+    c.max_y = cr.maxy;
+    c.max_channel = cr.maxc;
+    c.warn_pixels = cr.nwarn;
+    c.fail_pixels = cr.nfail;
+    return c;
+  }
+
+  std::vector<float> largest_channel_difference(const FloatImage& a,
+                                                const FloatImage& b) const override {
+    // Every thread: each pixel is computed on its own, the same whichever thread computes it.
+    const OIIO::ImageBuf difference =
+        OIIO::ImageBufAlgo::absdiff(wrap(a), wrap(b), OIIO::ROI::All(), 0);
+    const OIIO::ImageBuf largest = OIIO::ImageBufAlgo::maxchan(difference, OIIO::ROI::All(), 0);
+    std::vector<float> out(static_cast<std::size_t>(a.width) * static_cast<std::size_t>(a.height));
+    largest.get_pixels(OIIO::ROI(0, a.width, 0, a.height, 0, 1, 0, 1), OIIO::TypeFloat, out.data());
+    return out;
+  }
+
+  std::vector<unsigned char> encode_exr(int width, int height, int channels,
+                                        std::span<const float> values, std::size_t stride,
+                                        std::span<const ImageText> metadata,
+                                        std::string& error) const override {
+    OIIO::ImageSpec spec(width, height, channels, OIIO::TypeFloat);
+    spec.channelnames =
+        channels == 3 ? std::vector<std::string>{"R", "G", "B"} : std::vector<std::string>{"Y"};
+    spec.attribute("compression", "zip");
+    // OpenImageIO stamps the time of writing unless DateTime is given; empty, it writes none,
+    // so the same scene gives the same bytes on every run (docs/architecture.md, "Determinism").
+    spec.attribute("DateTime", "");
+    for (const ImageText& entry : metadata) {
+      spec.attribute(entry.keyword, entry.text);
+    }
+    // Encoded in memory, so that the file is written like every other output (atomic_file.h).
+    // Reserved for the uncompressed floats and headers: ZIP output stays within that (it
+    // stores a block that would not shrink), so the vector does not double as it grows.
+    std::size_t reserve = std::size_t(width) * std::size_t(height) * std::size_t(channels) * 4 +
+                          (std::size_t{1} << 20);
+    for (const ImageText& entry : metadata) {
+      reserve += entry.keyword.size() + entry.text.size();
+    }
+    std::vector<unsigned char> bytes;
+    bytes.reserve(reserve);
+    OIIO::Filesystem::IOVecOutput proxy(bytes);
+    const std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create("relief.exr");
+    if (!out) {
+      error = OIIO::geterror();
+      return {};
+    }
+    if (!out->set_ioproxy(&proxy) || !out->open("relief.exr", spec)) {
+      error = out->geterror();
+      return {};
+    }
+    // Row 0 of `values` is the bottom row and EXR stores the top row first: start at the last
+    // row and step backwards.
+    const auto row_bytes = static_cast<OIIO::stride_t>(stride * sizeof(float));
+    const float* top_row = values.data() + std::size_t(height - 1) * stride;
+    if (!out->write_image(OIIO::TypeFloat, top_row, OIIO::AutoStride, -row_bytes) ||
+        !out->close()) {
+      error = out->geterror();
+      return {};
+    }
+    return bytes;
+  }
+};
+
+}  // namespace
+
+}  // namespace relief
+
+extern "C" __attribute__((visibility("default"))) const relief::ImageLibrary*
+relief_image_library() {
+  static const relief::OiioLibrary library;
+  return &library;
+}
