@@ -40,6 +40,22 @@ std::optional<std::uintmax_t> cgroup_remaining() {
   return *limit > used ? *limit - used : 0;
 }
 
+// A "Key: N kB" line of a kernel file (/proc/meminfo, /proc/self/status) in bytes; nullopt if
+// the file or the key is missing.
+std::optional<std::uintmax_t> read_kib_field(const char* path, std::string_view wanted) {
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream fields(line);
+    std::string key;
+    std::uintmax_t kib = 0;
+    if (fields >> key >> kib && key == wanted) {
+      return kib * 1024;
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 // Allocations fail at the address-space limit long before physical memory runs out, so a job
@@ -49,33 +65,13 @@ std::optional<std::uintmax_t> address_space_remaining() {
   if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) {
     return std::nullopt;
   }
-  std::ifstream status("/proc/self/status");
-  std::string line;
-  std::uintmax_t mapped = 0;
-  while (std::getline(status, line)) {
-    std::istringstream fields(line);
-    std::string key;
-    std::uintmax_t kib = 0;
-    if (fields >> key >> kib && key == "VmSize:") {
-      mapped = kib * 1024;
-    }
-  }
+  const std::uintmax_t mapped = read_kib_field("/proc/self/status", "VmSize:").value_or(0);
   const std::uintmax_t cap = limit.rlim_cur;
   return cap > mapped ? cap - mapped : 0;
 }
 
 std::optional<std::uintmax_t> available_memory() {
-  std::optional<std::uintmax_t> available;
-  std::ifstream meminfo("/proc/meminfo");
-  std::string line;
-  while (std::getline(meminfo, line)) {
-    std::istringstream fields(line);
-    std::string key;
-    std::uintmax_t kib = 0;
-    if (fields >> key >> kib && key == "MemAvailable:") {
-      available = kib * 1024;
-    }
-  }
+  std::optional<std::uintmax_t> available = read_kib_field("/proc/meminfo", "MemAvailable:");
   if (const std::optional<std::uintmax_t> cgroup = cgroup_remaining()) {
     available = available ? std::min(*available, *cgroup) : *cgroup;
   }

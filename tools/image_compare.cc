@@ -79,19 +79,10 @@ CompareResult compare_images(const FloatImage& a, const FloatImage& b,
   }
   // OpenImageIO's ImageBufAlgo::compare (image_library.h), serially: the same figures on every
   // run.
-  const ImageComparison cr = image_library().compare(a, b, thresholds.fail, thresholds.warn);
-  result.pixels = static_cast<std::uint64_t>(a.width) * static_cast<std::uint64_t>(a.height);
-  result.mean_error = cr.mean_error;
-  result.rms_error = cr.rms_error;
-  result.psnr = cr.psnr;
-  result.max_error = cr.max_error;
-  result.max_x = cr.max_x;
-  result.max_y = cr.max_y;
-  result.max_channel = cr.max_channel;
-  result.warn_pixels = cr.warn_pixels;
-  result.fail_pixels = cr.fail_pixels;
-  result.verdict = verdict(result, thresholds);
-  return result;
+  CompareResult figures = image_library().compare(a, b, thresholds.fail, thresholds.warn);
+  figures.pixels = static_cast<std::uint64_t>(a.width) * static_cast<std::uint64_t>(a.height);
+  figures.verdict = verdict(figures, thresholds);
+  return figures;
 }
 
 std::vector<float> largest_channel_difference(const FloatImage& a, const FloatImage& b) {

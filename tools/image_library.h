@@ -47,21 +47,15 @@ class ImageReader {
   virtual bool read(float* pixels, std::string& error) = 0;
 };
 
-// ImageBufAlgo::compare's figures (the verdict is idiff's, image_compare.cc).
-struct ImageComparison {
-  double mean_error = 0, rms_error = 0, psnr = 0, max_error = 0;
-  int max_x = 0, max_y = 0, max_channel = 0;
-  std::uint64_t warn_pixels = 0, fail_pixels = 0;
-};
-
 class ImageLibrary {
  public:
   virtual ~ImageLibrary() = default;
   // Null with `error` set when OpenImageIO cannot open the file as an image.
   virtual std::unique_ptr<ImageReader> open(const std::string& path, std::string& error) const = 0;
+  // ImageBufAlgo::compare's figures (the pixel count and idiff's verdict are image_compare.cc's);
   // a and b: the same size and channel count, at least one pixel.
-  virtual ImageComparison compare(const FloatImage& a, const FloatImage& b, float fail,
-                                  float warn) const = 0;
+  virtual CompareResult compare(const FloatImage& a, const FloatImage& b, float fail,
+                                float warn) const = 0;
   virtual std::vector<float> largest_channel_difference(const FloatImage& a,
                                                         const FloatImage& b) const = 0;
   // An EXR file's bytes (float_image_file.h); empty with `error` set on failure.

@@ -70,13 +70,13 @@ class OiioLibrary : public ImageLibrary {
     return std::make_unique<OiioReader>(std::move(input));
   }
 
-  ImageComparison compare(const FloatImage& a, const FloatImage& b, float fail,
-                          float warn) const override {
+  CompareResult compare(const FloatImage& a, const FloatImage& b, float fail,
+                        float warn) const override {
     // One thread (OIIO 2.4's compare runs serially anyway, in batches of 4096 pixels): the sums
     // are taken in one fixed order, the figures the same on every run.
     const OIIO::ImageBufAlgo::CompareResults cr =
         OIIO::ImageBufAlgo::compare(wrap(a), wrap(b), fail, warn, 0.0f, 0.0f, OIIO::ROI::All(), 1);
-    ImageComparison c;
+    CompareResult c;
     c.mean_error = cr.meanerror;
     c.rms_error = cr.rms_error;
     c.psnr = cr.PSNR;
