@@ -347,6 +347,17 @@ TEST_CASE("aReportLostOnStandardOutputIsAnOutputThatCannotBeWritten", "[cli]") {
       test::run_binary(binary, ":", "compare '" + png + "' '" + png + "' >/dev/full", dir.path());
   CHECK(compare.code == 4);
   CHECK_THAT(compare.err, Catch::Contains("cannot write to standard output"));
+  // Also when the verdict was not a pass (3: the sizes differ): the report was lost all the
+  // same.
+  const std::string other = (dir.path() / "b.png").string();
+  REQUIRE(run({"render", "--set", "viewport.width=16", "--set", "viewport.height=8", "--set",
+               "grid.width=8", "--set", "grid.height=8", "-o", other})
+              .code == 0);
+  CHECK(test::run_binary(binary, ":", "compare '" + png + "' '" + other + "'", dir.path()).code ==
+        3);
+  const test::Exit differ =
+      test::run_binary(binary, ":", "compare '" + png + "' '" + other + "' >/dev/full", dir.path());
+  CHECK(differ.code == 4);
 }
 
 }  // namespace relief

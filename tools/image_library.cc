@@ -1,6 +1,7 @@
 #include "tools/image_library.h"
 
 #include <dlfcn.h>
+#include <link.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -69,12 +70,23 @@ const ImageLibrary* load(std::string& error) {
       error = "cannot load " + path.string() + ": " + (reason ? reason : "no reason given");
       return nullptr;
     }
-    const auto entry = reinterpret_cast<ImageLibraryEntry>(::dlsym(handle, kImageLibrarySymbol));
-    if (entry == nullptr) {
-      error = path.string() + " is not Relief's image library (no " + kImageLibrarySymbol + ")";
+    void* const symbol = ::dlsym(handle, kImageLibrarySymbol);
+    // A data object of that name would be called as code: only a function is taken.
+    Dl_info info{};
+    void* entry_symbol_raw = nullptr;
+    if (symbol == nullptr || ::dladdr1(symbol, &info, &entry_symbol_raw, RTLD_DL_SYMENT) == 0 ||
+        entry_symbol_raw == nullptr ||
+        ELF64_ST_TYPE(static_cast<const ElfW(Sym)*>(entry_symbol_raw)->st_info) != STT_FUNC) {
+      error = path.string() + " is not Relief's image library (no function " + kImageLibrarySymbol +
+              ")";
       return nullptr;
     }
-    return entry();
+    const ImageLibrary* library = reinterpret_cast<ImageLibraryEntry>(symbol)();
+    if (library == nullptr) {
+      error = path.string() + " is not Relief's image library (its " + kImageLibrarySymbol +
+              " returned nothing)";
+    }
+    return library;
   }
   error = "Relief's image library (OpenImageIO) is not installed: looked for " + tried;
   return nullptr;
