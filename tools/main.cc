@@ -8,20 +8,16 @@
 int main(int argc, char** argv) {
   const int code =
       relief::run_cli(std::vector<std::string>(argv, argv + argc), std::cout, std::cerr);
-  // A report lost on the way out (stdout on a full disk, a closed pipe) is an output that could
-  // not be written: said, and not exit 0.
   std::cout.flush();
-  if (!std::cout) {
-    std::cerr << "relief: error: cannot write to standard output; the report was lost\n";
-    // compare's codes are idiff's (1 is a warning there, 4 anything that is not a comparison);
-    // crosscheck's unwritten output is 5.
-    const std::string command = argc > 1 ? argv[1] : "";
-    const int lost = command == "compare"      ? 4
-                     : command == "crosscheck" ? relief::kCrosscheckOutputError
-                                               : relief::kExitOutputError;
-    // Whatever the verdict was, the report was not delivered: that is the code.
-    (void)code;
-    return lost;
+  if (std::cout) {
+    return code;
   }
-  return code;
+  // A report lost on the way out (stdout on a full disk, a closed pipe) is an output that could
+  // not be written, whatever the verdict was: compare's code for it is idiff's 4 (1 is a warning
+  // there), crosscheck's 5.
+  std::cerr << "relief: error: cannot write to standard output; the report was lost\n";
+  const std::string command = argc > 1 ? argv[1] : "";
+  return command == "compare"      ? relief::exit_code(relief::CompareVerdict::kFileError)
+         : command == "crosscheck" ? relief::kCrosscheckOutputError
+                                   : relief::kExitOutputError;
 }
