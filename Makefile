@@ -24,7 +24,7 @@ PREFIX       ?= /usr/local
 # OpenImageIOConfig.cmake refuses to load without its programs, so openimageio-tools comes
 # with it (the tests also run its idiff).
 RENDER_PACKAGES := cmake make g++ pkg-config \
-                   libtbb-dev libglm-dev libstb-dev nlohmann-json3-dev libcli11-dev libhwy-dev \
+                   libtbb-dev libglm-dev libstb-dev libdeflate-dev nlohmann-json3-dev libcli11-dev libhwy-dev \
                    libopenimageio-dev openimageio-tools
 # gnuplot-nox draws relief sweep's plot (an external program, run only by that command; the
 # tests require it).

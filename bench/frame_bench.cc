@@ -1,7 +1,7 @@
 // Whole frames of the default scene (1280 x 1024 viewport, 512 x 512 grid, the paper's
 // settings) side by side in one run: the tile-fused frame of the library in float (scalar and
 // simd backends, the same bytes) and in double,
-// and the same stages composed over whole-frame buffers (pipeline/whole_frame.h, the layout
+// and the same stages composed over whole-frame buffers (tests/oracles/whole_frame.h, the layout
 // before the fusion). The argument is the thread count. Run:
 //   build/bench/relief_bench_frame --benchmark_repetitions=5
 //   --benchmark_report_aggregates_only=true
@@ -11,7 +11,7 @@
 #include "core/scene/scene_json.h"
 #include "pipeline/frame.h"
 #include "pipeline/scene_resources.h"
-#include "pipeline/whole_frame.h"
+#include "tests/oracles/whole_frame.h"
 
 namespace relief {
 namespace {

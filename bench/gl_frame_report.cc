@@ -1,5 +1,5 @@
 // The GL backend against the CPU backend on whole frames, at the scene's own settings: the
-// figures relief crosscheck prints (pipeline/frame_comparison.h) and the frame times, without
+// figures relief crosscheck prints (eval/frame_comparison.h) and the frame times, without
 // OpenImageIO, so that it runs on a GPU machine that has only the GL driver. For each preset
 // (or the scenes named), renders the frame with every output by the simd backend (2 threads
 // and all threads) and by the GL backend, `repeat` times each, and prints the median times,
@@ -16,7 +16,7 @@
 
 #include "core/scene/scene_json.h"
 #include "pipeline/frame.h"
-#include "pipeline/frame_comparison.h"
+#include "eval/frame_comparison.h"
 #include "pipeline/gl_backend.h"
 #include "pipeline/scene_resources.h"
 

@@ -18,7 +18,7 @@
 #include "core/scene/scene_json.h"
 #include "pipeline/frame.h"
 #include "pipeline/scene_resources.h"
-#include "pipeline/whole_frame.h"
+#include "tests/oracles/whole_frame.h"
 
 namespace relief {
 namespace {

@@ -12,7 +12,7 @@
 
 #include "core/lattice.h"
 #include "core/scene/scene_json.h"
-#include "pipeline/whole_frame.h"
+#include "tests/oracles/whole_frame.h"
 #include "raster/rasterize.h"
 #include "raster/resolve.h"
 

@@ -240,7 +240,7 @@ Real atan_reduced(Real u) {
 }  // namespace det_math_detail
 
 // sin(x) and cos(x) for |x| <= 64, within 3 ulp of the true values (2.3 measured on [-8, 8]
-// by tests/planet_geometry_test.cc), also near the zeros (sin(x) for tiny x is x).
+// by tests/core/planet_geometry_test.cc), also near the zeros (sin(x) for tiny x is x).
 // Outside the domain the reduction loses accuracy but the results stay finite in [-1, 1].
 // Method: k = round(x / (pi/2)), r = x - k pi/2 in three pieces, the Taylor series of sin and
 // cos of r, and the quadrant k mod 4 picks and negates them. Used by the planet's bend
@@ -280,7 +280,7 @@ Real sin_det(Real x) {
 }
 
 // atan2(y, x) for y >= 0 and any finite x: the angle in [0, pi] between (x, y) and the +x
-// axis, within 3.5 ulp (2.97 measured by tests/planet_geometry_test.cc); 0 for (0, 0). (Relief
+// axis, within 3.5 ulp (2.97 measured by tests/core/planet_geometry_test.cc); 0 for (0, 0). (Relief
 // only needs angles from a downward or horizontal axis, so y is a length.) Method: t =
 // min / max of |x| and y in [0, 1]; above tan(pi/8), atan t = pi/4 + atan((t - 1) / (t + 1));
 // the series; then pi/2 - a where y > |x|, pi - a where x < 0.

@@ -45,7 +45,7 @@ void* allocate_frame_buffer(std::size_t bytes, std::size_t align);
 void free_frame_buffer(void* block, std::size_t bytes, std::size_t align) noexcept;
 
 // Returns the kept blocks to the system, so that a measurement of the process's resident
-// memory (pipeline/process_memory.h) sees every buffer of the next frame mapped afresh.
+// memory (eval/process_memory.h) sees every buffer of the next frame mapped afresh.
 void release_cached_frame_buffers() noexcept;
 
 }  // namespace relief

@@ -53,7 +53,7 @@ inline const std::array<std::uint8_t, 0x3f81>& bucket_codes() {
 
 // The same search without a loop, for vector kernels: per bucket, its first code widened to 32
 // bits and the least float at which the code rises by one (a bucket spans at most two codes:
-// tests/shading_test.cc checks every bucket), or 2 where it does not rise inside the bucket.
+// tests/core/shading_test.cc checks every bucket), or 2 where it does not rise inside the bucket.
 // A float x is >= the double t_k exactly when it is >= the least float >= t_k.
 struct BucketSteps {
   std::array<std::int32_t, 0x3f81> code{};

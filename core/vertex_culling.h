@@ -16,7 +16,7 @@
 //             its neighbours read it, core/surface.h).
 // A triangle is drawn only if its three vertices are kDraw; the others are certainly
 // invisible, and every value a drawn triangle or a kDraw normal reads is computed, so the image
-// is the same as with no culling at all (tests/skip_test.cc).
+// is the same as with no culling at all (tests/pipeline/skip_test.cc).
 #pragma once
 
 #include <cstdint>

@@ -1,6 +1,6 @@
 // One input of each fuzzer, through the entry point the command line uses for that input's
 // bytes. The fuzzers (fuzz/*_fuzzer.cc) call these for every input libFuzzer makes, and
-// tests/fuzz_corpus_test.cc for every file of the seed corpora and of fuzz/regressions/, so
+// tests/cli/fuzz_corpus_test.cc for every file of the seed corpora and of fuzz/regressions/, so
 // that the corpora stay meaningful in the ordinary build.
 //
 // Each returns true when the input was accepted and false when it was refused with the error

@@ -4,7 +4,7 @@ the constructed regression inputs of fuzz/regressions/.
 
 Run from the repository root after a scene field is added or renamed:
     python3 fuzz/make_seeds.py
-The outputs are committed; the fuzzers and tests/fuzz_corpus_test.cc read them, not this
+The outputs are committed; the fuzzers and tests/cli/fuzz_corpus_test.cc read them, not this
 script. Standard library only: the PNGs are written chunk by chunk with zlib.
 """
 import json
@@ -152,7 +152,7 @@ write("texture", "rgb8_8x8_adam7.png",
       chunk(b"IEND", b""))
 write("texture", "truncated.png", png(4, 4, 8, 2, samples(4, 4, 3, 8))[:45])
 
-# A regression (tests/fuzz_regression_test.cc): a 4x4 RGB texture whose image data inflates to
+# A regression (tests/cli/fuzz_regression_test.cc): a 4x4 RGB texture whose image data inflates to
 # 1 MB instead of the 52 bytes its header gives; stb_image would inflate any amount.
 bomb = zlib.compress(bytes(1 << 20), 9)
 (FUZZ / "regressions" / "texture_inflates_past_header.png").write_bytes(

@@ -13,7 +13,7 @@
 #include "core/scene/scene_json.h"
 #include "pipeline/builtin_sketches.h"
 #include "pipeline/png_checks.h"
-#include "pipeline/png_header.h"
+#include "image/png_header.h"
 
 namespace relief {
 

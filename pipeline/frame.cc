@@ -12,7 +12,7 @@
 #include <tbb/partitioner.h>
 
 #include "pipeline/gl_backend.h"
-#include "pipeline/reference_backend.h"
+#include "pipeline/cpu_backend.h"
 #include "pipeline/stage_table.h"
 
 namespace relief {
@@ -59,7 +59,7 @@ Frame render_with(const Scene& scene, const SceneResources& resources,
   if (request.backend == Backend::kGl) {
     backend = make_gl_backend(scene, resources, request);
   } else {
-    backend = std::make_unique<ReferenceBackend<Real>>(scene, resources.lattice, resources.textures,
+    backend = std::make_unique<CpuBackend<Real>>(scene, resources.lattice, resources.textures,
                                                        request, resources.sketch_or_null(),
                                                        resources.basis_or_null());
   }
@@ -115,7 +115,7 @@ FrameStats render_bands_with(const Scene& scene, const SceneResources& resources
                              const FrameRequest& request, int band_rows,
                              const std::function<void(const FrameImage&, int)>& consume) {
   const Clock::time_point start = Clock::now();
-  ReferenceBackend<Real> backend(scene, resources.lattice, resources.textures, request,
+  CpuBackend<Real> backend(scene, resources.lattice, resources.textures, request,
                                  resources.sketch_or_null(), resources.basis_or_null());
   FrameStats stats;
   stats.stages.push_back({"frame plan", milliseconds_since(start), true, {}});
@@ -193,7 +193,7 @@ TerrainRun<Real> run_terrain_stages(const Scene& scene, const NoiseLattice& latt
   FrameRequest request;
   request.backend = kind;
   request.skips.unseen_vertices = false;
-  ReferenceBackend<Real> backend(scene, lattice, {}, request, sketch);
+  CpuBackend<Real> backend(scene, lattice, {}, request, sketch);
   std::vector<StageTime> times{{"frame plan", milliseconds_since(start), true, {}}};
   run_table(backend, StageId::kSurface, times);
   return {backend.plan(), backend.take_grid(), std::move(times)};

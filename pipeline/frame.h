@@ -2,13 +2,15 @@
 //
 // This is the seam every backend plugs into (pipeline/stage_table.h lists the stages): the
 // reference backend in float, the same in double, the simd backend (the float reference with
-// Highway kernels) and GL (the GLSL twins, pipeline/gl_backend.h). A frame renders
+// Highway kernels; all three the CPU backend with another kernel table, cpu_kernels.h) and GL
+// (the GLSL twins, pipeline/gl_backend.h). A frame renders
 // bit-identically for every thread count; the float and double backends differ by the float
 // error that docs/architecture.md measures.
 #pragma once
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -48,13 +50,14 @@ struct FrameOutputs {
   bool octaves = false;       // interpolated octave count nu (stage 2)
 };
 
-// The octave count of a ground-truth frame (pipeline/ground_truth.h) in place of stage 2's
-// LOD rule: from a lower bound of each vertex's distance to the camera instead of the grid
-// spacing, nu = clamp(c0 - c1 log2(dx^2 + dz^2 + gap_sq), 1, nu_max), nu_max where the squared
-// distance is below limits::kMinSpacingSq (the log's domain guard).
-struct DistanceLod {
-  double c0 = 0, c1 = 0, nu_max = 1;
-  double gap_sq = 0;  // squared height of the camera above the highest possible terrain, or 0
+// A rule that replaces stage 2's octave count nu over a range of grid rows, run by the CPU
+// backends right after stage 2 on those rows. The ground truth installs its distance rule
+// (eval/distance_lod.h); the frame knows nothing of it. Called concurrently for disjoint rows.
+class OctaveCountRule {
+ public:
+  virtual ~OctaveCountRule() = default;
+  virtual void apply(RowRange rows, GridBuffers<float>& grid) const = 0;
+  virtual void apply(RowRange rows, GridBuffers<double>& grid) const = 0;
 };
 
 struct FrameRequest {
@@ -62,7 +65,8 @@ struct FrameRequest {
   FrameOutputs outputs;
   FrameSkips skips;
   // The CPU backends only (reference, reference-double, simd); the GL backend ignores it.
-  std::optional<DistanceLod> distance_lod;
+  // Null: stage 2's own LOD rule (§4.1).
+  std::shared_ptr<const OctaveCountRule> octave_count_rule;
   // Memory the rasteriser's bins may take (raster/rasterize.h); a frame whose bins need more
   // throws MemoryLimitError.
   std::uint64_t max_bin_bytes = UINT64_MAX;
@@ -95,8 +99,18 @@ struct StageTime {
   std::vector<WorkCounter> counters;
 };
 
+// One kernel of a CPU frame and the kind that ran it (cpu_kernels.h); the GL backend's frames
+// have none.
+struct KernelReport {
+  std::string stage;           // the stage table's name
+  std::string kernel;          // "vertex outcodes", "tile resolve", ...
+  std::string implementation;  // "Highway (AVX3)", "portable loop (float)"
+  std::string reason;          // why it is not the backend's own kind; empty otherwise
+};
+
 struct FrameStats {
-  std::vector<StageTime> stages;  // in the order they ran (frame plan, then the stage table)
+  std::vector<StageTime> stages;      // in the order they ran (frame plan, then the stage table)
+  std::vector<KernelReport> kernels;  // the CPU backends' kernel table, in stage order
   // The parts of the fused tile stage, as CPU time summed over the threads that ran tiles.
   std::vector<StageTime> tile_parts;
   double total_ms = 0;  // the frame, start to end

@@ -1,8 +1,8 @@
 // What a backend supplies to the frame runner: the units of work of each stage of the table
 // (stage_table.h), and the work of any range of them. The runner schedules; the backend
-// computes. The reference backends (reference_backend.h) run the scalar stages of core/ in
-// float or double, and the simd backend their Highway kernels where a stage has them (the same
-// class, Backend::kSimd); the GL backend (gl_backend.h) runs the GLSL twins.
+// computes. Two implement it: the CPU backend (cpu_backend.h), whose kernel table
+// (cpu_kernels.h) makes it the reference, reference-double or simd backend, and the GL backend
+// (gl_backend.h), which runs the GLSL twins.
 #pragma once
 
 #include <cstddef>

@@ -12,7 +12,7 @@
 #include "core/limits.h"
 #include "pipeline/basis_resources.h"
 #include "pipeline/png_checks.h"
-#include "pipeline/png_header.h"
+#include "image/png_header.h"
 #include "raster/raster_types.h"
 #include "raster/triangle_setup.h"
 

@@ -11,8 +11,8 @@
 #include "core/limits.h"
 #include "core/scene/scene_json.h"
 #include "pipeline/builtin_sketches.h"
-#include "pipeline/png_header.h"
-#include "pipeline/png_layout.h"
+#include "image/png_header.h"
+#include "image/png_layout.h"
 
 namespace relief {
 

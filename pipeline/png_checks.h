@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/png_header.h"
+#include "image/png_header.h"
 
 namespace relief {
 

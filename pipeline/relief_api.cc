@@ -21,8 +21,8 @@
 #include "core/scene/scene_json.h"
 #include "pipeline/frame.h"
 #include "pipeline/gl_backend.h"
-#include "pipeline/image_io.h"
-#include "pipeline/image_metadata.h"
+#include "image/image_io.h"
+#include "image/image_metadata.h"
 #include "pipeline/job_memory.h"
 #include "pipeline/memory_budget.h"
 #include "pipeline/scene_resources.h"
@@ -279,7 +279,7 @@ Result<std::vector<unsigned char>> encode_png_with(const Image& image, const rel
     }
     const std::vector<ImageText> text = scene ? scene_metadata(*scene) : software_metadata();
     std::vector<unsigned char> png = encode_png_rgb(image.width, image.height, image.srgb, text);
-    if (png.empty()) {  // stb_image_write reports nothing else
+    if (png.empty()) {  // the encoder reports nothing else (png_encoder.h)
       throw std::bad_alloc();
     }
     return png;

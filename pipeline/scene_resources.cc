@@ -18,8 +18,8 @@
 #include "core/texture_synthesis.h"
 #include "pipeline/builtin_sketches.h"
 #include "pipeline/png_checks.h"
-#include "pipeline/png_header.h"
-#include "pipeline/png_layout.h"
+#include "image/png_header.h"
+#include "image/png_layout.h"
 
 namespace relief {
 

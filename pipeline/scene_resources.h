@@ -49,7 +49,7 @@ RgbImage load_layer_texture(const MaterialLayer& layer, int builtin_size, const 
 // A texture PNG already in memory, checked as load_layer_texture checks a file (signature,
 // square power-of-two side from 4 to 4096, 8 bits per channel, at most
 // limits::kMaxTextureFileBytes, every chunk within the file, image data that inflates to no
-// more than the header's size: pipeline/png_layout.h) and decoded to linear RGB. `field` names
+// more than the header's size: image/png_layout.h) and decoded to linear RGB. `field` names
 // the texture in messages (`shading.layers[2].texture = "a.png"`), `path` is the SceneError's
 // JSON path. Throws SceneError. The texture fuzzer (fuzz/fuzz_inputs.h) calls it.
 RgbImage decode_texture_png(const std::vector<unsigned char>& png, const std::string& field,

@@ -15,7 +15,7 @@
 #include "core/scene/scene_json.h"
 #include "pipeline/builtin_sketches.h"
 #include "pipeline/png_checks.h"
-#include "pipeline/png_header.h"
+#include "image/png_header.h"
 #include "pipeline/scene_resources.h"
 
 namespace relief {

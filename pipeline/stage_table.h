@@ -33,6 +33,18 @@ enum class WorkUnit {
   kScreenTiles,     // 64 x 64 tiles of the image
 };
 
+// Where a stage is implemented, tested and documented. Each implementation is a repository
+// path, or "none: " and the reason there is none; the doc is "FILE#HEADING". A test
+// (tests/pipeline/stage_table_test.cc) checks that every path exists, that every "none" has a
+// reason and that every heading is in its file.
+struct StageHomes {
+  const char* portable;  // core/ or raster/: float and double (the reference backends)
+  const char* highway;   // simd/: float (the simd backend; cpu_kernels_highway.cc)
+  const char* glsl;      // gpu/shaders: the GL backend
+  const char* test;      // the test that checks the stage against its oracle
+  const char* doc;       // where the stage is explained
+};
+
 struct StageInfo {
   StageId id;
   const char* name;    // as the timing reports print it
@@ -41,35 +53,119 @@ struct StageInfo {
   const char* writes;
   WorkUnit unit;
   std::size_t grain;  // units per task: fixed, so results never depend on the thread count
+  StageHomes homes;
 };
 
 // Grains: the outcodes and needs of 16 rows take ~20 us (the needs read two rows around
 // their range); a 512-vertex row makes ~40 us of fBm, so 4 rows amortise the scheduling while
 // leaving 128 tasks to balance; 16384 vertices transform in ~20 us; a chunk of 4096 triangles
 // sets up in ~0.3 ms; a tile takes 0.1 to 2 ms.
+// The GL backend culls no vertex: its triangle list (gpu/shaders/triangles.comp) holds every
+// triangle of valid vertices, and the GPU's clipper drops what lies outside the frustum.
+inline constexpr const char* kGlDrawsEveryTriangle =
+    "none: the GL backend draws every valid triangle and the GPU's clipper drops the unseen";
+
 inline constexpr StageInfo kFrameStages[] = {
-    {StageId::kProjectedDomain, "projected domain", "1-2", "camera, projector, LOD rule",
-     "dx, dz, sigma, nu, valid", WorkUnit::kGridRows, 4},
-    {StageId::kOutcodes, "vertex outcodes (height bounds)", "2",
-     "dx, dz, valid; frustum, height bounds", "outcode", WorkUnit::kGridRows, 16},
-    {StageId::kVertexNeeds, "vertex needs (height bounds)", "2", "outcodes, valid",
-     "need (evaluate, draw)", WorkUnit::kGridRows, 16},
-    {StageId::kFractal, "fractal", "3", "dx, dz, nu, need; lattice", "height", WorkUnit::kGridRows,
-     4},
-    {StageId::kDrawOutcodes, "vertex outcodes (heights)", "3", "dx, dz, height, valid; frustum",
-     "outcode", WorkUnit::kGridRows, 16},
-    {StageId::kDrawNeeds, "vertex needs (heights)", "3", "outcodes, valid, need", "need (draw)",
-     WorkUnit::kGridRows, 16},
-    {StageId::kSurface, "surface", "4", "dx, dz, height, valid, need",
-     "nx, ny, nz, slope, water depth", WorkUnit::kGridRows, 4},
-    {StageId::kVertexTransform, "vertex transform", "5", "dx, dz, height", "clip x, y, z, w",
-     WorkUnit::kVertices, 16384},
-    {StageId::kTriangleSetup, "triangle setup", "6", "clip coordinates, valid",
-     "set-up triangles per chunk", WorkUnit::kTriangleChunks, 1},
-    {StageId::kBinning, "binning", "6", "set-up triangles", "tile bins per chunk",
-     WorkUnit::kTriangleChunks, 1},
-    {StageId::kTiles, "tiles: raster, resolve, shade, encode", "6-9",
-     "bins, vertex streams, textures", "sRGB image, requested outputs", WorkUnit::kScreenTiles, 1},
+    {StageId::kProjectedDomain,
+     "projected domain",
+     "1-2",
+     "camera, projector, LOD rule",
+     "dx, dz, sigma, nu, valid",
+     WorkUnit::kGridRows,
+     4,
+     {"core/projected_domain.cc", "simd/projected_domain-inl.h", "gpu/shaders/domain.comp",
+      "tests/core/projected_grid_test.cc", "docs/architecture.md#The frame, stage by stage"}},
+    {StageId::kOutcodes,
+     "vertex outcodes (height bounds)",
+     "2",
+     "dx, dz, valid; frustum, height bounds",
+     "outcode",
+     WorkUnit::kGridRows,
+     16,
+     {"core/vertex_culling.cc", "simd/vertex_outcodes-inl.h", kGlDrawsEveryTriangle,
+      "tests/pipeline/skip_test.cc", "README.md#Skipped work"}},
+    {StageId::kVertexNeeds,
+     "vertex needs (height bounds)",
+     "2",
+     "outcodes, valid",
+     "need (evaluate, draw)",
+     WorkUnit::kGridRows,
+     16,
+     {"core/vertex_culling.cc", "none: byte flags over neighbouring rows, about 1% of the frame",
+      kGlDrawsEveryTriangle, "tests/pipeline/skip_test.cc", "README.md#Skipped work"}},
+    {StageId::kFractal,
+     "fractal",
+     "3",
+     "dx, dz, nu, need; lattice",
+     "height",
+     WorkUnit::kGridRows,
+     4,
+     {"core/fbm.cc", "simd/fbm-inl.h", "gpu/shaders/fbm.comp", "tests/core/fbm_test.cc",
+      "docs/terrain-spec.md#6. The sum and the LOD weights (§2.1 Eq. 1, §4.1)"}},
+    {StageId::kDrawOutcodes,
+     "vertex outcodes (heights)",
+     "3",
+     "dx, dz, height, valid; frustum",
+     "outcode",
+     WorkUnit::kGridRows,
+     16,
+     {"core/vertex_culling.cc", "simd/vertex_outcodes-inl.h", kGlDrawsEveryTriangle,
+      "tests/pipeline/skip_test.cc", "README.md#Skipped work"}},
+    {StageId::kDrawNeeds,
+     "vertex needs (heights)",
+     "3",
+     "outcodes, valid, need",
+     "need (draw)",
+     WorkUnit::kGridRows,
+     16,
+     {"core/vertex_culling.cc", "none: byte flags over neighbouring rows, about 1% of the frame",
+      kGlDrawsEveryTriangle, "tests/pipeline/skip_test.cc", "README.md#Skipped work"}},
+    {StageId::kSurface,
+     "surface",
+     "4",
+     "dx, dz, height, valid, need",
+     "nx, ny, nz, slope, water depth",
+     WorkUnit::kGridRows,
+     4,
+     {"core/surface.cc", "simd/surface-inl.h", "gpu/shaders/surface.comp",
+      "tests/core/surface_test.cc", "docs/architecture.md#The frame, stage by stage"}},
+    {StageId::kVertexTransform,
+     "vertex transform",
+     "5",
+     "dx, dz, height",
+     "clip x, y, z, w",
+     WorkUnit::kVertices,
+     16384,
+     {"core/vertex_transform.cc", "simd/vertex_transform-inl.h", "gpu/shaders/terrain.vert.in",
+      "tests/simd/simd_test.cc", "docs/architecture.md#The frame, stage by stage"}},
+    {StageId::kTriangleSetup,
+     "triangle setup",
+     "6",
+     "clip coordinates, valid",
+     "set-up triangles per chunk",
+     WorkUnit::kTriangleChunks,
+     1,
+     {"raster/triangle_setup.cc", "simd/vertex_snap-inl.h", "none: the GPU's fixed-function set-up",
+      "tests/raster/raster_test.cc", "README.md#The rasteriser's rules"}},
+    {StageId::kBinning,
+     "binning",
+     "6",
+     "set-up triangles",
+     "tile bins per chunk",
+     WorkUnit::kTriangleChunks,
+     1,
+     {"raster/bins.cc", "none: integer bounding boxes into per-chunk bins, memory-bound",
+      "none: the GPU's fixed-function rasteriser bins its own way", "tests/raster/raster_test.cc",
+      "README.md#The rasteriser's rules"}},
+    {StageId::kTiles,
+     "tiles: raster, resolve, shade, encode",
+     "6-9",
+     "bins, vertex streams, textures",
+     "sRGB image, requested outputs",
+     WorkUnit::kScreenTiles,
+     1,
+     {"raster/rasterize.cc", "simd/raster_tile-inl.h", "gpu/shaders/terrain.frag",
+      "tests/pipeline/frame_test.cc", "README.md#Shading (stage 8)"}},
 };
 
 inline constexpr std::size_t kFrameStageCount = sizeof(kFrameStages) / sizeof(kFrameStages[0]);

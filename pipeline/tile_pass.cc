@@ -80,7 +80,7 @@ template <class Real>
 TilePass<Real>::TilePass(const raster::RasterState& state, const raster::GridTriangles& triangles,
                          VertexStreams<Real> streams, const ShadeParams<Real>& shade,
                          const ShadeResources& resources, const FrameOutputs& outputs,
-                         double camera_y, FrameImage& image, bool simd, int first_row)
+                         double camera_y, FrameImage& image, TileKernels kernels, int first_row)
     : state_(state),
       triangles_(triangles),
       streams_(streams),
@@ -89,7 +89,7 @@ TilePass<Real>::TilePass(const raster::RasterState& state, const raster::GridTri
       outputs_(outputs),
       camera_y_(camera_y),
       image_(image),
-      simd_(simd && std::is_same_v<Real, float>),
+      kernels_(std::is_same_v<Real, float> ? kernels : TileKernels{}),
       first_row_(first_row),
       scale_x_(state.viewport.width * 0.5),
       scale_y_(state.viewport.height * 0.5),
@@ -243,7 +243,7 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
   const Clock::time_point start = Clock::now();
   const std::uint64_t entries = raster::tile_entry_count(chunks, tile);
   const bool drawn = entries > 0 || !skip_empty;
-  if (drawn && simd_) {
+  if (drawn && kernels_.raster == KernelKind::kHighway) {
     rasterize_tile_simd(chunks, tiles, tile, state_, vis);
   } else if (drawn) {
     raster::rasterize_tile(chunks, tiles, tile, state_, vis);
@@ -252,7 +252,7 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
   }
   const Clock::time_point rasterised = Clock::now();
   if (drawn) {
-    if (simd_) {
+    if (kernels_.resolve == KernelKind::kHighway) {
       resolve_simd(vis, scratch->attributes, work);
     } else {
       resolve(vis, scratch->attributes, work);
@@ -266,7 +266,7 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
   // get the background and no terrain shading.
   bool shaded_simd = false;
   if constexpr (std::is_same_v<Real, float>) {
-    if (simd_) {
+    if (kernels_.shade == KernelKind::kHighway) {
       const TileAttributes<float>& a = scratch->attributes;
       constexpr std::size_t n = TileAttributes<float>::kPixels;
       const ShadingInputs in{
@@ -299,7 +299,7 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
     const std::size_t pixel = static_cast<std::size_t>(py - first_row_) * width + vis.x0;
     const std::size_t values = 3 * static_cast<std::size_t>(vis.width);
     if constexpr (std::is_same_v<Real, float>) {
-      if (simd_) {
+      if (kernels_.encode == KernelKind::kHighway) {
         simd::encode_srgb(std::span<const float>(scratch->rgb + 3 * first, values),
                           std::span<std::uint8_t>(image_.srgb.data() + 3 * pixel, values));
         continue;

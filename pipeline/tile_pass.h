@@ -7,7 +7,7 @@
 // Quads start at even coordinates and tiles at multiples of 64, so no quad crosses a tile: a
 // tile needs nothing from its neighbours. The arithmetic is raster::resolve's and
 // shade_pixels'; the images are bit-identical to running the stages one after another over
-// the whole frame (tests/frame_test.cc, tileFusedFramesEqualTheStagesRunOverTheWholeFrame...).
+// the whole frame (tests/pipeline/frame_test.cc, tileFusedFramesEqualTheStagesRunOverTheWholeFrame...).
 #pragma once
 
 #include <atomic>
@@ -18,6 +18,7 @@
 #include "core/shade.h"
 #include "core/stage_params.h"
 #include "pipeline/frame.h"
+#include "pipeline/kernel_kind.h"
 #include "raster/bins.h"
 #include "raster/topology.h"
 
@@ -30,8 +31,8 @@ template <class Real>
 struct VertexStreams {
   std::span<const Real> clip_x, clip_y, clip_w;
   std::span<const Real> dx, dz, height, nx, ny, nz, slope, water_depth, nu;
-  // A planet's curvature drop (planet_bend.h); empty on the plane. Read by the scalar resolve
-  // alone: a planet frame's tiles run the portable loops.
+  // A planet's curvature drop (planet_bend.h); empty on the plane. Read by the portable
+  // resolve alone: a planet frame's resolve is portable (cpu_kernels_highway.cc).
   std::span<const Real> drop = {};
 };
 
@@ -92,13 +93,13 @@ template <class Real>
 class TilePass {
  public:
   // `image` must be sized (width, height, srgb, and each requested output) before run().
-  // `simd`: the Highway kernels (simd/) where there is one, float only; the same bytes.
+  // `kernels`: each part's kind (cpu_kernels.h); Highway parts in float only, the same bytes.
   // `first_row`: the framebuffer row that is the image's row 0, for an image holding a band of
   // rows (render_frame_bands, frame.h); only tiles inside the band may then be run.
   TilePass(const raster::RasterState& state, const raster::GridTriangles& triangles,
            VertexStreams<Real> streams, const ShadeParams<Real>& shade,
            const ShadeResources& resources, const FrameOutputs& outputs, double camera_y,
-           FrameImage& image, bool simd = false, int first_row = 0);
+           FrameImage& image, TileKernels kernels = {}, int first_row = 0);
 
   // Renders tile `tile`; tiles may run concurrently (each writes only its own pixels). With
   // `skip_empty`, a tile no triangle is binned to is not rasterised or resolved.
@@ -120,7 +121,7 @@ class TilePass {
   FrameOutputs outputs_;
   double camera_y_;
   FrameImage& image_;
-  bool simd_;
+  TileKernels kernels_;
   int first_row_;
   double scale_x_, scale_y_, translate_x_, translate_y_;  // viewport, as VertexPositions
 };

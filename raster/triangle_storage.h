@@ -19,7 +19,7 @@ namespace relief::raster {
 void* allocate_triangle_storage(std::size_t bytes);
 void free_triangle_storage(void* block, std::size_t bytes) noexcept;
 
-// Unmaps the emptied slabs kept for the next frame (pipeline/process_memory.h measures a job's
+// Unmaps the emptied slabs kept for the next frame (eval/process_memory.h measures a job's
 // resident memory from a clean start).
 void release_spare_triangle_storage() noexcept;
 

@@ -139,7 +139,7 @@ struct StressOptions {
   std::string sheet;                  // PNG of one thumbnail per case (empty: none)
 };
 
-// `relief stress`: the stability stress suite (pipeline/stress_run.h) on the scene, as a table.
+// `relief stress`: the stability stress suite (eval/stress_run.h) on the scene, as a table.
 // Returns 0 when every check holds, 1 when one does not.
 int run_stress_command(const Scene& scene, const StressOptions& options, std::ostream& out,
                        std::ostream& err);

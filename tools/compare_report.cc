@@ -7,8 +7,8 @@
 #include <ostream>
 #include <utility>
 
-#include "pipeline/image_io.h"
-#include "pipeline/image_metadata.h"
+#include "image/image_io.h"
+#include "image/image_metadata.h"
 #include "tools/colormap.h"
 
 namespace relief {

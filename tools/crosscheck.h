@@ -1,5 +1,5 @@
 // relief crosscheck's figures: the same frame by a CPU backend and by the GL backend, compared
-// stage by stage (pipeline/frame_comparison.h), and the final images as idiff compares them
+// stage by stage (eval/frame_comparison.h), and the final images as idiff compares them
 // (image_compare.h). docs/gl-backend.md says why the two may differ and by how much.
 //
 // The verdict must hold on every conforming GL, so it judges colour only where the two frames
@@ -28,7 +28,7 @@
 #include <vector>
 
 #include "pipeline/frame.h"
-#include "pipeline/frame_comparison.h"
+#include "eval/frame_comparison.h"
 #include "tools/image_compare.h"
 
 namespace relief {

@@ -15,7 +15,7 @@
 #include "pipeline/build_info.h"
 #include "pipeline/frame.h"
 #include "pipeline/gl_backend.h"
-#include "pipeline/image_io.h"
+#include "image/image_io.h"
 #include "pipeline/job_memory.h"
 #include "pipeline/scene_resources.h"
 #include "tools/atomic_file.h"

@@ -1,5 +1,5 @@
 // `relief error TEST REFERENCE [--map OUT.png] [--json FILE]`: the error of a render against a
-// reference (pipeline/image_error.h): PSNR, RMSE and the largest difference of the display
+// reference (eval/image_error.h): PSNR, RMSE and the largest difference of the display
 // values, and LDR-FLIP's mean and heat map. This file reads the images and writes the outputs.
 #include <cmath>
 #include <iomanip>
@@ -16,9 +16,9 @@
 
 #include "core/scene/json_input.h"
 #include "core/srgb.h"
-#include "pipeline/image_error.h"
-#include "pipeline/image_io.h"
-#include "pipeline/image_metadata.h"
+#include "eval/image_error.h"
+#include "image/image_io.h"
+#include "image/image_metadata.h"
 #include "tools/atomic_file.h"
 #include "tools/cli.h"
 #include "tools/cli_options.h"

@@ -4,7 +4,7 @@
 #include <cctype>
 #include <string>
 
-#include "pipeline/image_io.h"
+#include "image/image_io.h"
 #include "tools/atomic_file.h"
 #include "tools/image_library.h"
 

@@ -1,14 +1,14 @@
 // The float outputs of relief render and relief stages (linear radiance, depth, normals,
 // heights, octave counts, the stage buffers) in the format their file name asks for:
 //
-// - .pfm: Portable Float Map (pipeline/image_io.h), rows bottom to top as Relief stores them;
+// - .pfm: Portable Float Map (image/image_io.h), rows bottom to top as Relief stores them;
 //   no metadata.
 // - .exr: OpenEXR through OpenImageIO, 32-bit float channels (not half: half's 11-bit
 //   significand and 65504 maximum would round away the very values these files exist to give
 //   exactly, world heights up to 1e7 and reverse-Z depths near 0; the file holds the PFM's
 //   bits), lossless ZIP compression, rows top to bottom as EXR viewers show them (the same
 //   picture as the PNG), channels R, G, B (three) or Y (one), and the image metadata
-//   (pipeline/image_metadata.h) as string attributes.
+//   (image/image_metadata.h) as string attributes.
 #pragma once
 
 #include <cstddef>
@@ -17,7 +17,7 @@
 #include <string_view>
 #include <vector>
 
-#include "pipeline/png_text.h"
+#include "image/png_text.h"
 
 namespace relief {
 

@@ -13,7 +13,7 @@ std::string size_text(const FloatImage& image) {
 // idiff's verdict (OIIO 2.4.7 src/idiff/idiff.cpp, main), with -allowfailures 0 and no
 // perceptual test. As there, an image with no failing pixel passes even if pixels are over the
 // warning thresholds: the warning branch is reached only when some pixel fails but fewer
-// than fail_percent do (tests/compare_test.cc checks this against Debian's idiff).
+// than fail_percent do (tests/eval/compare_test.cc checks this against Debian's idiff).
 CompareVerdict verdict(const CompareResult& r, const CompareThresholds& t) {
   const double pixels = static_cast<double>(r.pixels);
   if (r.fail_pixels == 0) {

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/png_text.h"
+#include "image/png_text.h"
 #include "tools/image_compare.h"
 
 namespace relief {

@@ -6,8 +6,8 @@
 
 #include "core/counter_hash.h"
 #include "core/scene/json_input.h"
-#include "pipeline/image_io.h"
-#include "pipeline/image_metadata.h"
+#include "image/image_io.h"
+#include "image/image_metadata.h"
 #include "pipeline/job_memory.h"
 #include "pipeline/tile_pass.h"
 #include "raster/rasterize.h"

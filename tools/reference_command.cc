@@ -1,5 +1,5 @@
 // `relief reference [SCENE] -o FILE.png [--float FILE.exr|.pfm]`: the ground-truth render
-// (pipeline/ground_truth.h; docs/ground-truth.md). This file parses its options and writes its
+// (eval/ground_truth.h; docs/ground-truth.md). This file parses its options and writes its
 // files; the render is the pipeline's.
 #include <chrono>
 #include <climits>
@@ -13,10 +13,10 @@
 #include <CLI/CLI.hpp>
 
 #include "core/scene/json_input.h"
-#include "pipeline/ground_truth.h"
-#include "pipeline/height_error.h"
-#include "pipeline/image_io.h"
-#include "pipeline/image_metadata.h"
+#include "eval/ground_truth.h"
+#include "eval/height_error.h"
+#include "image/image_io.h"
+#include "image/image_metadata.h"
 #include "pipeline/job_memory.h"
 #include "pipeline/scene_resources.h"
 #include "tools/atomic_file.h"

@@ -6,8 +6,8 @@
 #include <string>
 
 #include "core/scene/scene.h"
-#include "pipeline/flip.h"
-#include "pipeline/ground_truth.h"
+#include "eval/flip.h"
+#include "eval/ground_truth.h"
 #include "pipeline/memory_budget.h"
 
 namespace CLI {

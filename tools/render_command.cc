@@ -11,8 +11,8 @@
 #include "core/scene/json_input.h"
 #include "pipeline/build_info.h"
 #include "pipeline/frame.h"
-#include "pipeline/image_io.h"
-#include "pipeline/image_metadata.h"
+#include "image/image_io.h"
+#include "image/image_metadata.h"
 #include "pipeline/job_memory.h"
 #include "tools/atomic_file.h"
 #include "tools/cli.h"
@@ -113,7 +113,7 @@ int run_render_command(const Scene& scene, const RenderOptions& options, std::os
 
   const FrameImage& image = frame.image;
   const std::size_t row = std::size_t(image.width);
-  // Every image carries the scene that made it (pipeline/image_metadata.h).
+  // Every image carries the scene that made it (image/image_metadata.h).
   const std::vector<ImageText> metadata = scene_metadata(scene);
   const auto floats = [&](const std::string& name, int channels, std::span<const float> values) {
     return encode_float_image(float_format_of(name).value_or(FloatFormat::kPfm), image.width,

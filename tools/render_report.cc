@@ -59,6 +59,21 @@ void print_stage_stats(std::ostream& out, const RenderRuns& runs) {
   }
   out << "  " << std::left << std::setw(49) << "frame" << std::right << std::setw(10)
       << median(runs.totals) << "\n";
+  print_kernel_table(out, runs.last.kernels);
+}
+
+void print_kernel_table(std::ostream& out, const std::vector<KernelReport>& kernels) {
+  if (kernels.empty()) {
+    return;  // the GL backend: its own stages (docs/gl-backend.md)
+  }
+  out << "  kernels:\n";
+  for (const KernelReport& k : kernels) {
+    out << "    " << k.stage << " / " << k.kernel << ": " << k.implementation;
+    if (!k.reason.empty()) {
+      out << ", because " << k.reason;
+    }
+    out << "\n";
+  }
 }
 
 nlohmann::json stage_stats_json(const Scene& scene, Backend backend, const RenderRuns& runs) {
@@ -78,6 +93,13 @@ nlohmann::json stage_stats_json(const Scene& scene, Backend backend, const Rende
   for (std::size_t s = 0; s < runs.last.tile_parts.size(); ++s) {
     parts.push_back({{"name", runs.last.tile_parts[s].name}, {"ms", median_ms(runs.parts, s)}});
   }
+  nlohmann::json kernels = nlohmann::json::array();
+  for (const KernelReport& k : runs.last.kernels) {
+    kernels.push_back({{"stage", k.stage},
+                       {"kernel", k.kernel},
+                       {"implementation", k.implementation},
+                       {"reason", k.reason}});
+  }
   const raster::RasterStats& r = runs.last.raster;
   return {{"image", {{"width", scene.viewport.width}, {"height", scene.viewport.height}}},
           {"grid", {{"width", scene.grid.width}, {"height", scene.grid.height}}},
@@ -88,6 +110,7 @@ nlohmann::json stage_stats_json(const Scene& scene, Backend backend, const Rende
           {"setup_ms", runs.setup_ms},
           {"stages", std::move(stages)},
           {"tile_parts", std::move(parts)},
+          {"kernels", std::move(kernels)},
           {"raster", backend == Backend::kGl
                          // GL's own rasteriser: no software set-up pieces or bins (null).
                          ? nlohmann::json{{"triangles", r.triangles},

@@ -29,12 +29,17 @@ struct RenderRuns {
 // One line per stage with its median time, the fused stage's parts, the frame.
 void print_stage_times(std::ostream& out, const RenderRuns& runs);
 
-// Per stage: ran or skipped, median time, and each work counter on its own line.
+// Per stage: ran or skipped, median time, and each work counter on its own line; then the
+// kernel table (print_kernel_table).
 void print_stage_stats(std::ostream& out, const RenderRuns& runs);
+
+// A CPU frame's kernels, one line each: "STAGE / KERNEL: KIND[, because REASON]"; nothing for
+// a GL frame.
+void print_kernel_table(std::ostream& out, const std::vector<KernelReport>& kernels);
 
 // The same as JSON: {"image", "grid", "backend", "runs", "frame_ms", "setup_ms", "stages":
 // [{"name", "ran", "ms", "counters": {name: value}}], "tile_parts": [{"name", "ms"}],
-// "raster": {...}}.
+// "kernels": [{"stage", "kernel", "implementation", "reason"}] (empty for GL), "raster": {...}}.
 nlohmann::json stage_stats_json(const Scene& scene, Backend backend, const RenderRuns& runs);
 
 }  // namespace relief

@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/scene/scene_json.h"
-#include "pipeline/image_io.h"
-#include "pipeline/image_metadata.h"
+#include "image/image_io.h"
+#include "image/image_metadata.h"
 #include "tools/atomic_file.h"
 #include "tools/colormap.h"
 

@@ -2,7 +2,7 @@
 //
 // For each field a PNG people can look at and a PFM or EXR with the exact float values
 // (float_image_file.h), plus stages.json: what each file holds, its units and value range, and
-// the effective scene, which the PNG and EXR files carry too (pipeline/image_metadata.h).
+// the effective scene, which the PNG and EXR files carry too (image/image_metadata.h).
 // Layout of the raw files: the grid's width x height vertices, row 0 = grid row j = 0 (the
 // bottom of the projector image, nearest the camera), padding columns dropped.
 #pragma once

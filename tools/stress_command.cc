@@ -1,4 +1,4 @@
-// relief stress: the stability stress suite of pipeline/stress_run.h as a table, with progress
+// relief stress: the stability stress suite of eval/stress_run.h as a table, with progress
 // on a terminal.
 #include <unistd.h>
 
@@ -17,8 +17,8 @@
 #include "core/scene/scene_json.h"
 #include "pipeline/job_memory.h"
 #include "pipeline/memory_budget.h"
-#include "pipeline/process_memory.h"
-#include "pipeline/stress_run.h"
+#include "eval/process_memory.h"
+#include "eval/stress_run.h"
 #include "tools/atomic_file.h"
 #include "tools/cli.h"
 #include "tools/cli_options.h"

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "pipeline/image_io.h"
-#include "pipeline/png_text.h"
+#include "image/image_io.h"
+#include "image/png_text.h"
 
 namespace relief {
 

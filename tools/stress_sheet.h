@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/stress_run.h"
+#include "eval/stress_run.h"
 
 namespace relief {
 

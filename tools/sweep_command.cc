@@ -1,5 +1,5 @@
 // `relief sweep [SCENE] --out DIR`: the ground truth rendered once (or read back), then every
-// configuration of the plan (pipeline/sweep_plan.h) rendered, timed and measured against it;
+// configuration of the plan (eval/sweep_plan.h) rendered, timed and measured against it;
 // the CSV, the gnuplot script and its plot written into DIR together (docs/sweep.md).
 #include <chrono>
 #include <filesystem>
@@ -18,9 +18,9 @@
 #include "core/scene/json_input.h"
 #include "core/scene/scene_json.h"
 #include "core/srgb.h"
-#include "pipeline/image_io.h"
-#include "pipeline/image_metadata.h"
-#include "pipeline/sweep.h"
+#include "image/image_io.h"
+#include "image/image_metadata.h"
+#include "eval/sweep.h"
 #include "tools/atomic_file.h"
 #include "tools/cli.h"
 #include "tools/cli_options.h"

@@ -1,12 +1,12 @@
 // `relief sweep [SCENE] --out DIR` (sweep_command.cc): the scene's frame time against its error
-// for every knob of the real-time path (pipeline/sweep.h; docs/sweep.md).
+// for every knob of the real-time path (eval/sweep.h; docs/sweep.md).
 #pragma once
 
 #include <iosfwd>
 #include <string>
 
 #include "core/scene/scene.h"
-#include "pipeline/ground_truth.h"
+#include "eval/ground_truth.h"
 #include "pipeline/memory_budget.h"
 
 namespace CLI {

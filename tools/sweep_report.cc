@@ -8,7 +8,7 @@
 #include <sstream>
 #include <vector>
 
-#include "pipeline/pareto.h"
+#include "eval/pareto.h"
 
 namespace relief {
 

@@ -7,7 +7,7 @@
 #include <span>
 #include <string>
 
-#include "pipeline/sweep.h"
+#include "eval/sweep.h"
 
 namespace relief {
 

@@ -3,12 +3,13 @@
 
     python3 tests/oracles/check_golden.py [PROJECT_ROOT] [--verbose]
 
-tests/lattice_test.cc pins the noise lattice's test vectors and golden hash, and
-tests/terrain_spec_cases.h, tests/terrain_spec_exact_case.h and tests/terrain_spec_test.cc pin
-the worked numbers of docs/terrain-spec.md. Both pages say the numbers were reproduced by an
-independent Python implementation; noise_lattice.py and terrain_spec.py are that
-implementation, written from the pages alone, and this script recomputes every such number and
-compares it with the literal as it is written in the C++ (so editing one makes this fail).
+tests/core/lattice_test.cc pins the noise lattice's test vectors and golden hash, and
+tests/core/terrain_spec_cases.h, tests/core/terrain_spec_exact_case.h and
+tests/core/terrain_spec_test.cc pin the worked numbers of docs/terrain-spec.md. Both pages say
+the numbers were reproduced by an independent Python implementation; noise_lattice.py and
+terrain_spec.py are that implementation, written from the pages alone, and this script
+recomputes every such number and compares it with the literal as it is written in the C++ (so
+editing one makes this fail).
 Doubles and floats must match bit for bit (C++ ==), except where the pages say a C library may
 differ in the last bit (pow for a_n, hypot for r0): those allow 1 ulp and say so in the table.
 Exit status: 0 when every number matches, 1 otherwise. Standard library only; writes nothing.
@@ -28,10 +29,10 @@ import noise_lattice  # noqa: E402
 import terrain_spec  # noqa: E402
 from golden_sources import NUMBER  # noqa: E402
 
-LATTICE_TEST = "tests/lattice_test.cc"
-CASES_HEADER = "tests/terrain_spec_cases.h"
-EXACT_CASE_HEADER = "tests/terrain_spec_exact_case.h"
-SPEC_TEST = "tests/terrain_spec_test.cc"
+LATTICE_TEST = "tests/core/lattice_test.cc"
+CASES_HEADER = "tests/core/terrain_spec_cases.h"
+EXACT_CASE_HEADER = "tests/core/terrain_spec_exact_case.h"
+SPEC_TEST = "tests/core/terrain_spec_test.cc"
 
 # Each worked case's terrain (changes from the default terrain), camera and point (dx, dz, nu),
 # as the headings of docs/terrain-spec.md's "Worked numbers" state them. The headers' inputs are
@@ -45,7 +46,7 @@ CASE_SETTINGS = {
     "kCaseE": ({"H": 0.05, "last_octave": 23}, (0.0, 700.0, 0.0), (45678.25, -31234.5, 23.5)),
 }
 
-# Field order of the structs in tests/terrain_spec_cases.h.
+# Field order of the structs in tests/core/terrain_spec_cases.h.
 PLAN_FIELDS = ("frequency", "amplitude", "scale", "omega_x", "omega_z")
 CELL_FIELDS = ("i0", "j0", "i1", "j1", "fx", "fz", "tx", "tz", "v00", "v10", "v01", "v11")
 OCTAVE_FIELDS = ("exact", "offset_x", "offset_z", "gx", "gz", "wx", "wz", "px", "pz", "s", "h",
@@ -133,7 +134,7 @@ class Lattices:
 
 
 def check_lattice_test(root, report, lattices):
-    """tests/lattice_test.cc: mix64 and counter_hash vectors, and the lattice's golden hash,
+    """tests/core/lattice_test.cc: mix64 and counter_hash vectors, and the lattice's golden hash,
     against docs/noise-lattice.md ("Test vectors"). Every such CHECK in the file is found, so a
     vector added there is checked here too."""
     text = sources.read_source(root, LATTICE_TEST)
@@ -250,7 +251,7 @@ def check_worked_case(report, name, golden, lattice):
 
 
 def check_spec_test_extras(root, report, lattice):
-    """The literals tests/terrain_spec_test.cc holds itself (hand-kept patterns, one each)."""
+    """The literals tests/core/terrain_spec_test.cc holds itself (hand-kept patterns, one each)."""
     text = sources.read_source(root, SPEC_TEST)
     group = "terrain_spec_test.cc literals"
 

@@ -1,7 +1,8 @@
 """The noise lattice of docs/noise-lattice.md, written from that page alone.
 
 This is the "independent transcription" the page cites for its golden hash: it is kept here so
-that anyone can re-derive the lattice's test vectors (tests/lattice_test.cc) without the C++.
+that anyone can re-derive the lattice's test vectors (tests/core/lattice_test.cc) without the
+C++.
 Python integers are unbounded, so every 64-bit step is masked explicitly; Python floats are
 IEEE-754 binary64 with round-to-nearest and no fused multiply-add, which is what the page asks
 for. Standard library only.

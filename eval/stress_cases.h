@@ -1,0 +1,39 @@
+// The cases of the stability stress suite (README.md, "Stability stress suite"): a base scene
+// pushed to the ends of each axis the float pipeline is sensitive to, one field at a time.
+// relief stress prints them as a table and tests/eval/stress_test.cc runs the same list at a
+// smaller size; stress_run.h runs one case on every backend and checks it.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/scene/scene.h"
+#include "pipeline/frame.h"
+
+namespace relief {
+
+struct StressCase {
+  std::string axis;                    // "distance", "altitude", "pitch", "warp", "H", ...
+  std::string name;                    // what this case sets, briefly: "x + 1e9"
+  std::vector<std::string> overrides;  // --set assignments applied to the base scene
+  // Non-empty: the case must be refused (a scene error or a memory estimate over the budget)
+  // with a message containing this text, the field it names.
+  std::string refused_naming;
+  // The float error against the reference-double backend must stay within the bounds of
+  // stress_run.h (the distance axis: the error must not grow with the distance).
+  bool error_bounded = false;
+};
+
+// The cases for `base` (validated), in axis order. Heights relative to the terrain (just
+// above it, inside it, under water) are computed from the base scene's terrain under its
+// camera; the largest grid and viewport are the largest whose render estimate
+// (job_memory.h, every per-pixel output requested) fits 90% of `budget_bytes` (the rest is
+// left to the rasteriser's bins) for every backend in `backends`.
+std::vector<StressCase> make_stress_cases(const Scene& base, std::uintmax_t budget_bytes,
+                                          const std::vector<Backend>& backends);
+
+// The axes in the order make_stress_cases lists them.
+std::vector<std::string> stress_axes();
+
+}  // namespace relief

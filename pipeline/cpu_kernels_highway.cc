@@ -1,0 +1,70 @@
+// The Highway half of the kernel table (cpu_kernels.h): the simd backend's kernels of simd/,
+// float only, each the same bytes as its portable twin on every target (tests/simd/). An entry
+// without a Highway kernel keeps the portable one and states why.
+#include "pipeline/cpu_kernels.h"
+#include "pipeline/simd_setup.h"
+#include "simd/fbm.h"
+#include "simd/projected_domain.h"
+#include "simd/sketch.h"
+#include "simd/surface.h"
+#include "simd/vertex_outcodes.h"
+#include "simd/vertex_transform.h"
+
+namespace relief {
+
+namespace {
+
+// The reasons, one per entry that stays portable on the simd backend.
+constexpr const char* kPlanetDomainReason =
+    "no Highway kernel meets the rays with the sphere (core/planet_domain.h)";
+constexpr const char* kPlanetBendReason =
+    "no Highway kernel of the bend (core/planet_bend.h), which planet frames alone run";
+constexpr const char* kSetupReason =
+    "per-triangle clipping and edge set-up branch on each triangle; its vertices' snap is the "
+    "vectorised part";
+constexpr const char* kBinningReason =
+    "integer bounding boxes appended to per-chunk bins: memory-bound, no Highway kernel";
+constexpr const char* kPlanetResolveReason =
+    "the Highway resolve interpolates no curvature drop (core/planet_bend.h)";
+constexpr const char* kPlanetShadeReason =
+    "the Highway shade has neither the curvature drop nor the planet's sky, water and datum "
+    "spheres (core/planet_shading.h)";
+
+}  // namespace
+
+CpuKernels<float> highway_kernels(bool planet) {
+  CpuKernels<float> k = portable_kernels<float>(planet);
+  k.project_domain = &simd::project_domain;
+  k.vertex_outcodes = &simd::vertex_outcodes;
+  k.fractal = &simd::evaluate_fbm;
+  k.sketch = &simd::add_sketch;
+  k.surface = &simd::surface_pass;
+  k.transform = &simd::transform_vertices;
+  k.snap = &simd_snap_kernels();
+  const KernelKind h = KernelKind::kHighway;
+  k.tiles.raster = h;
+  k.tiles.encode = h;
+  k.tiles.resolve = planet ? KernelKind::kPortable : h;
+  k.tiles.shade = planet ? KernelKind::kPortable : h;
+  for (KernelChoice& c : k.choices) {
+    const std::string_view name = c.kernel;
+    if (name == "planet domain") {
+      c.reason = kPlanetDomainReason;
+    } else if (name == "planet bend" || name == "planet normals") {
+      c.reason = kPlanetBendReason;
+    } else if (name == "clip and edge set-up") {
+      c.reason = kSetupReason;
+    } else if (name == "binning") {
+      c.reason = kBinningReason;
+    } else if (planet && name == "tile resolve") {
+      c.reason = kPlanetResolveReason;
+    } else if (planet && name == "tile shade") {
+      c.reason = kPlanetShadeReason;
+    } else {
+      c.kind = h;
+    }
+  }
+  return k;
+}
+
+}  // namespace relief

@@ -1,0 +1,51 @@
+// The portable half of the kernel table (cpu_kernels.h): the loops of core/ and raster/ in the
+// backend's precision. It is the whole table of the reference backends and the fallback of
+// each simd entry that has no Highway kernel.
+#include <type_traits>
+
+#include "core/height_sketch.h"
+#include "core/projected_domain.h"
+#include "core/vertex_culling.h"
+#include "pipeline/cpu_kernels.h"
+
+namespace relief {
+
+template <class Real>
+CpuKernels<Real> portable_kernels(bool planet) {
+  CpuKernels<Real> k;
+  k.project_domain = &project_domain<Real>;
+  k.vertex_outcodes = &vertex_outcodes<Real>;
+  k.fractal = &evaluate_fbm<Real>;
+  k.sketch = &add_sketch<Real>;
+  k.surface = &surface_pass<Real>;
+  k.transform = &transform_vertices<Real>;
+  k.snap = nullptr;
+  k.tiles = TileKernels{};
+  const KernelKind p = KernelKind::kPortable;
+  k.choices = {
+      {StageId::kProjectedDomain, planet ? "planet domain" : "projected domain", p, ""},
+      {StageId::kOutcodes, "vertex outcodes", p, ""},
+      {StageId::kFractal, "fBm", p, ""},
+      {StageId::kFractal, "sketch", p, ""},
+      {StageId::kDrawOutcodes, "vertex outcodes", p, ""},
+      {StageId::kSurface, "surface", p, ""},
+      {StageId::kVertexTransform, "vertex transform", p, ""},
+      {StageId::kTriangleSetup, "vertex snap", p, ""},
+      {StageId::kTriangleSetup, "clip and edge set-up", p, ""},
+      {StageId::kBinning, "binning", p, ""},
+      {StageId::kTiles, "tile raster", p, ""},
+      {StageId::kTiles, "tile resolve", p, ""},
+      {StageId::kTiles, "tile shade", p, ""},
+      {StageId::kTiles, "tile encode", p, ""},
+  };
+  if (planet) {  // docs/planet.md: the bend after stage 3, the normals' rotation after stage 4
+    k.choices.insert(k.choices.begin() + 4, {StageId::kFractal, "planet bend", p, ""});
+    k.choices.insert(k.choices.begin() + 7, {StageId::kSurface, "planet normals", p, ""});
+  }
+  return k;
+}
+
+template CpuKernels<float> portable_kernels<float>(bool planet);
+template CpuKernels<double> portable_kernels<double>(bool planet);
+
+}  // namespace relief

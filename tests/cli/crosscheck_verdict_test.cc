@@ -1,0 +1,160 @@
+// relief crosscheck's verdict (tools/crosscheck.h) on frames made by hand, where the answer is
+// known without GL: a colour difference where both frames draw the same triangle fails; a
+// changed triangle fails only away from a triangle boundary of the CPU's frame; a bilinear
+// mip-level switch is explained by the trilinear frame's distance and nothing beyond it.
+// Also the file identity behind every command's refusal of outputs that alias (distinct_paths.h).
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "core/srgb.h"
+#include "pipeline/frame.h"
+#include "tests/support/cli_support.h"
+#include "tests/support/test_support.h"
+#include "tools/commands.h"
+#include "tools/crosscheck.h"
+#include "tools/distinct_paths.h"
+
+namespace relief {
+namespace {
+
+constexpr int kSide = 8;
+
+// An 8 x 8 frame: the left half drawn by triangle 1, the right half by triangle 2, every pixel
+// of linear radiance `value` (sRGB codes from it).
+FrameImage halves(float value = 0.2f) {
+  FrameImage f;
+  f.width = f.height = kSide;
+  const std::size_t pixels = kSide * kSide;
+  f.primitive.resize(pixels);
+  f.linear.assign(3 * pixels, value);
+  f.srgb.assign(3 * pixels, srgb_byte(value));
+  // Every output, as crosscheck renders both frames (compare_pixels reads them).
+  f.depth.assign(pixels, 0.5f);
+  f.normal.assign(3 * pixels, 0.0f);
+  f.world_height.assign(pixels, 10.0f);
+  f.octaves.assign(pixels, 4.0f);
+  for (std::size_t k = 0; k < pixels; ++k) {
+    f.normal[3 * k + 1] = 1.0f;
+  }
+  for (std::size_t k = 0; k < pixels; ++k) {
+    f.primitive[k] = (k % kSide) < kSide / 2 ? 1u : 2u;
+  }
+  return f;
+}
+
+std::size_t at(int x, int y) {
+  return std::size_t(y) * kSide + std::size_t(x);
+}
+
+void set_code(FrameImage& f, std::size_t pixel, int delta) {
+  for (int c = 0; c < 3; ++c) {
+    f.srgb[3 * pixel + c] = std::uint8_t(int(f.srgb[3 * pixel + c]) + delta);
+  }
+}
+
+const CompareThresholds kDefault = CrosscheckOptions{}.thresholds;
+
+}  // namespace
+
+TEST_CASE("crosscheckPassesEqualFramesAndFailsTwoCodesOnTheSameTriangle", "[crosscheck]") {
+  const FrameImage cpu = halves();
+  CHECK(compare_frames(cpu, cpu, kDefault).verdict == CompareVerdict::kPass);
+  FrameImage gl = cpu;
+  set_code(gl, at(1, 3), 2);  // interior of triangle 1, the same triangle on both sides
+  const FrameDifference d = compare_frames(cpu, gl, kDefault);
+  CHECK(d.verdict == CompareVerdict::kFailure);
+  CHECK(d.srgb.fail_pixels == 1);
+  CHECK(d.unexplained_changes == 0);
+  // One code apart is within the documented shading bound.
+  gl = cpu;
+  set_code(gl, at(1, 3), 1);
+  CHECK(compare_frames(cpu, gl, kDefault).verdict == CompareVerdict::kPass);
+}
+
+TEST_CASE("aChangedTriangleIsJudgedOnlyByWhereItLies", "[crosscheck]") {
+  const FrameImage cpu = halves();
+  // On the boundary between the halves (x = 3 has a neighbour of triangle 2): GL's tie-break
+  // or snapping may hand it over, with another surface's colour: no colour bound there.
+  FrameImage gl = cpu;
+  gl.primitive[at(3, 4)] = 2;
+  set_code(gl, at(3, 4), 100);
+  FrameDifference d = compare_frames(cpu, gl, kDefault);
+  CHECK(d.verdict == CompareVerdict::kPass);
+  CHECK(d.unexplained_changes == 0);
+  CHECK(d.pixels.primitive_mismatch == 1);
+  CHECK(d.srgb_all.fail_pixels == 1);  // the whole-image figures still show it
+  // --all-pixels judges it as idiff judges the files.
+  CHECK(compare_frames(cpu, gl, kDefault, nullptr, true).verdict == CompareVerdict::kFailure);
+  // In the interior (every 8-neighbour triangle 1, not the border): no snapping explains it.
+  gl = cpu;
+  gl.primitive[at(1, 4)] = 2;
+  d = compare_frames(cpu, gl, kDefault);
+  CHECK(d.verdict == CompareVerdict::kFailure);
+  CHECK(d.unexplained_changes == 1);
+  // The framebuffer's border is a boundary: (0, 4) may change.
+  gl = cpu;
+  gl.primitive[at(0, 4)] = 7;
+  CHECK(compare_frames(cpu, gl, kDefault).verdict == CompareVerdict::kPass);
+  // The boundary pixels of two halves: the border's ring (28) and columns 3 and 4 inside it
+  // (2 x 6).
+  CHECK(compare_frames(cpu, cpu, kDefault).boundary_pixels == 28 + 12);
+}
+
+TEST_CASE("aBilinearLevelSwitchIsExplainedWithinTheTrilinearFramesReach", "[crosscheck]") {
+  // The CPU took level n (0.2); the trilinear blend at the switch lies half-way to level n + 1
+  // (0.25), so the other level is 0.3. GL at 0.3 took that level: explained. GL at 0.45 lies
+  // beyond 0.05 / (1/2 - kLodTolerance) of 0.2: not explained.
+  const FrameImage cpu = halves(0.2f);
+  FrameImage trilinear = halves(0.25f);
+  const std::size_t pixel = at(1, 3);
+  for (const auto& [value, explained] : {std::pair{0.3f, true}, std::pair{0.45f, false}}) {
+    FrameImage gl = cpu;
+    for (int c = 0; c < 3; ++c) {
+      gl.linear[3 * pixel + c] = value;
+      gl.srgb[3 * pixel + c] = srgb_byte(value);
+    }
+    INFO("GL " << value);
+    const FrameDifference with = compare_frames(cpu, gl, kDefault, &trilinear);
+    CHECK((with.verdict == CompareVerdict::kPass) == explained);
+    CHECK(with.level_switch_channels == (explained ? 3u : 0u));
+    // Without the trilinear frame (a trilinear scene) nothing is explained.
+    CHECK(compare_frames(cpu, gl, kDefault).verdict == CompareVerdict::kFailure);
+  }
+  // Where the trilinear frame equals the bilinear one (no level switch near), nothing beyond
+  // one code is explained.
+  FrameImage gl = cpu;
+  set_code(gl, pixel, 2);
+  CHECK(compare_frames(cpu, gl, kDefault, &cpu).verdict == CompareVerdict::kFailure);
+}
+
+TEST_CASE("pathsNamingOneFileAreFoundThroughLinksAndSpellings", "[crosscheck]") {
+  namespace fs = std::filesystem;
+  test::TempDir dir("distinct-paths");
+  const fs::path file = dir.path() / "a.png";
+  test::write_file(file, "x");
+  fs::create_symlink(file, dir.path() / "soft.png");
+  fs::create_hard_link(file, dir.path() / "hard.png");
+  fs::create_directory(dir.path() / "sub");
+  CHECK(same_file(file, dir.path() / "soft.png"));
+  CHECK(same_file(file, dir.path() / "hard.png"));
+  CHECK(same_file(file, dir.path() / "sub" / ".." / "a.png"));
+  CHECK_FALSE(same_file(file, dir.path() / "b.png"));
+  // Neither exists yet: the same spelling after resolving links and dots.
+  CHECK(same_file(dir.path() / "new.png", dir.path() / "sub" / ".." / "new.png"));
+  CHECK_FALSE(same_file(dir.path() / "new.png", dir.path() / "new2.png"));
+  // Two inputs may be one file; an output may not be an input or another output.
+  CHECK_FALSE(same_file_conflict({{"A", file, false}, {"B", dir.path() / "soft.png", false}}));
+  const auto conflict =
+      same_file_conflict({{"A", file, false}, {"--json", dir.path() / "hard.png", true}});
+  REQUIRE(conflict);
+  CHECK_THAT(*conflict, Catch::Contains("A ") && Catch::Contains("--json") &&
+                            Catch::Contains("name the same file"));
+  CHECK(same_file_conflict({{"-o", dir.path() / "x.png"}, {"--float", dir.path() / "x.png"}}));
+  // An output not asked for (empty) conflicts with nothing.
+  CHECK_FALSE(same_file_conflict({{"-o", ""}, {"--float", ""}}));
+}
+
+}  // namespace relief

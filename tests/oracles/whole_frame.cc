@@ -1,0 +1,126 @@
+#include "tests/oracles/whole_frame.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "core/input_file.h"
+#include "core/shading_plan.h"
+#include "core/srgb.h"
+#include "core/stage_params.h"
+#include "core/vertex_transform.h"
+#include "pipeline/memory_budget.h"
+#include "pipeline/cpu_backend.h"
+
+namespace relief {
+
+TerrainFrame rasterize_terrain(const Scene& scene, const SceneResources& resources,
+                               const raster::RasterLimits& limits) {
+  return rasterize_terrain(scene, resources.terrain_values(), limits, resources.sketch_or_null());
+}
+
+TerrainFrame rasterize_terrain(const Scene& scene, const NoiseLattice& lattice,
+                               const raster::RasterLimits& limits, const HeightSketch* sketch) {
+  TerrainRun<float> terrain =
+      run_terrain_stages<float>(scene, lattice, Backend::kReference, sketch);
+  TerrainFrame frame{std::move(terrain.plan),
+                     std::move(terrain.grid),
+                     {},
+                     {},
+                     {},
+                     {},
+                     frame_raster_state(scene),
+                     {},
+                     {}};
+  const TransformParams<float> transform = make_terrain_params<float>(frame.plan).transform;
+  const std::size_t vertex_count = frame.plan.layout.size();
+  frame.clip_x.resize(vertex_count);
+  frame.clip_y.resize(vertex_count);
+  frame.clip_z.resize(vertex_count);
+  frame.clip_w.resize(vertex_count);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, vertex_count, 16384),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      // A planet's bent positions (core/planet_bend.h), as the backend.
+                      const GridBuffers<float>& g = frame.grid;
+                      const bool bent = frame.plan.planet.enabled;
+                      transform_vertices<float>(
+                          transform, IndexRange{r.begin(), r.end()}, bent ? g.bent_x : g.dx,
+                          bent ? g.bent_z : g.dz, bent ? g.bent_y : g.height, {},
+                          ClipSpans<float>{frame.clip_x, frame.clip_y, frame.clip_z, frame.clip_w});
+                    });
+  frame.raster =
+      raster::rasterize(frame.state, frame.clip(), frame.triangles(), frame.visibility, limits);
+  if (frame.raster.bins_refused) {
+    throw MemoryLimitError("the rasteriser's bins for this frame need " +
+                           format_bytes(frame.raster.bin_bytes) + ", more than the " +
+                           format_bytes(limits.max_bin_bytes) + " left of the memory budget");
+  }
+  return frame;
+}
+
+raster::ResolvedFrame resolve_for_shading(const TerrainFrame& frame) {
+  const GridBuffers<float>& g = frame.grid;
+  // On a planet the bent (dx, dz) and the drop (cpu_backend.cc's streams).
+  const bool bent = frame.plan.planet.enabled;
+  const std::span<const float> streams[] = {bent ? g.bent_x : g.dx,
+                                            bent ? g.bent_z : g.dz,
+                                            g.height,
+                                            g.nx,
+                                            g.ny,
+                                            g.nz,
+                                            g.slope,
+                                            g.water_depth,
+                                            g.bent_drop};
+  raster::ResolvedFrame resolved;
+  raster::resolve(frame.visibility,
+                  raster::VertexPositions::from_clip(frame.clip(), frame.state.viewport),
+                  frame.triangles(), std::span<const std::span<const float>>(streams, bent ? 9 : 8),
+                  3, resolved);
+  return resolved;
+}
+
+ShadingInputs shading_inputs(const TerrainFrame& frame, const raster::ResolvedFrame& r) {
+  return ShadingInputs{
+      frame.visibility.primitive,
+      r.value[0],
+      r.value[1],
+      r.value[2],
+      r.ddx[0],
+      r.ddy[0],
+      r.ddx[1],
+      r.ddy[1],
+      r.ddx[2],
+      r.ddy[2],
+      r.value[3],
+      r.value[4],
+      r.value[5],
+      r.value[6],
+      r.value[7],
+      r.value.size() > 8 ? std::span<const float>(r.value[8]) : std::span<const float>{}};
+}
+
+FrameImage render_whole_frame(const Scene& scene, const SceneResources& resources) {
+  const TerrainFrame frame = rasterize_terrain(scene, resources);
+  const raster::ResolvedFrame resolved = resolve_for_shading(frame);
+  const ShadingPlan plan = make_shading_plan(scene, frame.plan, resources.lattice.size);
+  ShadeParams<float> params = make_shade_params<float>(plan);
+  add_planet_shading(frame.plan, scene.terrain.base_height, params);
+  const ShadeResources shade_resources{&resources.lattice, resources.textures};
+  const ShadingInputs inputs = shading_inputs(frame, resolved);
+  FrameImage image;
+  image.width = frame.state.width;
+  image.height = frame.state.height;
+  const std::size_t pixels = std::size_t(image.width) * image.height;
+  image.linear.resize(3 * pixels);
+  image.srgb.resize(3 * pixels);
+  tbb::parallel_for(tbb::blocked_range<int>(0, image.height, 8),
+                    [&](const tbb::blocked_range<int>& r) {
+                      shade_pixels<float>(params, shade_resources, inputs,
+                                          RowRange{r.begin(), r.end()}, image.linear);
+                    });
+  for (std::size_t k = 0; k < 3 * pixels; ++k) {
+    image.srgb[k] = srgb_byte(image.linear[k]);
+  }
+  return image;
+}
+
+}  // namespace relief
