@@ -15,8 +15,8 @@
 #include <tbb/global_control.h>
 
 #include "core/scene/scene_json.h"
-#include "pipeline/frame.h"
 #include "eval/frame_comparison.h"
+#include "pipeline/frame.h"
 #include "pipeline/gl_backend.h"
 #include "pipeline/scene_resources.h"
 

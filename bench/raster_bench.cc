@@ -12,9 +12,9 @@
 
 #include "core/lattice.h"
 #include "core/scene/scene_json.h"
-#include "tests/oracles/whole_frame.h"
 #include "raster/rasterize.h"
 #include "raster/resolve.h"
+#include "tests/oracles/whole_frame.h"
 
 namespace relief {
 namespace {

@@ -11,9 +11,9 @@
 #include "core/limits.h"
 #include "core/scene/json_input.h"
 #include "core/scene/scene_json.h"
+#include "image/png_header.h"
 #include "pipeline/builtin_sketches.h"
 #include "pipeline/png_checks.h"
-#include "image/png_header.h"
 
 namespace relief {
 

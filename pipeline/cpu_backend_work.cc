@@ -7,8 +7,8 @@
 
 #include "core/input_file.h"
 #include "core/octave_coordinates.h"
-#include "pipeline/memory_budget.h"
 #include "pipeline/cpu_backend.h"
+#include "pipeline/memory_budget.h"
 
 namespace relief {
 
@@ -150,7 +150,7 @@ void CpuBackend<Real>::describe(StageId id, StageTime& time) const {
 
 // The members defined here, for both backends (the class itself is instantiated once, in
 // cpu_backend.cc).
-#define RELIEF_INSTANTIATE_WORK(Real)                                            \
+#define RELIEF_INSTANTIATE_WORK(Real)                                      \
   template void CpuBackend<Real>::tally_rows(RowRange, const NeedCount&);  \
   template void CpuBackend<Real>::tally_fbm(const FbmWork&);               \
   template void CpuBackend<Real>::tally_draws(RowRange, const NeedCount&); \

@@ -10,9 +10,9 @@
 #include "core/grid_buffers.h"
 #include "core/input_file.h"
 #include "core/limits.h"
+#include "image/png_header.h"
 #include "pipeline/basis_resources.h"
 #include "pipeline/png_checks.h"
-#include "image/png_header.h"
 #include "raster/raster_types.h"
 #include "raster/triangle_setup.h"
 

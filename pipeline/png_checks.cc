@@ -10,9 +10,9 @@
 #include "core/input_file.h"
 #include "core/limits.h"
 #include "core/scene/scene_json.h"
-#include "pipeline/builtin_sketches.h"
 #include "image/png_header.h"
 #include "image/png_layout.h"
+#include "pipeline/builtin_sketches.h"
 
 namespace relief {
 

@@ -16,10 +16,10 @@
 #include "core/scene/scene_json.h"
 #include "core/srgb.h"
 #include "core/texture_synthesis.h"
-#include "pipeline/builtin_sketches.h"
-#include "pipeline/png_checks.h"
 #include "image/png_header.h"
 #include "image/png_layout.h"
+#include "pipeline/builtin_sketches.h"
+#include "pipeline/png_checks.h"
 
 namespace relief {
 

@@ -7,7 +7,8 @@
 // Quads start at even coordinates and tiles at multiples of 64, so no quad crosses a tile: a
 // tile needs nothing from its neighbours. The arithmetic is raster::resolve's and
 // shade_pixels'; the images are bit-identical to running the stages one after another over
-// the whole frame (tests/pipeline/frame_test.cc, tileFusedFramesEqualTheStagesRunOverTheWholeFrame...).
+// the whole frame (tests/pipeline/frame_test.cc,
+// tileFusedFramesEqualTheStagesRunOverTheWholeFrame...).
 #pragma once
 
 #include <atomic>

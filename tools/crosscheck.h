@@ -27,8 +27,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "pipeline/frame.h"
 #include "eval/frame_comparison.h"
+#include "pipeline/frame.h"
 #include "tools/image_compare.h"
 
 namespace relief {

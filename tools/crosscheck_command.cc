@@ -12,10 +12,10 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "image/image_io.h"
 #include "pipeline/build_info.h"
 #include "pipeline/frame.h"
 #include "pipeline/gl_backend.h"
-#include "image/image_io.h"
 #include "pipeline/job_memory.h"
 #include "pipeline/scene_resources.h"
 #include "tools/atomic_file.h"

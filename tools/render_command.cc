@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "core/scene/json_input.h"
-#include "pipeline/build_info.h"
-#include "pipeline/frame.h"
 #include "image/image_io.h"
 #include "image/image_metadata.h"
+#include "pipeline/build_info.h"
+#include "pipeline/frame.h"
 #include "pipeline/job_memory.h"
 #include "tools/atomic_file.h"
 #include "tools/cli.h"

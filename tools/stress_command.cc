@@ -15,10 +15,10 @@
 
 #include "core/scene/json_input.h"
 #include "core/scene/scene_json.h"
-#include "pipeline/job_memory.h"
-#include "pipeline/memory_budget.h"
 #include "eval/process_memory.h"
 #include "eval/stress_run.h"
+#include "pipeline/job_memory.h"
+#include "pipeline/memory_budget.h"
 #include "tools/atomic_file.h"
 #include "tools/cli.h"
 #include "tools/cli_options.h"

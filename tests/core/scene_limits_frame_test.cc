@@ -21,9 +21,9 @@
 #include "core/scene/json_fields.h"
 #include "core/scene/scene_json.h"
 #include "pipeline/frame.h"
-#include "tests/oracles/whole_frame.h"
 #include "raster/resolve.h"
 #include "tests/core/scene_limits_support.h"
+#include "tests/oracles/whole_frame.h"
 
 namespace relief {
 namespace {

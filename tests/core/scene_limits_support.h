@@ -20,8 +20,8 @@
 #include "core/scene/json_fields.h"
 #include "core/scene/scene_json.h"
 #include "pipeline/frame.h"
-#include "tests/oracles/whole_frame.h"
 #include "raster/resolve.h"
+#include "tests/oracles/whole_frame.h"
 
 namespace relief::test::scene_limits {
 

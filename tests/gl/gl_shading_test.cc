@@ -20,11 +20,11 @@
 #include "gpu/gl_shading.h"
 #include "pipeline/frame.h"
 #include "pipeline/scene_resources.h"
-#include "tests/oracles/whole_frame.h"
 #include "raster/rasterize.h"
 #include "raster/topology.h"
 #include "tests/gl/gl_frame_compare.h"
 #include "tests/gl/gl_test_context.h"
+#include "tests/oracles/whole_frame.h"
 
 namespace relief {
 namespace {

@@ -8,8 +8,8 @@
 #include "core/srgb.h"
 #include "core/stage_params.h"
 #include "core/vertex_transform.h"
-#include "pipeline/memory_budget.h"
 #include "pipeline/cpu_backend.h"
+#include "pipeline/memory_budget.h"
 
 namespace relief {
 

@@ -14,8 +14,8 @@
 #include "core/shade.h"
 #include "core/shading_plan.h"
 #include "pipeline/frame.h"
-#include "tests/oracles/whole_frame.h"
 #include "raster/resolve.h"
+#include "tests/oracles/whole_frame.h"
 
 namespace relief {
 namespace {
