@@ -1,8 +1,20 @@
 #include "core/stage_params.h"
 
 #include "core/octave_coordinates.h"
+#include "core/stage_param_fields.h"
 
 namespace relief {
+
+// The field lists of the structs declared by hand elsewhere (stage_param_fields.h) must name
+// their members exactly: the GLSL declarations and the layout check are made from the lists.
+static_assert(RELIEF_FIELDS_TILE(ProjectorRays, float, RELIEF_PROJECTOR_RAYS_FIELDS));
+static_assert(RELIEF_FIELDS_TILE(PlanetParams, float, RELIEF_PLANET_PARAMS_FIELDS));
+static_assert(RELIEF_FIELDS_TILE(SketchParams, float, RELIEF_SKETCH_PARAMS_FIELDS));
+static_assert(RELIEF_FIELDS_TILE(Vec3, float, RELIEF_VEC3_FIELDS));
+static_assert(RELIEF_FIELDS_TILE(ProjectorRays, double, RELIEF_PROJECTOR_RAYS_FIELDS));
+static_assert(RELIEF_FIELDS_TILE(PlanetParams, double, RELIEF_PLANET_PARAMS_FIELDS));
+static_assert(RELIEF_FIELDS_TILE(SketchParams, double, RELIEF_SKETCH_PARAMS_FIELDS));
+static_assert(RELIEF_FIELDS_TILE(Vec3, double, RELIEF_VEC3_FIELDS));
 
 namespace {
 

@@ -3,11 +3,9 @@
 #include <algorithm>
 #include <cstddef>
 #include <type_traits>
-#include <utility>
 
 #include <epoxy/gl.h>
 
-#include "core/limits.h"
 #include "core/stage_params.h"
 
 namespace relief::gpu {
@@ -19,6 +17,7 @@ using Fbm = FbmParams<float>;
 using Sketch = SketchParams<float>;
 using Surface = SurfaceParams<float>;
 using Planet = PlanetParams<float>;
+using Shade = ShadeParams<float>;
 
 // The structs are uploaded as bytes: no pointers, no padding a GLSL struct would not have.
 static_assert(std::is_standard_layout_v<Domain> && std::is_trivially_copyable_v<Domain>);
@@ -26,143 +25,13 @@ static_assert(std::is_standard_layout_v<Fbm> && std::is_trivially_copyable_v<Fbm
 static_assert(std::is_standard_layout_v<Sketch> && std::is_trivially_copyable_v<Sketch>);
 static_assert(std::is_standard_layout_v<Surface> && std::is_trivially_copyable_v<Surface>);
 static_assert(std::is_standard_layout_v<Planet> && std::is_trivially_copyable_v<Planet>);
+static_assert(std::is_standard_layout_v<Shade> && std::is_trivially_copyable_v<Shade>);
 static_assert(std::is_standard_layout_v<GlLatticeHeader>);
-
-// A scalar member, and an array member (its first element, as GL names it).
-#define RELIEF_SCALAR(Struct, prefix, member)      \
-  GlMemberLayout {                                 \
-    prefix #member, offsetof(Struct, member), 0, 0 \
-  }
-#define RELIEF_ARRAY(Struct, prefix, member)                                                    \
-  GlMemberLayout {                                                                              \
-    prefix #member "[0]", offsetof(Struct, member), sizeof(std::declval<Struct>().member[0]), 0 \
-  }
 
 }  // namespace
 
-GlBlockLayout domain_params_layout() {
-  return {"DomainParamsBlock",
-          sizeof(Domain),
-          {
-              RELIEF_SCALAR(Domain, "domain.", rays.fx),
-              RELIEF_SCALAR(Domain, "domain.", rays.fz),
-              RELIEF_SCALAR(Domain, "domain.", rays.rx),
-              RELIEF_SCALAR(Domain, "domain.", rays.rz),
-              RELIEF_SCALAR(Domain, "domain.", rays.ux),
-              RELIEF_SCALAR(Domain, "domain.", rays.uz),
-              RELIEF_SCALAR(Domain, "domain.", rays.height_above_plane),
-              RELIEF_SCALAR(Domain, "domain.", rays.max_distance_sq),
-              RELIEF_SCALAR(Domain, "domain.", y0),
-              RELIEF_SCALAR(Domain, "domain.", step_y),
-              RELIEF_SCALAR(Domain, "domain.", c0),
-              RELIEF_SCALAR(Domain, "domain.", c1),
-              RELIEF_SCALAR(Domain, "domain.", nu_max),
-              RELIEF_SCALAR(Domain, "domain.", min_spacing_sq),
-              RELIEF_SCALAR(Domain, "domain.", width),
-              RELIEF_SCALAR(Domain, "domain.", height),
-              RELIEF_SCALAR(Domain, "domain.", pitch),
-              RELIEF_SCALAR(Domain, "domain.", terrain_visible),
-              RELIEF_SCALAR(Domain, "domain.", whole_octaves),
-          }};
-}
-
-GlBlockLayout fbm_params_layout() {
-  GlBlockLayout layout{"FbmParamsBlock",
-                       sizeof(Fbm),
-                       {
-                           RELIEF_SCALAR(Fbm, "fbm.", count),
-                           RELIEF_SCALAR(Fbm, "fbm.", interpolant),
-                           RELIEF_SCALAR(Fbm, "fbm.", warp),
-                           RELIEF_ARRAY(Fbm, "fbm.", frequency),
-                           RELIEF_ARRAY(Fbm, "fbm.", amplitude),
-                           RELIEF_ARRAY(Fbm, "fbm.", offset_x),
-                           RELIEF_ARRAY(Fbm, "fbm.", offset_z),
-                           RELIEF_ARRAY(Fbm, "fbm.", exact_coordinates),
-                           RELIEF_SCALAR(Fbm, "fbm.", period),
-                           RELIEF_SCALAR(Fbm, "fbm.", inv_period),
-                           RELIEF_SCALAR(Fbm, "fbm.", inv_scale),
-                           RELIEF_SCALAR(Fbm, "fbm.", relative_base_height),
-                           RELIEF_SCALAR(Fbm, "fbm.", height_scale),
-                           RELIEF_SCALAR(Fbm, "fbm.", c1x),
-                           RELIEF_SCALAR(Fbm, "fbm.", c1z),
-                           RELIEF_SCALAR(Fbm, "fbm.", c2x),
-                           RELIEF_SCALAR(Fbm, "fbm.", c2z),
-                           RELIEF_SCALAR(Fbm, "fbm.", c3x),
-                           RELIEF_SCALAR(Fbm, "fbm.", c3z),
-                           RELIEF_SCALAR(Fbm, "fbm.", r0x),
-                           RELIEF_SCALAR(Fbm, "fbm.", r0z),
-                           RELIEF_SCALAR(Fbm, "fbm.", t0x),
-                           RELIEF_SCALAR(Fbm, "fbm.", t0z),
-                           RELIEF_SCALAR(Fbm, "fbm.", roughness0),
-                           RELIEF_SCALAR(Fbm, "fbm.", guard_sq),
-                           RELIEF_SCALAR(Fbm, "fbm.", min_rotation_sq),
-                           RELIEF_SCALAR(Fbm, "fbm.", lacunarity),
-                       }};
-  // The pieces of g_n, float[3][kMaxOctaves]: GL lists an array of arrays by its outer
-  // elements, each an array of floats.
-  const auto pieces = [&](const char* name, std::size_t offset) {
-    for (std::size_t q = 0; q < 3; ++q) {
-      layout.members.push_back({"fbm." + std::string(name) + "[" + std::to_string(q) + "][0]",
-                                offset + q * limits::kMaxOctaves * sizeof(float), sizeof(float),
-                                0});
-    }
-  };
-  pieces("scale_piece", offsetof(Fbm, scale_piece));
-  pieces("scale_piece_hi", offsetof(Fbm, scale_piece_hi));
-  pieces("scale_piece_lo", offsetof(Fbm, scale_piece_lo));
-  return layout;
-}
-
-GlBlockLayout sketch_params_layout() {
-  return {"SketchParamsBlock",
-          sizeof(Sketch),
-          {
-              RELIEF_SCALAR(Sketch, "sketch.", enabled),
-              RELIEF_SCALAR(Sketch, "sketch.", width),
-              RELIEF_SCALAR(Sketch, "sketch.", height),
-              RELIEF_SCALAR(Sketch, "sketch.", offset_x),
-              RELIEF_SCALAR(Sketch, "sketch.", offset_z),
-              RELIEF_SCALAR(Sketch, "sketch.", inv_cell_x),
-              RELIEF_SCALAR(Sketch, "sketch.", inv_cell_z),
-              RELIEF_SCALAR(Sketch, "sketch.", max_x),
-              RELIEF_SCALAR(Sketch, "sketch.", max_z),
-          }};
-}
-
-GlBlockLayout surface_params_layout() {
-  return {"SurfaceParamsBlock",
-          sizeof(Surface),
-          {
-              RELIEF_SCALAR(Surface, "surface.", width),
-              RELIEF_SCALAR(Surface, "surface.", height),
-              RELIEF_SCALAR(Surface, "surface.", pitch),
-              RELIEF_SCALAR(Surface, "surface.", water_enabled),
-              RELIEF_SCALAR(Surface, "surface.", water_level),
-              RELIEF_SCALAR(Surface, "surface.", min_sine_sq),
-              RELIEF_SCALAR(Surface, "surface.", max_slope),
-          }};
-}
-
-GlBlockLayout planet_params_layout() {
-  return {"PlanetParamsBlock",
-          sizeof(Planet),
-          {
-              RELIEF_SCALAR(Planet, "planet.", enabled),
-              RELIEF_SCALAR(Planet, "planet.", visible),
-              RELIEF_SCALAR(Planet, "planet.", radius),
-              RELIEF_SCALAR(Planet, "planet.", inv_radius),
-              RELIEF_SCALAR(Planet, "planet.", center_distance),
-              RELIEF_SCALAR(Planet, "planet.", grid_c),
-              RELIEF_SCALAR(Planet, "planet.", blend),
-              RELIEF_SCALAR(Planet, "planet.", one_minus_blend),
-              RELIEF_SCALAR(Planet, "planet.", theta_h),
-              RELIEF_SCALAR(Planet, "planet.", theta_limb),
-              RELIEF_SCALAR(Planet, "planet.", alpha_lo),
-              RELIEF_SCALAR(Planet, "planet.", theta_lo),
-              RELIEF_SCALAR(Planet, "planet.", eq_slope),
-          }};
-}
-
+// The parameter structs' tables are generated from their field lists (gl_param_tables.cc);
+// the lattice's header is no parameter struct, and its block (lattice.glsl) ends in the values.
 GlBlockLayout lattice_layout() {
   return {"LatticeBlock",
           0,
@@ -172,9 +41,6 @@ GlBlockLayout lattice_layout() {
               {"lattice_values[0]", sizeof(GlLatticeHeader), sizeof(float), sizeof(float), true},
           }};
 }
-
-#undef RELIEF_SCALAR
-#undef RELIEF_ARRAY
 
 std::vector<std::string> layout_mismatches(unsigned int program, const GlBlockLayout& expected) {
   std::vector<std::string> problems;

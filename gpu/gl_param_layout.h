@@ -1,9 +1,11 @@
 // The parameter structs as the GLSL storage blocks must lay them out: for every member of
-// DomainParams<float>, FbmParams<float>, SurfaceParams<float> (core/stage_params.h) and the
-// lattice header (below), its GLSL buffer variable name, its C++ offsetof() and array
-// strides. GlTerrain uploads the C++ structs' bytes unchanged, so these must be the offsets and
-// strides the linked programs report; layout_mismatches() compares them (GlTerrain refuses to
-// run otherwise, and tests/gl_terrain_layout_test.cc checks it).
+// the stage parameter structs (core/stage_params.h) and the lattice header (below), its GLSL
+// buffer variable name, its C++ offsetof() and array strides. GlTerrain and GlTerrainDraw
+// upload the C++ structs' bytes unchanged, so these must be the offsets and strides the linked
+// programs report; layout_mismatches() compares them (both refuse to run otherwise, and
+// tests/gl_terrain_layout_test.cc checks it). The parameter structs' tables are generated at
+// build time from the same field lists as their GLSL declarations (core/stage_param_fields.h,
+// gpu/param_codegen.cc), so this checks the generator against the compiler's layout.
 #pragma once
 
 #include <cstddef>
@@ -52,6 +54,9 @@ GlBlockLayout sketch_params_layout();   // SketchParamsBlock { SketchParams sket
 GlBlockLayout surface_params_layout();  // SurfaceParamsBlock { SurfaceParams surface; }
 GlBlockLayout planet_params_layout();   // PlanetParamsBlock { PlanetParams planet; }
 GlBlockLayout lattice_layout();         // LatticeBlock: GlLatticeHeader, then the values
+// ShadeParamsBlock { the members of ShadeParams<float> } (shade_params.glsl), named as GL names
+// the members of a block with an instance name: "ShadeParamsBlock.width".
+GlBlockLayout shade_params_block_layout();
 
 // Every difference between `expected` and that block as `program` linked it: a member the
 // program lacks or places elsewhere, a different stride, a block size outside [sizeof,

@@ -3,6 +3,7 @@
 #include <bit>
 #include <cstdint>
 #include <cstdio>
+#include <vector>
 
 #include "core/det_math.h"
 #include "core/limits.h"
@@ -21,6 +22,19 @@ std::string define_float(const std::string& name, float value) {
   char bits[16];
   std::snprintf(bits, sizeof bits, "0x%08xu", std::bit_cast<std::uint32_t>(value));
   return "#define " + name + " uintBitsToFloat(" + bits + ")\n";
+}
+
+// A series' coefficients as RELIEF_<name>_COEFF[RELIEF_<name>_TERMS], each the float's bits.
+std::string float_series(const std::string& name, const std::vector<float>& values) {
+  std::string s = "const int " + name + "_TERMS = " + std::to_string(values.size()) + ";\n";
+  s += "const float " + name + "_COEFF[" + std::to_string(values.size()) + "] = float[](";
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    char bits[40];
+    std::snprintf(bits, sizeof bits, "%suintBitsToFloat(0x%08xu)", k > 0 ? ", " : "",
+                  std::bit_cast<std::uint32_t>(values[k]));
+    s += bits;
+  }
+  return s + ");\n";
 }
 
 }  // namespace
@@ -92,23 +106,23 @@ std::string shader_prelude() {
     s += define_float("RELIEF_LOG2_COEFF_" + std::to_string(k),
                       float(det_math_detail::kAtanhLog2Coeffs[k]));
   }
-  // sin_cos_det<float> and atan2_det<float> (det_math.glsl), the constants as the CPU rounds
-  // them: Real(double) once, and the atan series' float(+-1) / float(2k + 1).
+  // sin_cos_det<float> and atan2_det<float> (det_trig.glsl.in, in det_math.glsl), the
+  // constants as the CPU rounds them: Real(double) once, and the atan series' float(+-1) /
+  // float(2k + 1).
   using Trig = det_math_detail::TrigTerms<float>;
-  static_assert(Trig::kSin == 5 && Trig::kCos == 6 && Trig::kAtan == 10,
-                "det_math.glsl spells out 5 sine, 6 cosine and 10 arctangent terms");
+  std::vector<float> sin(Trig::kSin), cos(Trig::kCos), atan(Trig::kAtan);
   for (int k = 0; k < Trig::kSin; ++k) {
-    s += define_float("RELIEF_SIN_COEFF_" + std::to_string(k),
-                      float(det_math_detail::kSinCoeffs[k]));
+    sin[k] = float(det_math_detail::kSinCoeffs[k]);
   }
   for (int k = 0; k < Trig::kCos; ++k) {
-    s += define_float("RELIEF_COS_COEFF_" + std::to_string(k),
-                      float(det_math_detail::kCosCoeffs[k]));
+    cos[k] = float(det_math_detail::kCosCoeffs[k]);
   }
   for (int k = 0; k < Trig::kAtan; ++k) {
-    s += define_float("RELIEF_ATAN_COEFF_" + std::to_string(k),
-                      float(k % 2 == 0 ? 1.0 : -1.0) / float(2 * k + 1));
+    atan[k] = float(k % 2 == 0 ? 1.0 : -1.0) / float(2 * k + 1);
   }
+  s += float_series("RELIEF_SIN", sin);
+  s += float_series("RELIEF_COS", cos);
+  s += float_series("RELIEF_ATAN", atan);
   using Pieces = det_math_detail::HalfPiPieces<float>;
   s += define_float("RELIEF_HALF_PI_HI", Pieces::hi);
   s += define_float("RELIEF_HALF_PI_MID", Pieces::mid);

@@ -1,6 +1,7 @@
-// The GLSL sources of gpu/shaders/, compiled into the library (gpu/CMakeLists.txt reads each
-// file into gl_shader_sources.cc at configure time, as core/ does with the scene presets), so
-// a program built with them needs no file beside it.
+// The GLSL sources of gpu/shaders/ (or generated from their templates there), compiled into
+// the library (gpu/CMakeLists.txt embeds each file into gl_shader_sources.cc at build time with
+// relief_embed_files, as core/ does with the scene presets), so a program built with them needs
+// no file beside it.
 #pragma once
 
 #include <span>

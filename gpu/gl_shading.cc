@@ -9,6 +9,8 @@
 
 #include "core/limits.h"
 #include "core/srgb.h"
+#include "gpu/gl_checks.h"
+#include "gpu/gl_param_layout.h"
 #include "gpu/glsl_sources.h"
 
 namespace relief::gpu {
@@ -60,6 +62,18 @@ GlTerrainDraw::GlTerrainDraw()
       background_({{GL_VERTEX_SHADER, background_vertex_sources()},
                    {GL_FRAGMENT_SHADER, background_fragment_sources()}}),
       triangles_({{GL_COMPUTE_SHADER, triangle_index_sources()}}) {
+  // ShadeParams<float> is uploaded as bytes: the block must place every member where C++
+  // does (before any object is made, which a throw would leak).
+  std::string problems;
+  for (const std::string& problem : layout_mismatches(terrain_.id(), shade_params_block_layout())) {
+    problems += "\n  " + problem;
+  }
+  if (!problems.empty()) {
+    throw GlError(
+        "the GLSL block of ShadeParams does not match the C++ struct "
+        "(gpu/shaders/shade_params.glsl.in against core/stage_params.h):" +
+        problems);
+  }
   shade_block_ = immutable_buffer(sizeof(ShadeParams<float>), nullptr, GL_DYNAMIC_STORAGE_BIT);
   transform_block_ =
       immutable_buffer(sizeof(TransformParams<float>), nullptr, GL_DYNAMIC_STORAGE_BIT);

@@ -2,8 +2,9 @@
 // the GLSL twin of core/projected_domain.cc, core/octave_coordinates.cc (the forms' choice),
 // core/fbm.cc and core/surface.cc. Each stage reads the same parameter struct as the CPU stage
 // (core/stage_params.h), uploaded byte for byte into a std430 storage block whose GLSL
-// declaration mirrors it (gpu/shaders/params.glsl; the offsets are checked against offsetof
-// when the programs are linked, gl_param_layout.h), and writes one storage buffer per stream
+// declaration is generated from the struct's field list (params.glsl, from
+// gpu/shaders/params.glsl.in; the offsets are checked against offsetof when the programs are
+// linked, gl_param_layout.h), and writes one storage buffer per stream
 // in the CPU's layout (gl_streams.h). The buffers stay on the GPU: buffer(stream) names them
 // for a later draw pass, which reads them in its vertex shader without a round trip; read()
 // copies one back. How far the results are from the CPU's, and why: docs/gl-backend.md.

@@ -85,7 +85,7 @@ GlTerrainPrograms build_terrain_programs() {
     }
     if (!problems.empty()) {
       throw GlError("the GLSL parameter blocks of program " + std::string(entry.program) +
-                    " do not match the C++ structs (gpu/shaders/params.glsl against "
+                    " do not match the C++ structs (gpu/shaders/params.glsl.in against "
                     "core/stage_params.h):" +
                     problems);
     }

@@ -1,6 +1,7 @@
 // The compute programs of gl_terrain.h, each assembled from the prelude (gl_shader_prelude.h),
-// the parameter structs (shaders/params.glsl), the shared functions it calls and its stage's
-// .comp file, and checked against the C++ parameter layouts (gl_param_layout.h).
+// the parameter structs (params.glsl, generated from shaders/params.glsl.in), the shared
+// functions it calls and its stage's .comp file, and checked against the C++ parameter layouts
+// (gl_param_layout.h).
 #pragma once
 
 #include <string_view>

@@ -50,10 +50,11 @@ void constant_double(std::string& out, const std::string& name, double value) {
   out += "const double " + name + " = " + literal(value) + ";\n";
 }
 
-void constant_double_array(std::string& out, const std::string& name,
-                           std::span<const double> values) {
-  out += "const int " + name + "Count = " + std::to_string(values.size()) + ";\n";
-  out += "const double " + name + "[" + std::to_string(values.size()) + "] = double[](";
+// A series' coefficients as RELIEF_<name>_COEFF[RELIEF_<name>_TERMS], the names the float
+// series have in the terrain stages' prelude (det_trig.glsl.in reads both).
+void double_series(std::string& out, const std::string& name, std::span<const double> values) {
+  out += "const int " + name + "_TERMS = " + std::to_string(values.size()) + ";\n";
+  out += "const double " + name + "_COEFF[" + std::to_string(values.size()) + "] = double[](";
   for (std::size_t k = 0; k < values.size(); ++k) {
     out += (k > 0 ? ", " : "") + literal(values[k]);
   }
@@ -124,26 +125,25 @@ std::string glsl_prelude() {
   constant(out, "kReflectivityBase", float(kReflectivityBase));
   constant(out, "kReflectivityDepth", float(kReflectivityDepth));
   constant(out, "kLocalFrameMinCos", float(kLocalFrameMinCos));
-  // sin_cos_det<double> and atan2_det<double> (planet_shading.glsl: a planet's background).
+  // sin_cos_det<double> and atan2_det<double> (det_trig.glsl.in, in planet_shading.glsl: a
+  // planet's background), under the names the terrain stages' prelude gives their floats.
   using Trig = det_math_detail::TrigTerms<double>;
-  static_assert(Trig::kSin == 8 && Trig::kCos == 9 && Trig::kAtan == 21,
-                "planet_shading.glsl loops over 8 sine, 9 cosine and 21 arctangent terms");
   std::vector<double> atan(Trig::kAtan);
   for (int k = 0; k < Trig::kAtan; ++k) {  // atan_reduced's Real(+-1) / Real(2k + 1)
     atan[k] = (k % 2 == 0 ? 1.0 : -1.0) / double(2 * k + 1);
   }
-  constant_double_array(out, "kSinCoeffD", {det_math_detail::kSinCoeffs, Trig::kSin});
-  constant_double_array(out, "kCosCoeffD", {det_math_detail::kCosCoeffs, Trig::kCos});
-  constant_double_array(out, "kAtanCoeffD", atan);
+  double_series(out, "RELIEF_SIN", {det_math_detail::kSinCoeffs, Trig::kSin});
+  double_series(out, "RELIEF_COS", {det_math_detail::kCosCoeffs, Trig::kCos});
+  double_series(out, "RELIEF_ATAN", atan);
   using Pieces = det_math_detail::HalfPiPieces<double>;
-  constant_double(out, "kHalfPiHiD", Pieces::hi);
-  constant_double(out, "kHalfPiMidD", Pieces::mid);
-  constant_double(out, "kHalfPiLoD", Pieces::lo);
-  constant_double(out, "kInvHalfPiD", 1.0 / det_math_detail::kHalfPi);
-  constant_double(out, "kHalfPiD", det_math_detail::kHalfPi);
-  constant_double(out, "kQuarterPiD", det_math_detail::kQuarterPi);
-  constant_double(out, "kTanEighthPiD", det_math_detail::kTanEighthPi);
-  constant_double(out, "kPiD", 2.0 * det_math_detail::kHalfPi);
+  constant_double(out, "RELIEF_HALF_PI_HI", Pieces::hi);
+  constant_double(out, "RELIEF_HALF_PI_MID", Pieces::mid);
+  constant_double(out, "RELIEF_HALF_PI_LO", Pieces::lo);
+  constant_double(out, "RELIEF_INV_HALF_PI", 1.0 / det_math_detail::kHalfPi);
+  constant_double(out, "RELIEF_HALF_PI", det_math_detail::kHalfPi);
+  constant_double(out, "RELIEF_QUARTER_PI", det_math_detail::kQuarterPi);
+  constant_double(out, "RELIEF_TAN_EIGHTH_PI", det_math_detail::kTanEighthPi);
+  constant_double(out, "RELIEF_PI", 2.0 * det_math_detail::kHalfPi);
   return out;
 }
 

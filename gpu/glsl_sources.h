@@ -1,5 +1,6 @@
-// The GLSL of gpu/shaders/, embedded at build time (gpu/CMakeLists.txt reads each file into
-// a raw string literal of the generated glsl_sources.cc), and the prelude that gives every
+// The GLSL of gpu/shaders/ (or generated from their templates there), embedded at build time
+// (gpu/CMakeLists.txt reads each file into a raw string literal of the generated
+// glsl_sources.cc), and the prelude that gives every
 // shader the C++ side's constants.
 #pragma once
 
@@ -12,13 +13,13 @@ namespace relief::gpu {
 
 namespace glsl {
 extern const char* const kCommon;          // shaders/common.glsl
-extern const char* const kShadeParams;     // shaders/shade_params.glsl
+extern const char* const kShadeParams;     // shaders/shade_params.glsl.in, generated
 extern const char* const kLattice;         // shaders/shading_lattice.glsl
 extern const char* const kProtoTexture;    // shaders/proto_texture.glsl
 extern const char* const kSkyWater;        // shaders/sky_water.glsl
-extern const char* const kPlanetShading;   // shaders/planet_shading.glsl
+extern const char* const kPlanetShading;   // shaders/planet_shading.glsl.in, generated
 extern const char* const kTerrainShading;  // shaders/terrain_shading.glsl
-extern const char* const kTerrainVert;     // shaders/terrain.vert
+extern const char* const kTerrainVert;     // shaders/terrain.vert.in, generated
 extern const char* const kTerrainFrag;     // shaders/terrain.frag
 extern const char* const kBackgroundVert;  // shaders/background.vert
 extern const char* const kBackgroundFrag;  // shaders/background.frag

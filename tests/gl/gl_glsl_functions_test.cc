@@ -1,5 +1,5 @@
 // The GLSL ports of core's deterministic functions (gpu/shaders/common.glsl: log2_det,
-// exp2_det, normalize_or; gpu/shaders/det_math.glsl: sin_cos_det, atan2_det) against the C++
+// exp2_det, normalize_or; gpu/shaders/det_trig.glsl.in: sin_cos_det, atan2_det) against the C++
 // originals, bit for bit, through a compute shader.
 // docs/gl-shading.md: where GLSL only promises bounded error, llvmpipe's IEEE arithmetic
 // still gives the CPU's bits, which is what these tests pin down.

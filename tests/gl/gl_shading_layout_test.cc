@@ -1,5 +1,6 @@
-// The GLSL blocks that take the stage parameter structs as bytes (gpu/shaders/shade_params.glsl,
-// terrain.vert) must lay every member out where C++ does: each member's GL_OFFSET (and the
+// The GLSL blocks that take the stage parameter structs as bytes (gpu/shaders/
+// shade_params.glsl.in, terrain.vert.in, generated) must lay every member out where C++ does:
+// each member's GL_OFFSET (and the
 // strides of arrays) as the linked program reports them, against the member's offset in the
 // C++ object. docs/gl-shading.md, "The layout rule".
 #include <cstddef>
