@@ -80,8 +80,8 @@ CLI::Validator integer_in(long long lo, long long hi) {
           // int: the message then speaks of the form alone.
           const bool any_int = lo <= INT_MIN && hi >= INT_MAX;
           return "'" + brief_text(text) + "' is not a whole number" +
-                 (any_int ? std::string() : " from " + std::to_string(lo) + " to " +
-                                                std::to_string(hi));
+                 (any_int ? std::string()
+                          : " from " + std::to_string(lo) + " to " + std::to_string(hi));
         }
         return "";
       },

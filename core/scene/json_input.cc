@@ -213,8 +213,8 @@ json parse_json_strictly(std::string_view text, const std::string& source) {
     std::string lower(text);
     std::transform(lower.begin(), lower.end(), lower.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
-    const bool non_finite = lower.find("nan") != std::string::npos ||
-                            lower.find("inf") != std::string::npos;
+    const bool non_finite =
+        lower.find("nan") != std::string::npos || lower.find("inf") != std::string::npos;
     throw SceneError("", source + ": not valid JSON: " + brief_text(printable, 3 * kBriefChars) +
                              (non_finite ? " (numbers must be finite; NaN and Infinity are not "
                                            "JSON)"
