@@ -14,13 +14,14 @@
 //   @real TYPE FILE@   FILE (beside the template) in precision TYPE, float or double: its
 //                      REAL(literal) becomes the literal (double: with the LF suffix), and
 //                      the word REAL the type.
+#include <algorithm>
+#include <cctype>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <functional>
 #include <map>
-#include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -29,6 +30,7 @@
 
 #include "core/stage_param_fields.h"
 #include "core/stage_params.h"
+#include "gpu/param_codegen_text.h"
 
 // A named namespace, not an anonymous one: the traits' unused members (uint, TransformParams'
 // C++ name) are then no unused internal variables to warn about.
@@ -112,11 +114,16 @@ std::string glsl_dims(const std::string& dims) {
       {"kWaveOctaves", "kWaveOctaves"},               // glsl_prelude.cc
   };
   std::string out;
-  const std::regex extent(R"(\[\s*([^\]]*?)\s*\])");
-  for (std::sregex_iterator it(dims.begin(), dims.end(), extent), end; it != end; ++it) {
-    const std::string e = (*it)[1];
+  // Each "[ extent ]" of the C++ declaration, its extent trimmed of white space.
+  for (std::size_t open = dims.find('['); open != std::string::npos;
+       open = dims.find('[', open + 1)) {
+    const std::size_t close = dims.find(']', open);
+    if (close == std::string::npos) {
+      throw std::runtime_error("unbalanced array dimensions " + dims + " (param_codegen.cc)");
+    }
+    const std::string e = trimmed(dims.substr(open + 1, close - open - 1));
     const auto named = kNames.find(e);
-    if (named == kNames.end() && !std::regex_match(e, std::regex("[0-9]+"))) {
+    if (named == kNames.end() && !all_digits(e)) {
       throw std::runtime_error("no GLSL name for the extent " + e + " (param_codegen.cc)");
     }
     out += "[" + (named == kNames.end() ? e : named->second) + "]";
@@ -305,17 +312,6 @@ void write_file(const std::string& path, const std::string& text) {
   }
 }
 
-// det_math's text in one precision (the @real directive).
-std::string in_precision(const std::string& text, const std::string& type) {
-  if (type != "float" && type != "double") {
-    throw std::runtime_error("@real " + type + "@: the precision is float or double");
-  }
-  const std::string literal = type == "double" ? "$1LF" : "$1";
-  const std::string typed = std::regex_replace(
-      text, std::regex(R"(\bREAL\((-?[0-9]+\.[0-9]*(?:[eE][-+]?[0-9]+)?)\))"), literal);
-  return std::regex_replace(typed, std::regex(R"(\bREAL\b)"), type);
-}
-
 std::string expand(const std::string& template_path) {
   static const std::map<std::string, Emit> kStructs = {
       directive_entry<Vec3<float>>(),          directive_entry<ProjectorRays<float>>(),
@@ -325,16 +321,14 @@ std::string expand(const std::string& template_path) {
       directive_entry<RampParams<float>>(),    directive_entry<LayerParams<float>>(),
       directive_entry<ShadeParams<float>>()};
   const std::string directory = template_path.substr(0, template_path.find_last_of('/') + 1);
-  const std::regex directive(R"(^\s*@(\w+) ([^@]*)@(.*)$)");
   std::istringstream in(read_file(template_path));
   std::string out, line;
   for (int number = 1; std::getline(in, line); ++number) {
-    std::smatch m;
-    if (!std::regex_match(line, m, directive)) {
+    std::string kind, argument, tail;
+    if (!parse_directive(line, kind, argument, tail)) {
       out += line + "\n";
       continue;
     }
-    const std::string kind = m[1], argument = m[2], tail = m[3];
     try {
       if (kind == "real") {
         const std::size_t space = argument.find(' ');

@@ -194,12 +194,20 @@ std::optional<NoiseLattice> load_basis_grid(const Scene& scene, std::vector<std:
     terms.push_back(term);
   }
   if (notes != nullptr && scene.terrain.horizontal_scale != TerrainSettings{}.horizontal_scale) {
+    // Stage 3's P is the composed grid's side after mirroring and refinement (stage3_terrain,
+    // core/basis_images.h), and its octave-0 cell tile_size / P.
+    const int composed_side = side * basis.upsample;
     notes->push_back(
         "terrain.horizontal_scale = " + measure_text(scene.terrain.horizontal_scale, 9) +
         " is not used with terrain.basis: the octave-0 cell is "
-        "terrain.basis.tile_size / " +
-        std::to_string(side) + " = " + measure_text(basis.tile_size / double(side), 9) +
-        " world units");
+        "terrain.basis.tile_size / P = " +
+        measure_text(basis.tile_size, 9) + " / " + std::to_string(composed_side) + " = " +
+        measure_text(basis.tile_size / double(composed_side), 9) +
+        " world units, P the composed grid's side (" + std::to_string(source_side) +
+        "-texel images" + (mirror ? ", mirrored" : "") +
+        (basis.upsample > 1 ? ", refined " + std::to_string(basis.upsample) + " times"
+                            : std::string()) +
+        ")");
   }
   return compose_basis(terms, source_side, basis.upsample);
 }

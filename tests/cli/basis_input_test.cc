@@ -202,9 +202,21 @@ TEST_CASE("anImageThatDoesNotTileIsNotedWithItsSeamMeasureAndMirrorSilencesIt", 
   CHECK(render({}).err.empty());
   const test::CliResult scaled = render({"terrain.horizontal_scale=500"});
   CHECK(scaled.code == 0);
+  // craters: 256-texel images refined 4 times, so P = 1024 and the cell 8000 / 1024.
   CHECK_THAT(scaled.err, Catch::Contains("terrain.horizontal_scale = 500 is not used with "
                                          "terrain.basis: the octave-0 cell is "
-                                         "terrain.basis.tile_size / 256 = 31.25 world units"));
+                                         "terrain.basis.tile_size / P = 8000 / 1024 = 7.8125 "
+                                         "world units, P the composed grid's side (256-texel "
+                                         "images, refined 4 times)"));
+  // A 16-texel image mirrored, with the preset's refinement: P = 16 x 2 x 4.
+  std::vector<std::string> mirrored_scaled = one_image(ramp);
+  mirrored_scaled.push_back("terrain.basis.wrap=\"mirror\"");
+  mirrored_scaled.push_back("terrain.horizontal_scale=500");
+  const test::CliResult small = render(mirrored_scaled);
+  CHECK(small.code == 0);
+  CHECK_THAT(small.err, Catch::Contains("the octave-0 cell is terrain.basis.tile_size / P = "));
+  CHECK_THAT(small.err, Catch::Contains(" = 8000 / 128 = 62.5 world units"));
+  CHECK_THAT(small.err, Catch::Contains("(16-texel images, mirrored, refined 4 times)"));
 }
 
 // The stress suite on a basis preset: its cases that set the octave-0 cell through
