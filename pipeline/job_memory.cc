@@ -48,6 +48,9 @@ constexpr std::uintmax_t kMinSoupLineBytes = 18;
 constexpr std::uintmax_t kRasterPixelBytes = 8 + 12 + 19 + 12;
 // stages: one field's picture (3), its PNG (13) and its raw channels with their PFM (24).
 constexpr std::uintmax_t kStagesVertexBytes = 3 + 13 + 24;
+// A planet's stages add its four bent streams (in double, and their float copy) and the bent
+// and drop files: two PNGs (13 each) and four raw channels (4 each).
+constexpr std::uintmax_t kStagesBentVertexBytes = 4 * 8 + 4 * 4 + 2 * 13 + 4 * 4;
 
 std::string size_text(int width, int height) {
   return std::to_string(width) + "x" + std::to_string(height);
@@ -208,6 +211,10 @@ MemoryEstimate estimate_stages_memory(const Scene& scene, Backend backend) {
       backend != Backend::kReferenceDouble ? kGridVertexBytes : 10 * 8 + 1;
   estimate.add("grid " + size_text(scene.grid.width, scene.grid.height),
                grid_vertices(scene) * (grid_bytes + kStagesVertexBytes));
+  if (scene.terrain.planet && scene.terrain.planet->radius != 0.0) {
+    estimate.add("the bend (bent positions and drop)",
+                 grid_vertices(scene) * kStagesBentVertexBytes);
+  }
   return estimate;
 }
 

@@ -129,14 +129,21 @@ void write_stage_outputs(const std::filesystem::path& dir, const Scene& scene,
   StageWriter out(dir, b, files, raw_format, scene_metadata(scene));
   const double octave_cell = 1.0 / plan.terrain.inv_horizontal_scale;  // basis mode's too
   const glm::dvec3 camera = plan.camera.position;
+  // A planet frame (docs/planet.md): the unbent frame's buffers, the normals rotated into the
+  // bent one, and the bend itself (bent positions and drop).
+  const bool bent = !b.bent_x.empty();
 
   // Domain: absolute base-domain position as two nested checkers (octave-0 cells in hue,
   // eighths of them in brightness), so both the far field and the near field show their
   // perspective.
   out.field(
       "domain",
-      "camera-relative base-domain position of each grid vertex: channels dx, dz (world units) "
-      "and the validity flag (1 valid, 0 invalid)",
+      bent ? "camera-relative arc offset of each grid vertex on the sphere, as stage 2 writes "
+             "and stage 3 evaluates it (the unbent frame; bent.pfm holds the bent positions): "
+             "channels dx, dz (world units along the sphere) and the validity flag (1 valid, 0 "
+             "invalid)"
+           : "camera-relative base-domain position of each grid vertex: channels dx, dz (world "
+             "units) and the validity flag (1 valid, 0 invalid)",
       "world units",
       {channel(b.dx), channel(b.dz), [&b](std::size_t k) { return float(b.valid[k]); }},
       [&](std::size_t k) {
@@ -184,8 +191,10 @@ void write_stage_outputs(const std::filesystem::path& dir, const Scene& scene,
       height_range);
 
   out.field(
-      "normal", "unit normal, (n + 1) / 2 as RGB", "unit vector",
-      {channel(b.nx), channel(b.ny), channel(b.nz)},
+      "normal",
+      bent ? "unit normal rotated into the bent frame (camera-relative axes), (n + 1) / 2 as RGB"
+           : "unit normal, (n + 1) / 2 as RGB",
+      "unit vector", {channel(b.nx), channel(b.ny), channel(b.nz)},
       [&](std::size_t k) {
         auto byte = [](float n) {
           return static_cast<std::uint8_t>(
@@ -214,6 +223,30 @@ void write_stage_outputs(const std::filesystem::path& dir, const Scene& scene,
         return heat_color(depth_range.max > 0 ? b.water_depth[k] / depth_range.max : 0.0);
       },
       depth_range);
+
+  if (bent) {
+    const ValueRange drop_range = valid_range(b, b.bent_drop);
+    out.field(
+        "bent",
+        "camera-relative position of each grid vertex on the sphere after the bend (planet_bend.h):"
+        " channels x, y, z; the sphere's centre is at (0, -D, 0), D = R + camera altitude, and "
+        "a vertex lies at distance D + height from it (gray: y from the lowest to the highest "
+        "valid vertex)",
+        "world units", {channel(b.bent_x), channel(b.bent_y), channel(b.bent_z)},
+        [&, range = valid_range(b, b.bent_y)](std::size_t k) {
+          return gray_color(normalise(b.bent_y[k], range));
+        },
+        ValueRange{});
+    out.field(
+        "drop",
+        "how far the bend lowers each vertex below its unbent height (stage 8 subtracts it; "
+        "heat map from 0 to the largest)",
+        "world units", {channel(b.bent_drop)},
+        [&](std::size_t k) {
+          return heat_color(drop_range.max > 0 ? b.bent_drop[k] / drop_range.max : 0.0);
+        },
+        drop_range);
+  }
 
   std::size_t valid_count = 0;
   for (int j = 0; j < b.layout.height; ++j) {

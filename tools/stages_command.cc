@@ -36,6 +36,13 @@ GridBuffers<float> rounded(const GridBuffers<double>& d) {
   copy(d.nz, f.nz);
   copy(d.slope, f.slope);
   copy(d.water_depth, f.water_depth);
+  if (!d.bent_x.empty()) {  // a planet frame's bend (docs/planet.md)
+    f.allocate_bent();
+    copy(d.bent_x, f.bent_x);
+    copy(d.bent_y, f.bent_y);
+    copy(d.bent_z, f.bent_z);
+    copy(d.bent_drop, f.bent_drop);
+  }
   return f;
 }
 
