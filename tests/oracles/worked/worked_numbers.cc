@@ -5,15 +5,14 @@
 // transcriptions (the *_transcription.h beside it) and checks every transcription bit for bit
 // against the repository's own function, on the worked inputs and on random ones. Exit status
 // 0 when every comparison holds, 1 otherwise ("failures: N" on the last line). The test
-// worked_numbers_match_the_code runs it. Every random input comes from std::mt19937_64 with a
-// constant seed, so every run compares the same numbers; the sample counts are those the docs'
-// numbers were first checked with (the whole run takes about 0.05 s at -O2, 0.13 s with
-// -fsanitize=address,undefined at -O1).
+// worked_numbers_match_the_code runs it. Every random input comes from the tests' TestRandom
+// (tests/support/test_support.h) with a constant seed, so every run compares the same numbers; the
+// sample counts are those the docs' numbers were first checked with (the whole run takes about 0.05
+// s at -O2, 0.13 s with -fsanitize=address,undefined at -O1).
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <random>
 #include <vector>
 
 #include "core/basis_images.h"
@@ -28,6 +27,7 @@
 #include "tests/oracles/worked/det_math_transcription.h"
 #include "tests/oracles/worked/surface_and_bend_transcription.h"
 #include "tests/oracles/worked/worked_trace.h"
+#include "tests/support/test_support.h"
 
 namespace relief::test::worked {
 namespace {
@@ -41,16 +41,6 @@ void same(const char* what, T a, T b) {
     ++failures;
     std::printf("MISMATCH %s: %.17g vs %.17g\n", what, double(a), double(b));
   }
-}
-
-// Uniform doubles in [a, b) from std::mt19937_64 (whose sequence the standard fixes): this is
-// libstdc++'s std::uniform_real_distribution<double> (one draw / 2^64, then u (b - a) + a),
-// written out because the distributions' algorithms are left to each standard library.
-double uniform(std::mt19937_64& rng, double a, double b) {
-  double u = double(rng()) / 18446744073709551616.0;
-  if (u >= 1.0)
-    u = std::nextafter(1.0, 0.0);
-  return u * (b - a) + a;
 }
 
 void half_pi_pieces() {
@@ -88,9 +78,9 @@ void exp2_numbers() {
   same("exp2 d", spec_exp2<double>(-1.5, true), exp2_det<double>(-1.5));
   same("exp2 d", spec_exp2<double>(2.5, true), exp2_det<double>(2.5));
   // Random arguments over the whole clamped range and beyond.
-  std::mt19937_64 rng(7);
+  test::TestRandom rng(7);
   for (int i = 0; i < 200000; ++i) {
-    const double x = uniform(rng, -1100.0, 1100.0);
+    const double x = rng.uniform(-1100.0, 1100.0);
     same("exp2 d rnd", spec_exp2<double>(x, false), exp2_det<double>(x));
     const float xf = float(x / 8);
     same("exp2 f rnd", spec_exp2<float>(xf, false), exp2_det<float>(xf));
@@ -149,13 +139,13 @@ void blur_numbers() {
     std::printf("  sum in %.17g, sum out %.17g\n", sum_in, sum_out);
   }
   // Random grids of every power-of-two side to 128, sigma small to n / 2.
-  std::mt19937_64 rng(11);
+  test::TestRandom rng(11);
   int grids = 0;
   for (int n : {1, 2, 4, 8, 16, 32, 64, 128}) {
     for (double sigma : {0.3, 1.0, 2.5, 7.0, double(n) / 2}) {
       std::vector<double> v(std::size_t(n) * std::size_t(n));
       for (double& a : v)
-        a = uniform(rng, 0.0, 1.0);
+        a = rng.uniform(0.0, 1.0);
       std::vector<double> mine = v, theirs = v;
       spec_blur(mine, n, sigma);
       periodic_gaussian_blur(theirs, n, sigma);
@@ -186,9 +176,9 @@ void sin_cos_numbers() {
                 double(float(std::cos(x))));
   }
   // Random arguments over [-100, 100) (past the |x| <= 64 of the docs, where q clamps).
-  std::mt19937_64 rng(5);
+  test::TestRandom rng(5);
   for (int i = 0; i < 200000; ++i) {
-    const double x = uniform(rng, -100.0, 100.0);
+    const double x = rng.uniform(-100.0, 100.0);
     double s, c, s2, c2;
     spec_sincos<double>(x, s, c, false);
     sin_cos_det<double>(x, s2, c2);
@@ -306,12 +296,12 @@ void bend_numbers() {
 void normalize_numbers() {
   std::printf("\n== normalize: row-major sums against column-major on a 64 x 64 random grid\n");
   const int n = 64;
-  std::mt19937_64 rng(3);
+  test::TestRandom rng(3);
   GreyGrid g;
   g.side = n;
   g.values.resize(n * n);
   for (double& a : g.values)
-    a = std::round(uniform(rng, 0.0, 1.0) * 65535.0) / 65535.0;
+    a = std::round(rng.uniform(0.0, 1.0) * 65535.0) / 65535.0;
   GreyGrid theirs = g;
   BasisImageSettings settings;
   settings.normalize = true;
