@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
-"""Writes the fuzzers' seed corpora (fuzz/corpus/TARGET/), dictionaries (fuzz/TARGET.dict) and
-the constructed regression inputs of fuzz/regressions/.
+"""Writes the fuzzers' seed corpora (fuzz/corpus/TARGET/), the soup and texture dictionaries
+(fuzz/TARGET.dict) and the constructed regression inputs of fuzz/regressions/. The scene and
+override dictionaries are generated from the scene schema by relief_scene_docs.
 
-Run from the repository root after a scene field is added or renamed:
+Run from the repository root after the seeds change:
     python3 fuzz/make_seeds.py
 The outputs are committed; the fuzzers and tests/cli/fuzz_corpus_test.cc read them, not this
 script. Standard library only: the PNGs are written chunk by chunk with zlib.
@@ -169,24 +170,8 @@ def dict_file(target, tokens):
     (FUZZ / f"{target}.dict").write_text("\n".join(lines) + "\n")
 
 
-paths = list(field_paths(alpine))
-# terrain.planet is absent from alpine.json (the plane prints no planet): its fields by hand.
-paths += [("terrain.planet", None)]
-paths += [("terrain.planet." + k, None) for k in ("radius", "horizon", "equal_angle")]
-paths += [("terrain.planet.equal_angle." + k, None) for k in ("begin", "end")]
-layer_keys = list(alpine["shading"]["layers"][0].keys())
-textures = ["builtin:" + t for t in ("sand", "grass", "rock", "snow", "bed", "basalt", "dune")]
-words = ["linear", "cubic", "quintic", "amplitude", "nyquist", "look_at", "true", "false",
-         "null"] + textures
-scene_tokens = [f'"{p.split(".")[-1]}":' for p, _ in paths] + [f'"{k}":' for k in layer_keys]
-scene_tokens += ['"look_at":', "{", "}", "[", "]", ",", '"0":', "1e308", "-0", "1e-17", "4096"]
-scene_tokens += ['"planet":']
-scene_tokens += [f'"{w}"' for w in words[:5]] + [f'"{t}"' for t in textures] + words[5:9]
-dict_file("scene", scene_tokens)
-override_tokens = [p + "=" for p, _ in paths] + ["camera.look_at=", "\n"]
-override_tokens += [f"shading.layers.{k}.{key}=" for k in (0, 7) for key in layer_keys]
-override_tokens += words + ["[1,2]", "[0,0,0]", "nan", "inf", "1e999", "{}"]
-dict_file("override", override_tokens)
+# The scene and override dictionaries come from the scene schema (relief_scene_docs --write .),
+# so that every field and choice reaches them; the soup and texture ones are written here.
 dict_file("soup", ["#", "\r\n", "\n", "\xef\xbb\xbf", "1e30", "-1e30", "2097152", "16384",
                    "0.5", "1e-45", "-0", "nan", "inf", "0x1p3", "1e-400"])
 dict_file("texture", ["IHDR", "IDAT", "IEND", "PLTE", "tRNS", "gAMA", "CgBI", "iTXt",

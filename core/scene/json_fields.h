@@ -7,7 +7,6 @@
 #include <charconv>
 #include <cmath>
 #include <functional>
-#include <initializer_list>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -183,7 +182,7 @@ class LayerReader {
   // An output file name that must end in one of `extensions` (any letter case): the format it
   // is written in.
   std::string file_name(const json& value, const std::string& path,
-                        std::initializer_list<std::string_view> extensions,
+                        const std::vector<std::string_view>& extensions,
                         std::string_view why) const {
     std::string name = string(value, path);
     std::string lower = name;

@@ -1,59 +1,95 @@
-// terrain.planet (§4.1's spherical domain, docs/planet.md): the field's strict reading and its
-// rules across fields.
+// terrain.planet (§4.1's spherical domain, docs/planet.md): its fields and its rules across
+// fields.
 #include <cmath>
 #include <optional>
 #include <string>
 
 #include "core/limits.h"
 #include "core/scene/scene_sections.h"
+#include "core/scene/schema_fields.h"
 
 namespace relief {
 
-void apply_planet(const LayerReader& in, const json& value, const std::string& path,
-                  std::optional<PlanetSettings>& planet) {
-  if (value.is_null()) {
-    planet.reset();
-    return;
-  }
-  PlanetSettings s = planet.value_or(PlanetSettings{});
-  const Range length{0.0, limits::kMaxPlanetLength};
-  in.object(
-      value, path,
-      Handlers{
-          {"radius",
-           [&](const json& v, const std::string& p) {
-             s.radius = in.number(v, p, Range{0.0, limits::kMaxPlanetRadius});
-             if (s.radius != 0.0 && s.radius < limits::kMinPlanetRadius) {
-               in.fail(p, p + " = " + brief(v) + " is out of range; allowed 0 (the plane) or " +
-                              format_number(limits::kMinPlanetRadius) + " <= " + p +
-                              " <= " + format_number(limits::kMaxPlanetRadius));
-             }
-           }},
-          {"horizon",
-           [&](const json& v, const std::string& p) { s.horizon = in.number(v, p, length); }},
-          {"equal_angle",
-           [&](const json& v, const std::string& p) {
-             if (v.is_null()) {
-               s.equal_angle.reset();
-               return;
-             }
-             Vec2d band = s.equal_angle.value_or(Vec2d{0.0, 1.0});
-             in.object(
-                 v, p,
-                 Handlers{
-                     {"begin", [&](const json& w,
-                                   const std::string& q) { band[0] = in.number(w, q, length); }},
-                     {"end", [&](const json& w,
-                                 const std::string& q) { band[1] = in.number(w, q, length); }},
-                 });
-             if (!(band[0] < band[1])) {
-               in.fail(p, p + " = {\"begin\": " + format_number(band[0]) + ", \"end\": " +
-                              format_number(band[1]) + "} is empty; allowed begin < end");
-             }
-             s.equal_angle = band;
-           }},
-      });
-  planet = s;
+namespace {
+
+constexpr Range kPlanetLength{0.0, limits::kMaxPlanetLength};
+
+// 0 (the plane) or kMinPlanetRadius to kMaxPlanetRadius.
+Field<PlanetSettings> radius_field() {
+  Field<PlanetSettings> field =
+      number_field("radius", &PlanetSettings::radius, Range{0.0, limits::kMaxPlanetRadius},
+                   {"world units", "the datum sphere's radius; 0: the plane",
+                    "0, or ≥ 1000 (a smaller planet is smaller than a mountain range)"});
+  field.read = [](const LayerContext& cx, const json& v, const std::string& p, PlanetSettings& s) {
+    s.radius = cx.in.number(v, p, Range{0.0, limits::kMaxPlanetRadius});
+    if (s.radius != 0.0 && s.radius < limits::kMinPlanetRadius) {
+      cx.in.fail(p, p + " = " + brief(v) + " is out of range; allowed 0 (the plane) or " +
+                        format_number(limits::kMinPlanetRadius) + " <= " + p +
+                        " <= " + format_number(limits::kMaxPlanetRadius));
+    }
+  };
+  return field;
+}
+
+// The equal-angle band [begin, end): a pair written as an object.
+const Schema<Vec2d>& band_schema() {
+  auto end_of_band = [](std::size_t index, const char* key, std::string_view meaning) {
+    return Field<Vec2d>{
+        {key, range_text(kPlanetLength), {"world units", meaning}},
+        [index](const LayerContext& cx, const json& v, const std::string& p, Vec2d& band) {
+          band[index] = cx.in.number(v, p, kPlanetLength);
+        },
+        [index](const Vec2d& band) -> std::optional<json> { return json(band[index]); }};
+  };
+  static const Schema<Vec2d> schema(
+      {
+          end_of_band(0, "begin", "altitude where the blend starts"),
+          end_of_band(1, "end", "altitude where sampling is all equal-angle"),
+      },
+      {}, Vec2d{0.0, 1.0});
+  return schema;
+}
+
+// null removes the band; an object patches it (a new one starts from [0, 1]).
+Field<PlanetSettings> equal_angle_field() {
+  return {{"equal_angle",
+           "`null` or an object",
+           {"",
+            "the camera altitudes (above base_height) over which the projected grid on the "
+            "sphere blends into equal-angle sampling; `null`: the projected grid always",
+            "begin < end"},
+           {},
+           &band_schema()},
+          [](const LayerContext& cx, const json& v, const std::string& p, PlanetSettings& s) {
+            if (v.is_null()) {
+              s.equal_angle.reset();
+              return;
+            }
+            Vec2d band = s.equal_angle.value_or(band_schema().prototype());
+            band_schema().apply(cx, v, p, band);
+            if (!(band[0] < band[1])) {
+              cx.in.fail(p, p + " = {\"begin\": " + format_number(band[0]) + ", \"end\": " +
+                                format_number(band[1]) + "} is empty; allowed begin < end");
+            }
+            s.equal_angle = band;
+          },
+          [](const PlanetSettings& s) -> std::optional<json> {
+            return s.equal_angle ? band_schema().write(*s.equal_angle) : json(nullptr);
+          }};
+}
+
+}  // namespace
+
+const Schema<PlanetSettings>& planet_schema() {
+  static const Schema<PlanetSettings> schema({
+      radius_field(),
+      number_field("horizon", &PlanetSettings::horizon, kPlanetLength,
+                   {"world units",
+                    "artificial horizon, an arc length along the datum; 0: the "
+                    "geometric one"}),
+      equal_angle_field(),
+  });
+  return schema;
 }
 
 void validate_planet(const Scene& scene) {
@@ -96,14 +132,6 @@ void validate_planet(const Scene& scene) {
                           std::pow(t.r, t.first_octave) / limits::kMaxPlanetAngle) +
             " for this " + cell_fields + ", terrain.r and terrain.first_octave");
   }
-}
-
-json planet_to_json(const PlanetSettings& planet) {
-  return {{"radius", planet.radius},
-          {"horizon", planet.horizon},
-          {"equal_angle", planet.equal_angle ? json{{"begin", (*planet.equal_angle)[0]},
-                                                    {"end", (*planet.equal_angle)[1]}}
-                                             : json(nullptr)}};
 }
 
 }  // namespace relief

@@ -19,13 +19,6 @@ namespace relief {
 
 namespace {
 
-json vec_json(const Vec2d& v) {
-  return json::array({v[0], v[1]});
-}
-json vec_json(const Vec3d& v) {
-  return json::array({v[0], v[1], v[2]});
-}
-
 std::string read_scene_file(const std::filesystem::path& file) {
   try {
     InputFile in(file, limits::kMaxSceneFileBytes);
@@ -86,34 +79,7 @@ void apply_overrides_and_validate(Scene& scene, const std::vector<std::string>& 
 void apply_scene_layer(Scene& scene, const json& layer, std::string_view source,
                        const std::filesystem::path& base_dir) {
   const LayerReader in(source);
-  in.object(
-      layer, "",
-      Handlers{
-          {"camera",
-           [&](const json& v, const std::string& p) { apply_camera(in, v, p, scene.camera); }},
-          {"viewport",
-           [&](const json& v, const std::string& p) { apply_viewport(in, v, p, scene.viewport); }},
-          {"grid", [&](const json& v, const std::string& p) { apply_grid(in, v, p, scene.grid); }},
-          {"terrain",
-           [&](const json& v, const std::string& p) {
-             apply_terrain(in, v, p, scene.terrain, base_dir);
-           }},
-          {"shading",
-           [&](const json& v, const std::string& p) {
-             apply_shading(in, v, p, scene.shading, base_dir);
-           }},
-          {"lighting",
-           [&](const json& v, const std::string& p) { apply_lighting(in, v, p, scene.lighting); }},
-          {"water",
-           [&](const json& v, const std::string& p) { apply_water(in, v, p, scene.water); }},
-          {"sky", [&](const json& v, const std::string& p) { apply_sky(in, v, p, scene.sky); }},
-          {"time",
-           [&](const json& v, const std::string& p) {
-             scene.time = in.number(v, p, Range{-limits::kMaxTime, limits::kMaxTime});
-           }},
-          {"output",
-           [&](const json& v, const std::string& p) { apply_output(in, v, p, scene.output); }},
-      });
+  scene_schema().apply(LayerContext{in, base_dir}, layer, "", scene);
 }
 
 void validate_scene(const Scene& scene) {
@@ -250,98 +216,7 @@ std::string scene_json_text(const Scene& scene) {
 }
 
 json scene_to_json(const Scene& scene) {
-  const CameraSettings& c = scene.camera;
-  const TerrainSettings& t = scene.terrain;
-  json out;
-  out["camera"] = {
-      {"position", vec_json(c.position)}, {"yaw_deg", c.yaw_deg}, {"pitch_deg", c.pitch_deg},
-      {"fov_y_deg", c.fov_y_deg},         {"near", c.near},       {"far", c.far}};
-  out["viewport"] = {{"width", scene.viewport.width}, {"height", scene.viewport.height}};
-  out["grid"] = {
-      {"width", scene.grid.width}, {"height", scene.grid.height}, {"margin", scene.grid.margin}};
-  out["terrain"] = {
-      {"seed", t.seed},
-      {"lattice_size", t.lattice_size},
-      {"interpolant", std::string(interpolant_name(t.interpolant))},
-      {"r", t.r},
-      {"H", t.H},
-      {"first_octave", t.first_octave},
-      {"last_octave", t.last_octave},
-      {"lod",
-       {{"criterion", t.lod.criterion == LodCriterion::kAmplitude ? "amplitude" : "nyquist"},
-        {"bias", t.lod.bias},
-        {"fractional", t.lod.fractional}}},
-      {"warp",
-       {{"enabled", t.warp.enabled},
-        {"c1", vec_json(t.warp.c1)},
-        {"c2", vec_json(t.warp.c2)},
-        {"c3", vec_json(t.warp.c3)},
-        {"r0", vec_json(t.warp.r0)},
-        {"t0", vec_json(t.warp.t0)}}},
-      {"horizontal_scale", t.horizontal_scale},
-      {"base_height", t.base_height},
-      {"amplitude", t.amplitude},
-      {"water_level", t.water_level ? json(*t.water_level) : json(nullptr)},
-      {"sketch", t.sketch
-                     ? json{{"image", t.sketch->image},
-                            {"extent", json::array({t.sketch->extent[0], t.sketch->extent[1],
-                                                    t.sketch->extent[2], t.sketch->extent[3]})},
-                            {"height", vec_json(t.sketch->height)}}
-                     : json(nullptr)},
-      {"basis", t.basis ? basis_to_json(*t.basis) : json(nullptr)}};
-  if (t.planet && t.planet->radius != 0.0) {  // the plane prints as it always has
-    out["terrain"]["planet"] = planet_to_json(*t.planet);
-  }
-  json layers = json::array();
-  for (const MaterialLayer& l : scene.shading.layers) {
-    layers.push_back({{"name", l.name},
-                      {"texture", l.texture},
-                      {"tile_size", l.tile_size},
-                      {"height", vec_json(l.height)},
-                      {"height_relative_to_water", l.height_relative_to_water},
-                      {"slope_deg", vec_json(l.slope_deg)},
-                      {"height_spread", l.height_spread},
-                      {"slope_spread_deg", l.slope_spread_deg},
-                      {"specular", l.specular}});
-  }
-  const ShadingSettings& sh = scene.shading;
-  out["shading"] = {
-      {"layers", layers},
-      {"texture_size", sh.texture_size},
-      {"mip_blend", sh.mip_blend},
-      {"triplanar", sh.triplanar},
-      {"texture_filter", sh.texture_filter == TextureFilter::kTrilinear ? "trilinear" : "bilinear"},
-      {"dither", sh.dither},
-      {"dither_scale", sh.dither_scale}};
-  const LightingSettings& li = scene.lighting;
-  out["lighting"] = {{"sun_azimuth_deg", li.sun_azimuth_deg},
-                     {"sun_elevation_deg", li.sun_elevation_deg},
-                     {"sun_color", vec_json(li.sun_color)},
-                     {"sun_intensity", li.sun_intensity},
-                     {"sky_color", vec_json(li.sky_color)},
-                     {"ground_color", vec_json(li.ground_color)},
-                     {"sky_intensity", li.sky_intensity},
-                     {"ambient", li.ambient},
-                     {"shininess", li.shininess},
-                     {"exposure", li.exposure}};
-  const WaterSettings& wa = scene.water;
-  out["water"] = {{"shallow_color", vec_json(wa.shallow_color)},
-                  {"deep_color", vec_json(wa.deep_color)},
-                  {"extinction", vec_json(wa.extinction)},
-                  {"full_depth", wa.full_depth},
-                  {"wave_length", wa.wave_length},
-                  {"wave_strength", wa.wave_strength},
-                  {"wave_speed", wa.wave_speed}};
-  out["sky"] = {{"zenith_color", vec_json(scene.sky.zenith_color)},
-                {"horizon_color", vec_json(scene.sky.horizon_color)},
-                {"sun_disc_deg", scene.sky.sun_disc_deg},
-                {"fog_density", scene.sky.fog_density}};
-  out["time"] = scene.time;
-  out["output"] = {
-      {"image", scene.output.image},
-      {"stages_dir", scene.output.stages_dir},
-      {"float_image", scene.output.float_image ? json(*scene.output.float_image) : json(nullptr)}};
-  return out;
+  return scene_schema().write(scene);
 }
 
 std::vector<std::string> preset_names() {

@@ -1,67 +1,53 @@
-// terrain.sketch (§3's low-frequency base, core/height_sketch.h): the field's strict reading.
-#include <filesystem>
-#include <optional>
+// terrain.sketch (§3's low-frequency base, core/height_sketch.h): its fields. Whether the image
+// can be read is checked when it is loaded (pipeline/scene_resources.h).
 #include <string>
 
 #include "core/limits.h"
 #include "core/scene/scene_sections.h"
+#include "core/scene/schema_fields.h"
 
 namespace relief {
 
-// A file name relative to the scene file's directory (the current one for --set), made
-// absolute so that the printed scene loads back from anywhere; "builtin:..." and absolute
-// names unchanged.
-std::string resolve_scene_path(std::string name, const std::filesystem::path& base_dir) {
-  if (name.rfind("builtin:", 0) == 0 || !std::filesystem::path(name).is_relative()) {
-    return name;
-  }
-  std::error_code ec;
-  const std::filesystem::path absolute = std::filesystem::absolute(base_dir / name, ec);
-  return ec ? (base_dir / name).lexically_normal().string() : absolute.lexically_normal().string();
+namespace {
+
+// [x0, z0, x1, z1] with each side at least kMinSketchSpan long.
+Field<SketchSettings> extent_field() {
+  const Range coordinate{-limits::kMaxCameraCoordinate, limits::kMaxCameraCoordinate};
+  Field<SketchSettings> field =
+      vector_field("extent", &SketchSettings::extent, coordinate,
+                   {"world units",
+                    "[x0, z0, x1, z1]: the rectangle the image covers; outside it the edge "
+                    "texels extend (no tiling)",
+                    "x1 − x0 and z1 − z0 ≥ 1e−3"});
+  field.read = [coordinate](const LayerContext& cx, const json& v, const std::string& p,
+                            SketchSettings& s) {
+    s.extent = cx.in.vector<4>(v, p, coordinate);
+    const auto& e = s.extent;
+    if (!(e[2] - e[0] >= limits::kMinSketchSpan && e[3] - e[1] >= limits::kMinSketchSpan)) {
+      cx.in.fail(p, p + " = " + brief(v) +
+                        " is empty or too thin; allowed [x0, z0, x1, z1] with x1 - x0 and z1 - z0 "
+                        "at least " +
+                        format_number(limits::kMinSketchSpan));
+    }
+  };
+  return field;
 }
 
-// terrain.sketch: null removes it; an object patches it (a new one must name its image).
-// Whether the image can be read is checked when it is loaded (pipeline/scene_resources.h).
-void apply_sketch(const LayerReader& in, const json& value, const std::string& path,
-                  std::optional<SketchSettings>& sketch, const std::filesystem::path& base_dir) {
-  if (value.is_null()) {
-    sketch.reset();
-    return;
-  }
-  if (!sketch && value.is_object() && !value.contains("image")) {
-    in.fail(path, path + " must be null or an object with at least an \"image\"");
-  }
-  SketchSettings s = sketch.value_or(SketchSettings{});
-  const Range coordinate{-limits::kMaxCameraCoordinate, limits::kMaxCameraCoordinate};
-  const Range height{-limits::kMaxBaseHeight, limits::kMaxBaseHeight};
-  in.object(
-      value, path,
-      Handlers{
-          {"image",
-           [&](const json& v, const std::string& p) {
-             s.image = resolve_scene_path(in.string(v, p), base_dir);
-           }},
-          {"extent",
-           [&](const json& v, const std::string& p) {
-             s.extent = in.vector<4>(v, p, coordinate);
-             const auto& e = s.extent;
-             if (!(e[2] - e[0] >= limits::kMinSketchSpan &&
-                   e[3] - e[1] >= limits::kMinSketchSpan)) {
-               in.fail(p, p + " = " + brief(v) +
-                              " is empty or too thin; allowed [x0, z0, x1, z1] with x1 - x0 "
-                              "and z1 - z0 at least " +
-                              format_number(limits::kMinSketchSpan));
-             }
-           }},
-          {"height",
-           [&](const json& v, const std::string& p) {
-             s.height = in.vector<2>(v, p, height);
-             if (!(s.height[0] < s.height[1])) {
-               in.fail(p, p + " = " + brief(v) + " is empty; allowed [low, high] with low < high");
-             }
-           }},
-      });
-  sketch = s;
+}  // namespace
+
+const Schema<SketchSettings>& sketch_schema() {
+  using S = SketchSettings;
+  static const Schema<S> schema({
+      input_file_field("image", &S::image,
+                       {"", "the heights; row 0 at z0 (a map with north, −z, up)",
+                        "NAME `island`; the PNG: one grey channel, 8 or 16 bits, 2…4096 texels "
+                        "a side"}),
+      extent_field(),
+      increasing_pair_field("height", &S::height,
+                            Range{-limits::kMaxBaseHeight, limits::kMaxBaseHeight},
+                            {"world units", "world heights of black and of white"}),
+  });
+  return schema;
 }
 
 }  // namespace relief

@@ -1,0 +1,92 @@
+// The scene file's "lighting", "water", "sky" and "output" sections (README.md, "Scene
+// reference").
+#include "core/limits.h"
+#include "core/scene/scene_sections.h"
+#include "core/scene/schema_fields.h"
+
+namespace relief {
+
+namespace {
+
+constexpr Range kRadiance{0.0, limits::kMaxRadiance};
+constexpr Range kShadingLength{limits::kMinInverseScaleLength, limits::kMaxShadingLength};
+
+}  // namespace
+
+const Schema<LightingSettings>& lighting_schema() {
+  using S = LightingSettings;
+  static const Schema<S> schema({
+      number_field("sun_azimuth_deg", &S::sun_azimuth_deg,
+                   Range{-limits::kMaxTurnDeg, limits::kMaxTurnDeg},
+                   {"degrees", "0: the sun stands toward −z, 90: toward +x (like camera yaw)"}),
+      number_field("sun_elevation_deg", &S::sun_elevation_deg,
+                   Range{-limits::kMaxElevationDeg, limits::kMaxElevationDeg},
+                   {"degrees", "the sun's height above the horizon"}),
+      vector_field("sun_color", &S::sun_color, kRadiance, {"", "sun colour (linear RGB)"}),
+      number_field("sun_intensity", &S::sun_intensity, kRadiance, {"", "sun radiance scale"}),
+      vector_field("sky_color", &S::sky_color, kRadiance,
+                   {"", "hemispherical light from above (Scape)"}),
+      vector_field("ground_color", &S::ground_color, kRadiance,
+                   {"", "hemispherical light from below"}),
+      number_field("sky_intensity", &S::sky_intensity, kRadiance,
+                   {"", "hemispherical light's scale"}),
+      number_field("ambient", &S::ambient, kRadiance, {"", "constant light"}),
+      number_field("shininess", &S::shininess, Range{limits::kMinShininess, limits::kMaxShininess},
+                   {"", "Phong exponent of the layers' specular term"}),
+      number_field("exposure", &S::exposure, Range{limits::kMinExposure, limits::kMaxExposure},
+                   {"", "linear radiance scale before sRGB encoding"}),
+  });
+  return schema;
+}
+
+const Schema<WaterSettings>& water_schema() {
+  using S = WaterSettings;
+  const Range unit{0.0, 1.0};
+  static const Schema<S> schema({
+      vector_field("shallow_color", &S::shallow_color, unit,
+                   {"", "water body colour in shallow water (§4.3)"}),
+      vector_field("deep_color", &S::deep_color, unit,
+                   {"", "and in deep water (\"the green-ish hue\")"}),
+      vector_field("extinction", &S::extinction, Range{0.0, limits::kMaxExtinction},
+                   {"per world unit", "RGB attenuation of the transmitted light"}),
+      number_field("full_depth", &S::full_depth, kShadingLength,
+                   {"world units", "depth of the deep look and full reflectivity"}),
+      number_field("wave_length", &S::wave_length, kShadingLength,
+                   {"world units", "the largest wave of the normal map"}),
+      number_field("wave_strength", &S::wave_strength, Range{0.0, limits::kMaxWaveStrength},
+                   {"", "slope of the wave normal map in deep water"}),
+      number_field("wave_speed", &S::wave_speed, Range{0.0, limits::kMaxWaveSpeed},
+                   {"world units per second", "the waves' drift"}),
+  });
+  return schema;
+}
+
+const Schema<SkySettings>& sky_schema() {
+  using S = SkySettings;
+  static const Schema<S> schema({
+      vector_field("zenith_color", &S::zenith_color, kRadiance, {"", "the sky gradient's top"}),
+      vector_field("horizon_color", &S::horizon_color, kRadiance,
+                   {"", "its bottom, also the fog colour"}),
+      number_field("sun_disc_deg", &S::sun_disc_deg,
+                   Range{limits::kMinSunDiscDeg, limits::kMaxSunDiscDeg},
+                   {"degrees", "angular radius of the sun disc"}),
+      number_field("fog_density", &S::fog_density, Range{0.0, limits::kMaxFogDensity},
+                   {"per world unit", "fog = 1 − exp(−density · distance)"}),
+  });
+  return schema;
+}
+
+const Schema<OutputSettings>& output_schema() {
+  using S = OutputSettings;
+  static const Schema<S> schema({
+      output_file_field("image", &S::image, {".png"}, "the image is written as PNG",
+                        {"", "the image `render` writes"}),
+      text_field("stages_dir", &S::stages_dir, {"", "the directory `stages` writes"}),
+      nullable_output_file_field("float_image", &S::float_image, {".pfm", ".exr"},
+                                 "linear radiance is written as PFM or EXR",
+                                 {"", "linear radiance `render` writes; `null`: none"}),
+  });
+  return schema;
+}
+
+}  // namespace relief
