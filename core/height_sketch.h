@@ -32,6 +32,7 @@
 
 #include "core/grid_buffers.h"
 #include "core/scene/scene.h"
+#include "core/stage_param_fields.h"
 
 namespace relief {
 
@@ -60,14 +61,11 @@ struct SketchPlan {
 SketchPlan make_sketch_plan(const SketchSettings& settings, const HeightSketch& sketch,
                             double camera_x, double camera_z);
 
-// Stage 3's sketch parameters, each plan value rounded once to Real (stage_params.h).
+// Stage 3's sketch parameters, each plan value rounded once to Real (members:
+// stage_param_fields.h).
 template <class Real>
 struct SketchParams {
-  std::int32_t enabled = 0;
-  std::int32_t width = 0, height = 0;  // texels
-  Real offset_x = 0, offset_z = 0;
-  Real inv_cell_x = 1, inv_cell_z = 1;
-  Real max_x = 0, max_z = 0;  // width + 1, height + 1: the coordinate clamp (with -2)
+  RELIEF_DECLARE_FIELDS(RELIEF_SKETCH_PARAMS_FIELDS)
 };
 
 // The uniform cubic B-spline's weights of the taps floor(s) - 1 .. floor(s) + 2 at t = s -

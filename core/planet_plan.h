@@ -21,6 +21,7 @@
 #include "core/height_bounds.h"
 #include "core/projector.h"
 #include "core/scene/scene.h"
+#include "core/stage_param_fields.h"
 
 namespace relief {
 
@@ -55,18 +56,10 @@ Projector make_planet_projector(const CameraFrame& camera, const HeightBounds& b
 // mode), in double; the limb's angle for rays that miss it.
 double planet_theta_true(const PlanetPlan& planet, double alpha);
 
-// The values stages 2, 4 (the bend) and 8 read, rounded once.
+// The values stages 2, 4 (the bend) and 8 read, rounded once (members: stage_param_fields.h).
 template <class Real>
 struct PlanetParams {
-  std::int32_t enabled = 0;
-  std::int32_t visible = 0;
-  Real radius = 0, inv_radius = 0;
-  Real center_distance = 0;  // D
-  Real grid_c = 0;
-  Real blend = 0, one_minus_blend = 1;
-  Real theta_h = 0, theta_limb = 0;
-  Real alpha_lo = 0, theta_lo = 0;
-  Real eq_slope = 0;  // (theta_h - theta_lo) / (alpha_h - alpha_lo)
+  RELIEF_DECLARE_FIELDS(RELIEF_PLANET_PARAMS_FIELDS)
 };
 
 template <class Real>

@@ -37,6 +37,7 @@
 
 #include "core/camera.h"
 #include "core/height_bounds.h"
+#include "core/stage_param_fields.h"
 
 namespace relief {
 
@@ -90,11 +91,7 @@ Projector fit_projector_to_points(const CameraFrame& camera, const std::vector<g
 // double; the operation order is the specification.
 template <class Real>
 struct ProjectorRays {
-  Real fx, fz;  // horizontal components of forward,
-  Real rx, rz;  // right (horizontal: the projector has no roll)
-  Real ux, uz;  // and up
-  Real height_above_plane;
-  Real max_distance_sq;
+  RELIEF_DECLARE_FIELDS(RELIEF_PROJECTOR_RAYS_FIELDS)
 
   explicit ProjectorRays(const Projector& p)
       : fx(Real(p.forward.x)),

@@ -14,10 +14,11 @@
 // struct to its GLSL struct). Comments must be /* */: a // comment would swallow the line
 // continuation.
 //
-// Some structs are declared by hand in other headers (the projector's rays, the planet's and
-// the sketch's parameters, Vec3); their lists are the GLSL's description of them, without
-// initialisers, and stage_params.cc checks at compile time that each list names every member
-// of the struct with its type, in order (RELIEF_FIELDS_TILE below).
+// Every struct is declared from its list with RELIEF_DECLARE_FIELDS, in stage_params.h or in
+// the header of the stage that owns it (the projector's rays, the planet's and the sketch's
+// parameters), except Vec3 (core/vec3.h), which the list only describes to GLSL; stage_params.cc
+// checks at compile time that each list names every member of its struct with its type, in
+// order (RELIEF_FIELDS_TILE below).
 #pragma once
 
 #include <cstddef>
@@ -30,33 +31,35 @@
 
 // clang-format off
 
-// core/projector.h, ProjectorRays<Real> (declared there).
+// ProjectorRays<Real> (core/projector.h): the projector's horizontal frame, stage 2.
 #define RELIEF_PROJECTOR_RAYS_FIELDS(F, A, E)                                                   \
+  /* Horizontal components of forward, right (horizontal: the projector has no roll) and up. */ \
   F(Real, fx) F(Real, fz) E                                                                     \
   F(Real, rx) F(Real, rz) E                                                                     \
   F(Real, ux) F(Real, uz) E                                                                     \
   F(Real, height_above_plane) E                                                                 \
   F(Real, max_distance_sq) E
 
-// core/planet_plan.h, PlanetParams<Real> (declared there).
+// PlanetParams<Real> (core/planet_plan.h): the values stages 2, 4 (the bend) and 8 read.
 #define RELIEF_PLANET_PARAMS_FIELDS(F, A, E)                                                    \
-  F(std::int32_t, enabled) E                                                                    \
-  F(std::int32_t, visible) E                                                                    \
-  F(Real, radius) F(Real, inv_radius) E                                                         \
-  F(Real, center_distance) E                                                                    \
-  F(Real, grid_c) E                                                                             \
-  F(Real, blend) F(Real, one_minus_blend) E                                                     \
-  F(Real, theta_h) F(Real, theta_limb) E                                                        \
-  F(Real, alpha_lo) F(Real, theta_lo) E                                                         \
-  F(Real, eq_slope) E
+  F(std::int32_t, enabled, 0) E                                                                 \
+  F(std::int32_t, visible, 0) E                                                                 \
+  F(Real, radius, 0) F(Real, inv_radius, 0) E                                                   \
+  F(Real, center_distance, 0) /* D */ E                                                         \
+  F(Real, grid_c, 0) E                                                                          \
+  F(Real, blend, 0) F(Real, one_minus_blend, 1) E                                               \
+  F(Real, theta_h, 0) F(Real, theta_limb, 0) E                                                  \
+  F(Real, alpha_lo, 0) F(Real, theta_lo, 0) E                                                   \
+  F(Real, eq_slope, 0) /* (theta_h - theta_lo) / (alpha_h - alpha_lo) */ E
 
-// core/height_sketch.h, SketchParams<Real> (declared there).
+// SketchParams<Real> (core/height_sketch.h): stage 3's sketch, each plan value rounded once.
 #define RELIEF_SKETCH_PARAMS_FIELDS(F, A, E)                                                    \
-  F(std::int32_t, enabled) E                                                                    \
-  F(std::int32_t, width) F(std::int32_t, height) E                                              \
-  F(Real, offset_x) F(Real, offset_z) E                                                         \
-  F(Real, inv_cell_x) F(Real, inv_cell_z) E                                                     \
-  F(Real, max_x) F(Real, max_z) E
+  F(std::int32_t, enabled, 0) E                                                                 \
+  F(std::int32_t, width, 0) F(std::int32_t, height, 0) /* texels */ E                           \
+  F(Real, offset_x, 0) F(Real, offset_z, 0) E                                                   \
+  F(Real, inv_cell_x, 1) F(Real, inv_cell_z, 1) E                                               \
+  /* width + 1, height + 1: the coordinate clamp (with -2) */                                   \
+  F(Real, max_x, 0) F(Real, max_z, 0) E
 
 // core/vec3.h, Vec3<Real> (declared there): GLSL's Float3, since a vec3 aligns to 16 bytes.
 #define RELIEF_VEC3_FIELDS(F, A, E) F(Real, x) F(Real, y) F(Real, z) E

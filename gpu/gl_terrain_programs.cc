@@ -66,11 +66,12 @@ unsigned int program_named(const GlTerrainPrograms& programs, std::string_view n
 GlTerrainPrograms build_terrain_programs() {
   const std::string prelude = shader_prelude();
   GlTerrainPrograms p;
-  p.domain = build(prelude, "domain.comp (stage 2)", {"det_math.glsl", "domain.comp"});
+  p.domain =
+      build(prelude, "domain.comp (stage 2)", {"det_math.glsl", "log2_det.glsl", "domain.comp"});
   p.reach = build(prelude, "reach.comp (octave reach)", {"reach.comp"});
   p.forms = build(prelude, "forms.comp (coordinate forms)", {"forms.comp"});
-  p.fbm =
-      build(prelude, "fbm.comp (stage 3)", {"lattice.glsl", "octave_coordinates.glsl", "fbm.comp"});
+  p.fbm = build(prelude, "fbm.comp (stage 3)",
+                {"wrap_period.glsl", "lattice.glsl", "octave_coordinates.glsl", "fbm.comp"});
   p.sketch = build(prelude, "sketch.comp (stage 3, sketch)", {"sketch.comp"});
   p.surface = build(prelude, "surface.comp (stage 4)", {"surface.comp"});
   p.bend = build(prelude, "bend.comp (a planet's bend)", {"det_math.glsl", "bend.comp"});

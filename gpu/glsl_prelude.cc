@@ -83,7 +83,9 @@ std::vector<GlslSource> with_prelude(std::vector<GlslSource> sources) {
 
 std::vector<GlslSource> shading_sources() {
   return {{"common.glsl", glsl::kCommon},
+          {"log2_det.glsl", glsl::kLog2Det},
           {"shade_params.glsl", glsl::kShadeParams},
+          {"wrap_period.glsl", glsl::kWrapPeriod},
           {"shading_lattice.glsl", glsl::kLattice},
           {"proto_texture.glsl", glsl::kProtoTexture},
           {"sky_water.glsl", glsl::kSkyWater},
@@ -98,16 +100,21 @@ std::string glsl_prelude() {
   std::string out = "#version 450 core\n";
   out += "const int kMaxLayers = " + std::to_string(limits::kMaxMaterialLayers) + ";\n";
   out += "const int kWaveOctaves = " + std::to_string(kWaveOctaves) + ";\n";
-  // det_math.h, log2_det<float> and exp2_det<float>.
-  out += "const int kLog2Terms = " + std::to_string(Bits::kTerms) + ";\n";
-  constant_array(out, "kLog2Coeff", det_math_detail::kAtanhLog2Coeffs, Bits::kTerms);
+  // det_math.h, exp2_det<float>.
   const int exp2_terms = det_math_detail::Exp2Terms<float>::kTerms;
   out += "const int kExp2Terms = " + std::to_string(exp2_terms) + ";\n";
   constant_array(out, "kExp2Coeff", det_math_detail::kExp2Coeffs, exp2_terms);
   constant(out, "kExp2Limit", float(Bits::kExponentBias - 2));
-  constant(out, "kSqrt2", float(1.4142135623730951));
-  constant(out, "kMinNormal", Bits::kMinNormal);
-  constant(out, "kSubnormalScale", Bits::kSubnormalScale);
+  // log2_det.glsl's constants, under the names the compute stages' prelude gives them.
+  constant(out, "RELIEF_SQRT2", float(1.4142135623730951));
+  constant(out, "RELIEF_FLT_MIN", Bits::kMinNormal);
+  constant(out, "RELIEF_SUBNORMAL_SCALE", Bits::kSubnormalScale);
+  out += "const int RELIEF_SUBNORMAL_SHIFT = " + std::to_string(Bits::kSubnormalShift) + ";\n";
+  static_assert(Bits::kTerms == 5, "log2_det.glsl spells out five series terms");
+  for (int k = 0; k < Bits::kTerms; ++k) {
+    constant(out, ("RELIEF_LOG2_COEFF_" + std::to_string(k)).c_str(),
+             float(det_math_detail::kAtanhLog2Coeffs[k]));
+  }
   // The guards and weights of stage 8.
   constant(out, "kMagnificationLod", kMagnificationLod);
   constant(out, "kMinRhoSq", kMinRhoSq);

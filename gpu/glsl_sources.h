@@ -13,6 +13,8 @@ namespace relief::gpu {
 
 namespace glsl {
 extern const char* const kCommon;          // shaders/common.glsl
+extern const char* const kLog2Det;         // shaders/log2_det.glsl
+extern const char* const kWrapPeriod;      // shaders/wrap_period.glsl
 extern const char* const kShadeParams;     // shaders/shade_params.glsl.in, generated
 extern const char* const kLattice;         // shaders/shading_lattice.glsl
 extern const char* const kProtoTexture;    // shaders/proto_texture.glsl

@@ -39,32 +39,7 @@ vec3 normalize_or(vec3 v, vec3 fallback) {
   return r;
 }
 
-// core/det_math.h: log2 from the bits and the atanh series by Horner's rule.
-float log2_det(float x_in) {
-  precise float x = x_in;
-  precise float exponent_adjust = 0.0;
-  if (x < kMinNormal) {  // subnormals: scaled into the normal range first (exact)
-    x = x * kSubnormalScale;
-    exponent_adjust = -24.0;
-  }
-  const uint bits = floatBitsToUint(x);
-  const uint biased = (bits >> 23u) & 0xffu;
-  precise float e = float(int(biased) - 127) + exponent_adjust;
-  const uint mantissa = bits & 0x7fffffu;
-  precise float m = uintBitsToFloat(mantissa | 0x3f800000u);  // [1, 2)
-  if (m > kSqrt2) {
-    m = m * 0.5;
-    e = e + 1.0;
-  }
-  precise float y = (m - 1.0) / (m + 1.0);
-  precise float y2 = y * y;
-  precise float series = kLog2Coeff[kLog2Terms - 1];
-  for (int k = kLog2Terms - 2; k >= 0; --k) {
-    series = series * y2 + kLog2Coeff[k];
-  }
-  precise float r = e + y * series;
-  return r;
-}
+// log2_det: log2_det.glsl, shared with the compute stages.
 
 // core/det_math.h: 2^x by Taylor's series of 2^f, f = x - round(x). The CPU rounds with the
 // 1.5 * 2^52 trick in double, which for |x| <= 125 is round-half-even: roundEven, exact.

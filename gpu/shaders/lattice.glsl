@@ -7,12 +7,7 @@ layout(std430, binding = RELIEF_BINDING_LATTICE) readonly buffer LatticeBlock {
   float lattice_values[];
 };
 
-// p mod P in [0, P] (core/interpolant.h, wrap_period): every operation exact but the last
-// subtraction for p in (-P/2, 0), which the CPU rounds the same way.
-float wrap_period(float p, float period, float inv_period) {
-  precise float wrapped = p - period * floor(p * inv_period);
-  return wrapped;
-}
+// wrap_period: wrap_period.glsl.
 
 // The three fade curves of core/interpolant.h; `kind` is FbmParams::interpolant
 // (0 linear, 1 cubic, 2 quintic).

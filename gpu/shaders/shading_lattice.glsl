@@ -10,11 +10,7 @@ layout(std430, binding = 1) readonly buffer LatticeBlock {
 
 float lattice_at(int i, int j) { return lattice_values[j * lattice_size + i]; }
 
-// p mod P in [0, P] (interpolant.h, wrap_period): exact for every finite p.
-float wrap_period(float p, float period, float inv_period) {
-  precise float r = p - period * floor(p * inv_period);
-  return r;
-}
+// wrap_period: wrap_period.glsl.
 
 struct LatticeCell {
   int i0, j0, i1, j1;

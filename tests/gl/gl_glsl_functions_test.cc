@@ -46,8 +46,10 @@ void main() {
 )" + body + "\n}\n";
   const bool terrain = library == Library::kTerrain;
   const std::string prelude = terrain ? gpu::shader_prelude() : gpu::glsl_prelude();
+  // Both libraries take log2_det from the one log2_det.glsl, each under its own prelude.
   const std::string functions =
-      terrain ? std::string(gpu::shader_file("det_math.glsl")) : std::string(gpu::glsl::kCommon);
+      (terrain ? std::string(gpu::shader_file("det_math.glsl")) : std::string(gpu::glsl::kCommon)) +
+      std::string(gpu::glsl::kLog2Det);
   const gpu::GlProgram program(
       {{GL_COMPUTE_SHADER, {{"prelude", prelude}, {"functions", functions}, {"test", main}}}});
   GLuint buffers[2];

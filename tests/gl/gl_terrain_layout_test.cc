@@ -138,6 +138,7 @@ TEST_CASE("glLayoutCheckCatchesADriftedDeclaration", "[gl]") {
   params.replace(at, original.size(), "  float step_y, y0;\n  float extra[4];\n");
   const std::string prelude = gpu::shader_prelude();
   const std::vector<std::string_view> sources = {prelude, params, gpu::shader_file("det_math.glsl"),
+                                                 gpu::shader_file("log2_det.glsl"),
                                                  gpu::shader_file("domain.comp")};
   const gpu::GlName program = gpu::link_compute_program(sources, "drifted domain.comp");
   const std::vector<std::string> problems =
