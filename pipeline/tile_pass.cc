@@ -47,6 +47,23 @@ struct ResolveScratch {
   std::int32_t cached_slot[kCacheEntries];
 };
 
+// Calls visit(px, py, k, primitive) for each pixel of the tile a triangle covers, row by row
+// (the order both resolves set their planes up in), counting them in work.covered_pixels.
+template <class Visit>
+void for_each_covered_pixel(const raster::TileVisibility& visibility, TileWork& work,
+                            Visit&& visit) {
+  for (int py = visibility.y0; py < visibility.y0 + visibility.height; ++py) {
+    for (int px = visibility.x0; px < visibility.x0 + visibility.width; ++px) {
+      const std::size_t k = visibility.index(px, py);
+      const std::uint32_t primitive = visibility.primitive[k];
+      if (primitive != raster::kNoPrimitive) {
+        ++work.covered_pixels;
+        visit(px, py, k, primitive);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 void rasterize_tile_simd(std::span<const raster::SetupChunk> chunks, const raster::TileGrid& tiles,
@@ -118,49 +135,42 @@ void TilePass<Real>::resolve(const raster::TileVisibility& visibility, TileAttri
   const bool with_nu = outputs_.octaves && !s.nu.empty();
   // No terrain under water in view: the depth is not interpolated (stage 8 does not read it).
   const bool with_water = shade_.terrain_water != 0;
-  for (int py = visibility.y0; py < visibility.y0 + visibility.height; ++py) {
-    for (int px = visibility.x0; px < visibility.x0 + visibility.width; ++px) {
-      const std::size_t k = visibility.index(px, py);
-      const std::uint32_t primitive = visibility.primitive[k];
-      if (primitive == raster::kNoPrimitive) {
-        continue;
-      }
-      ++work.covered_pixels;
-      // Neighbouring pixels mostly share their triangle: set its plane up once per run.
-      if (primitive != cached) {
-        cached = primitive;
-        triangles_.vertices(primitive, v);
-        double x[3], y[3], w[3];
-        for (int i = 0; i < 3; ++i) {
-          position(v[i], x[i], y[i], w[i]);
+  for_each_covered_pixel(
+      visibility, work, [&](int px, int py, std::size_t k, std::uint32_t primitive) {
+        // Neighbouring pixels mostly share their triangle: set its plane up once per run.
+        if (primitive != cached) {
+          cached = primitive;
+          triangles_.vertices(primitive, v);
+          double x[3], y[3], w[3];
+          for (int i = 0; i < 3; ++i) {
+            position(v[i], x[i], y[i], w[i]);
+          }
+          plane = raster::PerspectivePlane(x, y, w);
         }
-        plane = raster::PerspectivePlane(x, y, w);
-      }
-      const raster::QuadWeights q = raster::quad_weights(plane, px, py);
-      const auto at = [&](std::span<const Real> a, const double weights[3]) {
-        return raster::QuadWeights::at(weights, a[v[0]], a[v[1]], a[v[2]]);
-      };
-      const auto with_derivatives = [&](std::span<const Real> a, Real& value, Real& ddx,
-                                        Real& ddy) {
-        const double centre = at(a, q.b);
-        value = static_cast<Real>(centre);
-        ddx = q.has_x ? static_cast<Real>(q.sign_x * (at(a, q.bx) - centre)) : Real(0);
-        ddy = q.has_y ? static_cast<Real>(q.sign_y * (at(a, q.by) - centre)) : Real(0);
-      };
-      with_derivatives(s.dx, out.dx[k], out.dx_ddx[k], out.dx_ddy[k]);
-      with_derivatives(s.dz, out.dz[k], out.dz_ddx[k], out.dz_ddy[k]);
-      with_derivatives(s.height, out.height[k], out.height_ddx[k], out.height_ddy[k]);
-      out.nx[k] = static_cast<Real>(at(s.nx, q.b));
-      out.ny[k] = static_cast<Real>(at(s.ny, q.b));
-      out.nz[k] = static_cast<Real>(at(s.nz, q.b));
-      out.slope[k] = static_cast<Real>(at(s.slope, q.b));
-      out.water_depth[k] = with_water ? static_cast<Real>(at(s.water_depth, q.b)) : Real(0);
-      out.drop[k] = s.drop.empty() ? Real(0) : static_cast<Real>(at(s.drop, q.b));
-      if (with_nu) {
-        out.nu[k] = static_cast<Real>(at(s.nu, q.b));
-      }
-    }
-  }
+        const raster::QuadWeights q = raster::quad_weights(plane, px, py);
+        const auto at = [&](std::span<const Real> a, const double weights[3]) {
+          return raster::QuadWeights::at(weights, a[v[0]], a[v[1]], a[v[2]]);
+        };
+        const auto with_derivatives = [&](std::span<const Real> a, Real& value, Real& ddx,
+                                          Real& ddy) {
+          const double centre = at(a, q.b);
+          value = static_cast<Real>(centre);
+          ddx = q.has_x ? static_cast<Real>(q.sign_x * (at(a, q.bx) - centre)) : Real(0);
+          ddy = q.has_y ? static_cast<Real>(q.sign_y * (at(a, q.by) - centre)) : Real(0);
+        };
+        with_derivatives(s.dx, out.dx[k], out.dx_ddx[k], out.dx_ddy[k]);
+        with_derivatives(s.dz, out.dz[k], out.dz_ddx[k], out.dz_ddy[k]);
+        with_derivatives(s.height, out.height[k], out.height_ddx[k], out.height_ddy[k]);
+        out.nx[k] = static_cast<Real>(at(s.nx, q.b));
+        out.ny[k] = static_cast<Real>(at(s.ny, q.b));
+        out.nz[k] = static_cast<Real>(at(s.nz, q.b));
+        out.slope[k] = static_cast<Real>(at(s.slope, q.b));
+        out.water_depth[k] = with_water ? static_cast<Real>(at(s.water_depth, q.b)) : Real(0);
+        out.drop[k] = s.drop.empty() ? Real(0) : static_cast<Real>(at(s.drop, q.b));
+        if (with_nu) {
+          out.nu[k] = static_cast<Real>(at(s.nu, q.b));
+        }
+      });
 }
 
 // Stage 7 with the simd kernels (simd/resolve.h): a slot per run of pixels a triangle wins, as
@@ -174,28 +184,20 @@ void TilePass<Real>::resolve_simd(const raster::TileVisibility& visibility,
     std::fill(std::begin(scratch->cached_primitive), std::end(scratch->cached_primitive),
               raster::kNoPrimitive);
     int slots = 0;
-    for (int py = visibility.y0; py < visibility.y0 + visibility.height; ++py) {
-      for (int px = visibility.x0; px < visibility.x0 + visibility.width; ++px) {
-        const std::size_t k = visibility.index(px, py);
-        const std::uint32_t primitive = visibility.primitive[k];
-        if (primitive == raster::kNoPrimitive) {
-          continue;
+    for_each_covered_pixel(visibility, work, [&](int, int, std::size_t k, std::uint32_t primitive) {
+      const std::uint32_t entry = primitive % ResolveScratch::kCacheEntries;
+      if (scratch->cached_primitive[entry] != primitive) {
+        scratch->cached_primitive[entry] = primitive;
+        scratch->cached_slot[entry] = slots;
+        std::uint32_t v[3];
+        triangles_.vertices(primitive, v);
+        for (int i = 0; i < 3; ++i) {
+          scratch->vertex[i][slots] = static_cast<std::int32_t>(v[i]);
         }
-        ++work.covered_pixels;
-        const std::uint32_t entry = primitive % ResolveScratch::kCacheEntries;
-        if (scratch->cached_primitive[entry] != primitive) {
-          scratch->cached_primitive[entry] = primitive;
-          scratch->cached_slot[entry] = slots;
-          std::uint32_t v[3];
-          triangles_.vertices(primitive, v);
-          for (int i = 0; i < 3; ++i) {
-            scratch->vertex[i][slots] = static_cast<std::int32_t>(v[i]);
-          }
-          ++slots;
-        }
-        scratch->slot[k] = scratch->cached_slot[entry];
+        ++slots;
       }
-    }
+      scratch->slot[k] = scratch->cached_slot[entry];
+    });
     if (slots == 0) {
       return;
     }
