@@ -3,22 +3,26 @@
 // it prints must be the code's: float bit for bit (a float port that follows the page gets
 // these bits), double bit for bit as well (the page's operation order is the code's, without
 // FMA). A change here is a change of the specification: update the page with it.
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include <catch2/catch.hpp>
 
+#include "core/basis_images.h"
 #include "core/counter_hash.h"
 #include "core/fbm.h"
 #include "core/frame_plan.h"
 #include "core/height_bounds.h"
+#include "core/height_sketch.h"
 #include "core/interpolant.h"
 #include "core/lattice.h"
 #include "core/octave_coordinates.h"
 #include "core/stage_params.h"
 #include "tests/core/terrain_spec_cases.h"
 #include "tests/core/terrain_spec_exact_case.h"
+#include "tests/core/terrain_spec_sketch_basis_cases.h"
 
 namespace relief {
 namespace {
@@ -187,6 +191,117 @@ TEST_CASE("specHeightBoundsOfTheDefaultSceneAreTheCodes", "[spec]") {
   const HeightBounds bounds = derive_height_bounds(make_noise_lattice(1, 256), terrain);
   CHECK(bounds.world_min == -3171.249194021546);
   CHECK(bounds.world_max == 3469.8280586799074);
+}
+
+// Case F (section 11): the page's per-vertex arithmetic, done here in Real, against the
+// page's numbers; then the code's sample_sketch and add_sketch against B.
+template <class Real>
+void check_sketch_point(const SketchPlan& plan, const HeightSketch& sketch, Real s_x, Real s_z,
+                        Real t_x, Real t_z, int i, int j, Real b) {
+  const SketchParams<Real> params = make_sketch_params<Real>(plan, &sketch);
+  CHECK(params.offset_x == Real(kSketchPlan_offset_x));
+  CHECK(params.inv_cell_z == Real(kSketchPlan_inv_cell_z));
+  CHECK(params.max_x == Real(6));
+  CHECK(params.max_z == Real(5));
+  const Real dx = Real(-733.5), dz = Real(1911.75);
+  const Real sx = params.offset_x + dx * params.inv_cell_x;
+  const Real sz = params.offset_z + dz * params.inv_cell_z;
+  CHECK(sx == s_x);  // inside [-2, max]: the clamps leave both
+  CHECK(sz == s_z);
+  CHECK(sx - std::floor(sx) == t_x);
+  CHECK(sz - std::floor(sz) == t_z);
+  CHECK(int(std::floor(sx)) == i);  // taps i - 1 = -1 and j + 2 = 4 lie past the edges
+  CHECK(int(std::floor(sz)) == j);
+  CHECK(sample_sketch<Real>(params, sketch.heights, sx, sz) == b);
+  Real height = Real(0);
+  const std::uint8_t mask = 1;
+  add_sketch<Real>(params, sketch.heights, IndexRange{0, 1}, std::span<const Real>(&dx, 1),
+                   std::span<const Real>(&dz, 1), std::span<const std::uint8_t>(&mask, 1),
+                   std::span<Real>(&height, 1));
+  CHECK(height == b);
+}
+
+TEST_CASE("specWorkedSketchCaseIsTheCodes", "[spec]") {
+  SketchSettings settings;
+  settings.image = "case F";
+  settings.extent = {-1000.0, -2000.0, 1500.0, 3000.0};
+  settings.height = {-150.0, 850.0};
+  std::vector<std::uint16_t> grey;
+  for (int j = 0; j < 4; ++j) {
+    for (int i = 0; i < 5; ++i) {
+      grey.push_back(static_cast<std::uint16_t>((i * 9973 + j * 21001 + 1234) % 65536));
+    }
+  }
+  const HeightSketch sketch = make_height_sketch(settings, 5, 4, grey, 65535);
+  const SketchPlan plan = make_sketch_plan(settings, sketch, 120.25, -310.5);
+  CHECK(plan.offset_x == kSketchPlan_offset_x);
+  CHECK(plan.offset_z == kSketchPlan_offset_z);
+  CHECK(plan.inv_cell_x == kSketchPlan_inv_cell_x);
+  CHECK(plan.inv_cell_z == kSketchPlan_inv_cell_z);
+  check_sketch_point<double>(plan, sketch, kSketchDouble_s_x, kSketchDouble_s_z, kSketchDouble_t_x,
+                             kSketchDouble_t_z, kSketchDouble_i, kSketchDouble_j, kSketchDouble_b);
+  check_sketch_point<float>(plan, sketch, kSketchFloat_s_x, kSketchFloat_s_z, kSketchFloat_t_x,
+                            kSketchFloat_t_z, kSketchFloat_i, kSketchFloat_j, kSketchFloat_b);
+}
+
+// Case G (section 12): two 4 x 4 images, the first normalised, the second at weight 0.5,
+// composed, refined twice per side (P = 8) and sampled at case A's point.
+GreyGrid case_g_image(int which) {
+  GreyGrid grid{.side = 4, .values = {}};
+  for (int y = 0; y < 4; ++y) {
+    for (int x = 0; x < 4; ++x) {
+      const int grey = which == 0 ? (x * x * 4099 + y * 13001 + 777) % 65536
+                                  : ((x + 2 * y) * 7919 + 4321) % 65536;
+      grid.values.push_back(grey / 65535.0);
+    }
+  }
+  return grid;
+}
+
+TEST_CASE("specWorkedBasisCaseIsTheCodes", "[spec]") {
+  GreyGrid first = case_g_image(0);
+  const GreyGrid raw = first;
+  BasisImageSettings normalized;
+  normalized.normalize = true;
+  filter_basis_image(first, normalized, "terrain.basis.images[0]");
+  for (std::size_t t = 0; t < 16; ++t) {
+    CHECK(first.values[t] == (raw.values[t] - kBasisMean) / kBasisDeviation);
+  }
+  const GreyGrid second = case_g_image(1);
+  const BasisTerm terms[2] = {{.image = &first, .weight_image = nullptr, .weight = 1.0},
+                              {.image = &second, .weight_image = nullptr, .weight = 0.5}};
+  const NoiseLattice unrefined = compose_basis(terms, 4, 1);
+  GreyGrid composed{.side = 4, .values = {}};
+  for (std::size_t t = 0; t < 16; ++t) {
+    CHECK(unrefined.values[t] == float(kBasisComposed[t]));
+    composed.values.push_back(kBasisComposed[t]);
+  }
+  const NoiseLattice lattice = compose_basis(terms, 4, 2);
+  const GreyGrid refined = bspline_refine(composed, 2);
+  REQUIRE(lattice.values.size() == 64);
+  for (std::size_t t = 0; t < 64; ++t) {
+    CHECK(lattice.values[t] == kBasisRefined[t]);
+    CHECK(float(refined.values[t]) == kBasisRefined[t]);
+  }
+  TerrainSettings terrain;
+  terrain.interpolant = Interpolant::kLinear;
+  BasisSettings basis;  // tile_size 24000: a cell of 24000 / 8 = 3000, case A's
+  basis.upsample = 2;
+  terrain.basis = basis;
+  const TerrainSettings stage3 = stage3_terrain(terrain, 8);
+  CHECK(stage3.lattice_size == 8);
+  CHECK(stage3.horizontal_scale == 3000.0);
+  const TerrainPlan plan = make_terrain_plan(stage3, lattice, kCaseA.camera);
+  CHECK(fbm_height<double>(plan, kCaseA.dx, kCaseA.dz, kCaseA.nu) == kBasisDouble_height);
+  CHECK(fbm_height<float>(plan, float(kCaseA.dx), float(kCaseA.dz), float(kCaseA.nu)) ==
+        kBasisFloat_height);
+  // Octave 0 alone (a_0 = 1): height = relative base + height scale * S(p_0).
+  const FbmParams<double> pd = make_fbm_params<double>(plan);
+  CHECK(fbm_height<double>(plan, kCaseA.dx, kCaseA.dz, 1.0) ==
+        pd.relative_base_height + pd.height_scale * kBasisDouble_s0);
+  const FbmParams<float> pf = make_fbm_params<float>(plan);
+  CHECK(fbm_height<float>(plan, float(kCaseA.dx), float(kCaseA.dz), 1.0f) ==
+        pf.relative_base_height + pf.height_scale * kBasisFloat_s0);
 }
 
 }  // namespace

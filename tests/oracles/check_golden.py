@@ -20,12 +20,14 @@ import sys
 sys.dont_write_bytecode = True  # run from the source tree: leave no __pycache__ behind
 
 import os  # noqa: E402
+import re  # noqa: E402
 import struct  # noqa: E402
 import time  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import golden_sources as sources  # noqa: E402
 import noise_lattice  # noqa: E402
+import sketch_basis_spec  # noqa: E402
 import terrain_spec  # noqa: E402
 from golden_sources import NUMBER  # noqa: E402
 
@@ -33,6 +35,7 @@ LATTICE_TEST = "tests/core/lattice_test.cc"
 CASES_HEADER = "tests/core/terrain_spec_cases.h"
 EXACT_CASE_HEADER = "tests/core/terrain_spec_exact_case.h"
 SPEC_TEST = "tests/core/terrain_spec_test.cc"
+SKETCH_BASIS_HEADER = "tests/core/terrain_spec_sketch_basis_cases.h"
 
 # Each worked case's terrain (changes from the default terrain), camera and point (dx, dz, nu),
 # as the headings of docs/terrain-spec.md's "Worked numbers" state them. The headers' inputs are
@@ -298,6 +301,31 @@ def check_spec_test_extras(root, report, lattice):
                        "default height bounds %s" % side, bounds[index], "double")
 
 
+def check_sketch_basis_cases(root, report):
+    """Cases F and G (tests/core/terrain_spec_sketch_basis_cases.h) against sketch_basis_spec.py:
+    every constant the oracle computes must be in the header, and nothing else."""
+    text = sources.read_source(root, SKETCH_BASIS_HEADER)
+    golden = sketch_basis_spec.golden()
+    declared = set(re.findall(r"inline constexpr \w+ (k\w+)", text))
+    if declared != set(golden):
+        raise sources.GoldenSourceError("%s declares %s, the oracle computes %s" % (
+            SKETCH_BASIS_HEADER, sorted(declared ^ set(golden)), "the others"))
+    group = "cases F, G (sketch, basis images)"
+    for name, (value, kind) in golden.items():
+        if isinstance(value, list):
+            literals = sources.find_literal_list(
+                text, SKETCH_BASIS_HEADER, r"\b%s\[\d+\]\s*=\s*\{([^}]*)\}" % name, name)
+            if len(literals) != len(value):
+                raise sources.GoldenSourceError("%s: %s has %d values, the oracle %d" % (
+                    SKETCH_BASIS_HEADER, name, len(literals), len(value)))
+            for k, (literal, computed) in enumerate(zip(literals, value)):
+                report.compare(group, literal, "%s[%d]" % (name, k), computed, kind)
+        else:
+            literal = sources.find_literal(
+                text, SKETCH_BASIS_HEADER, r"\b%s\s*=\s*(%s);" % (name, NUMBER), name)
+            report.compare(group, literal, name, value, kind)
+
+
 def main(argv):
     verbose = "--verbose" in argv
     arguments = [a for a in argv[1:] if a != "--verbose"]
@@ -319,6 +347,7 @@ def main(argv):
                 check_worked_case(report, name, golden, lattice)
         steps.append((header, check_header))
     steps.append((SPEC_TEST, lambda: check_spec_test_extras(root, report, lattice)))
+    steps.append((SKETCH_BASIS_HEADER, lambda: check_sketch_basis_cases(root, report)))
     for name, step in steps:
         try:
             step()
