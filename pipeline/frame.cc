@@ -110,9 +110,11 @@ Frame render_frame(const Scene& scene, const SceneResources& resources,
 
 namespace {
 
+// The bands of framebuffer rows [row_begin, row_end), band_rows each (a multiple of the tile
+// size; the last band may end at the viewport's top).
 template <class Real>
 FrameStats render_bands_with(const Scene& scene, const SceneResources& resources,
-                             const FrameRequest& request, int band_rows,
+                             const FrameRequest& request, int band_rows, int row_begin, int row_end,
                              const std::function<void(const FrameImage&, int)>& consume) {
   const Clock::time_point start = Clock::now();
   CpuBackend<Real> backend(scene, resources.lattice, resources.textures, request,
@@ -122,8 +124,8 @@ FrameStats render_bands_with(const Scene& scene, const SceneResources& resources
   run_table(backend, StageId::kBinning, stats.stages);
   const StageInfo& tiles = kFrameStages[std::size(kFrameStages) - 1];
   const Clock::time_point tiles_start = Clock::now();
-  for (int first_row = 0; first_row < scene.viewport.height; first_row += band_rows) {
-    backend.set_band(first_row, band_rows);
+  for (int first_row = row_begin; first_row < row_end; first_row += band_rows) {
+    backend.set_band(first_row, band_rows);  // the backend stops at the viewport's top
     backend.prepare(StageId::kTiles);
     const std::size_t units = backend.units(StageId::kTiles);
     tbb::parallel_for(
@@ -158,9 +160,66 @@ FrameStats render_frame_bands(const Scene& scene, const SceneResources& resource
     throw std::invalid_argument("render_frame_bands: band_rows must be a positive multiple of " +
                                 std::to_string(raster::kTileSize));
   }
+  const int height = scene.viewport.height;
   return request.backend == Backend::kReferenceDouble
-             ? render_bands_with<double>(scene, resources, request, band_rows, consume)
-             : render_bands_with<float>(scene, resources, request, band_rows, consume);
+             ? render_bands_with<double>(scene, resources, request, band_rows, 0, height, consume)
+             : render_bands_with<float>(scene, resources, request, band_rows, 0, height, consume);
+}
+
+namespace {
+
+// Rows [first_row, first_row + rows) of each of the image's buffers.
+FrameImage image_rows(const FrameImage& image, int first_row, int rows) {
+  FrameImage out;
+  out.width = image.width;
+  out.height = rows;
+  const auto cut = [&](const auto& values, auto& into) {
+    if (values.empty()) {
+      return;
+    }
+    const std::size_t per_row = values.size() / std::size_t(image.height);
+    into.assign(values.begin() + std::ptrdiff_t(per_row * std::size_t(first_row)),
+                values.begin() + std::ptrdiff_t(per_row * std::size_t(first_row + rows)));
+  };
+  cut(image.srgb, out.srgb);
+  cut(image.linear, out.linear);
+  cut(image.depth, out.depth);
+  cut(image.primitive, out.primitive);
+  cut(image.normal, out.normal);
+  cut(image.world_height, out.world_height);
+  cut(image.octaves, out.octaves);
+  return out;
+}
+
+}  // namespace
+
+Frame render_frame_rows(const Scene& scene, const SceneResources& resources,
+                        const FrameRequest& request, int first_row, int rows) {
+  const int height = scene.viewport.height;
+  if (first_row < 0 || first_row % raster::kTileSize != 0 || rows <= 0 ||
+      first_row + rows > height || (rows % raster::kTileSize != 0 && first_row + rows != height)) {
+    throw std::invalid_argument("render_frame_rows: rows [" + std::to_string(first_row) + ", " +
+                                std::to_string(first_row + rows) + ") of " +
+                                std::to_string(height) + " do not start at a multiple of " +
+                                std::to_string(raster::kTileSize) +
+                                " and end at one or at the top");
+  }
+  if (request.backend == Backend::kGl) {
+    // GL draws whole frames (gl_backend.h): the rows are kept from one.
+    Frame frame = render_frame(scene, resources, request);
+    frame.image = image_rows(frame.image, first_row, rows);
+    return frame;
+  }
+  Frame frame;
+  const auto keep = [&](const FrameImage& band, int) { frame.image = band; };
+  // One band: the rows rounded up to whole tiles (the backend stops at the viewport's top).
+  const int band = (rows + raster::kTileSize - 1) / raster::kTileSize * raster::kTileSize;
+  frame.stats = request.backend == Backend::kReferenceDouble
+                    ? render_bands_with<double>(scene, resources, request, band, first_row,
+                                                first_row + rows, keep)
+                    : render_bands_with<float>(scene, resources, request, band, first_row,
+                                               first_row + rows, keep);
+  return frame;
 }
 
 Frame render_frame_repeated(const Scene& scene, const SceneResources& resources,

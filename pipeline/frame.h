@@ -137,6 +137,15 @@ FrameStats render_frame_bands(const Scene& scene, const SceneResources& resource
                               const FrameRequest& request, int band_rows,
                               const std::function<void(const FrameImage&, int)>& consume);
 
+// Framebuffer rows [first_row, first_row + rows) of the frame alone (relief render --shard):
+// first_row a multiple of raster::kTileSize, rows positive and a multiple of it or reaching the
+// viewport's top (else std::invalid_argument). The image holds those rows, bottom to top,
+// bit-identical to the same rows of render_frame's image; the per-pixel memory is theirs.
+// Stages 1-6 up to binning run for the whole frame, the tiles of those rows alone. The GL
+// backend draws the whole frame and keeps the rows.
+Frame render_frame_rows(const Scene& scene, const SceneResources& resources,
+                        const FrameRequest& request, int first_row, int rows);
+
 // The frame rendered `repeat` (>= 1) times, for a time that the machine's noise does not
 // decide: the last frame, and in `median_ms` the median of the wall times.
 Frame render_frame_repeated(const Scene& scene, const SceneResources& resources,

@@ -115,6 +115,16 @@ MemoryEstimate estimate_scene_resources_memory(const Scene& scene) {
   return estimate;
 }
 
+MemoryEstimate estimate_rows_render_memory(const Scene& scene, Backend backend,
+                                           const FrameOutputs& outputs, int rows) {
+  if (backend == Backend::kGl) {
+    return estimate_render_memory(scene, backend, outputs);
+  }
+  Scene band = scene;  // the per-pixel parts scale with the rows; nothing else reads them
+  band.viewport.height = std::max(1, std::min(rows, scene.viewport.height));
+  return estimate_render_memory(band, backend, outputs);
+}
+
 MemoryEstimate estimate_render_memory(const Scene& scene, Backend backend,
                                       const FrameOutputs& outputs) {
   MemoryEstimate estimate;

@@ -20,6 +20,11 @@ namespace relief {
 MemoryEstimate estimate_render_memory(const Scene& scene, Backend backend,
                                       const FrameOutputs& outputs);
 
+// estimate_render_memory of a frame whose image holds `rows` rows alone (render_frame_rows;
+// the GL backend still draws the whole frame).
+MemoryEstimate estimate_rows_render_memory(const Scene& scene, Backend backend,
+                                           const FrameOutputs& outputs, int rows);
+
 // The scene's resources alone (scene_resources.h): the lattice, the textures, the sketch and
 // the basis images. `relief scene` loads them to validate the scene as render does.
 MemoryEstimate estimate_scene_resources_memory(const Scene& scene);

@@ -25,7 +25,9 @@
 #include "tools/image_library.h"
 #include "tools/path_command.h"
 #include "tools/reference_command.h"
+#include "tools/shard.h"
 #include "tools/soup.h"
+#include "tools/stitch_command.h"
 #include "tools/sweep_command.h"
 
 namespace relief {
@@ -108,6 +110,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   add_threads(render_cmd, threads);
   add_max_memory(render_cmd, max_memory);
   add_backend(render_cmd, backend, simd_target);
+  add_shard_option(render_cmd, render.shard, "image's rows of tiles");
   render_cmd->add_flag("--stats", render.stats,
                        "Print per stage whether it ran or was skipped, its median time and its "
                        "work counters (vertices evaluated, triangles set up, texture fetches...)");
@@ -115,34 +118,8 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       "--stats-json", render.stats_json, "Also write the --stats report as a JSON file, for CI");
 
   RasterOptions raster_options;
-  CLI::App* raster_cmd = app.add_subcommand(
-      "raster",
-      "Rasterise a triangle soup (README.md, 'Triangle soups') and write the primitive "
-      "id, depth and barycentric buffers, for comparison with a GPU.");
-  raster_cmd->add_option("FILE", raster_options.soup, "Triangle soup text file")->required();
-  const CLI::Option* raster_out = raster_cmd
-                                      ->add_option("--out", raster_options.prefix,
-                                                   "Output prefix: writes PREFIX.primitive.bin, "
-                                                   "PREFIX.depth.pfm, PREFIX.barycentric.pfm, "
-                                                   "PREFIX.coverage.png, PREFIX.json")
-                                      ->required();
-  raster_cmd->add_option("--cull", raster_options.cull, "Face culling: none (default), back, front")
-      ->check(CLI::IsMember({"none", "back", "front"}));
-  raster_cmd
-      ->add_option("--front-face", raster_options.front_face,
-                   "Front-facing winding in GL window coordinates: ccw (default) or cw")
-      ->check(CLI::IsMember({"ccw", "cw"}));
-  raster_cmd
-      ->add_option("--depth-test", raster_options.depth_test,
-                   "Depth test: greater (default, reverse-Z; depth cleared to 0), gequal, "
-                   "less, lequal (cleared to 1), equal, always, never")
-      ->check(CLI::IsMember({"greater", "gequal", "less", "lequal", "equal", "always", "never"}));
-  raster_cmd
-      ->add_option("--viewport", raster_options.viewport,
-                   "glViewport X Y WIDTH HEIGHT for clip-coordinate soups (default: the "
-                   "framebuffer); may exceed the framebuffer")
-      ->expected(4)
-      ->check(kFiniteViewportValue);
+  CLI::App* raster_cmd = add_raster_command(app, raster_options);
+  const CLI::Option* raster_out = raster_cmd->get_option("--out");
   add_backend(raster_cmd, backend, simd_target);
   add_threads(raster_cmd, threads);
   add_max_memory(raster_cmd, max_memory);
@@ -189,6 +166,8 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   add_threads(path_cmd, threads);
   add_max_memory(path_cmd, max_memory);
   add_backend(path_cmd, backend, simd_target);
+  StitchOptions stitch;  // the parts of --shard put together (stitch_command.h)
+  add_max_memory(add_stitch_command(app, stitch), max_memory);
 
   // CLI11 answers an unknown command with "A subcommand is required"; say what is wrong.
   std::string commands;
@@ -263,7 +242,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   }
   const MemoryBudget budget = memory_budget(parse_memory_size(max_memory), max_memory);
   stages.budget = render.budget = raster_options.budget = crosscheck.budget = budget;
-  reference.budget = error_options.budget = sweep.budget = path.budget = budget;
+  reference.budget = error_options.budget = sweep.budget = path.budget = stitch.budget = budget;
   reference.scene_arg = crosscheck.scene_arg = scene_args.scene;
   if (error_cmd->parsed()) {
     return run_error_command(error_options, out, err);
@@ -316,6 +295,9 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
         tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   }
   try {
+    if (app.got_subcommand("stitch")) {
+      return run_stitch_command(stitch, out, err);
+    }
     if (raster_cmd->parsed()) {
       const auto& v = raster_options.viewport;
       if (!v.empty() && (v[2] < 1 || v[3] < 1 || v[2] > 16384 || v[3] > 16384)) {
@@ -371,7 +353,8 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     // output naming an input) is bad input; the rest falls through to the handlers below.
     if (dynamic_cast<const SceneError*>(&e) || dynamic_cast<const SoupError*>(&e) ||
         dynamic_cast<const MemoryLimitError*>(&e) || dynamic_cast<const GlBackendError*>(&e) ||
-        dynamic_cast<const ImageLibraryError*>(&e) || dynamic_cast<const OutputAliasError*>(&e)) {
+        dynamic_cast<const ImageLibraryError*>(&e) || dynamic_cast<const OutputAliasError*>(&e) ||
+        dynamic_cast<const ShardError*>(&e)) {
       const bool gl = dynamic_cast<const GlBackendError*>(&e) != nullptr;  // a driver's log
       err << "relief: error: " << (gl ? brief_text(e.what(), 4 * kBriefChars) : e.what()) << "\n";
       return bad_input;

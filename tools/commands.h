@@ -48,6 +48,7 @@ struct RenderOptions {
   MemoryBudget budget;
   bool stats = false;      // per stage: ran or skipped, time, work counters
   std::string stats_json;  // the same as a JSON file (empty: none)
+  std::string shard;       // --shard I/N (tools/shard.h); empty: the whole image
 };
 
 // Refuses (returns kExitBadInput with the message on `err`, 0 otherwise) output names of the
@@ -70,6 +71,9 @@ struct RasterOptions {
   bool simd = true;              // the tiles through the SIMD kernels (the same bytes)
   MemoryBudget budget;
 };
+
+// The command and its own options (--backend, --threads, --max-memory: cli.cc).
+CLI::App* add_raster_command(CLI::App& app, RasterOptions& options);
 
 // `relief raster`: a triangle soup through the rasteriser, buffers written for comparison.
 // Throws SoupError for a bad soup (soup.h).

@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <ostream>
+#include <span>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -18,6 +21,7 @@
 #include "tools/atomic_file.h"
 #include "tools/cli.h"
 #include "tools/cli_options.h"
+#include "tools/shard.h"
 #include "tools/terminal_progress.h"
 
 namespace relief {
@@ -47,6 +51,7 @@ CLI::App* add_path_command(CLI::App& app, PathOptions& options) {
       ->required();
   cmd->add_option("--to-pitch", options.to_pitch_deg,
                   "Pitch of the last frame in degrees (-89 to 89; default -8)");
+  add_shard_option(cmd, options.shard, "path's frames");
   return cmd;
 }
 
@@ -95,17 +100,27 @@ int run_path_command(const Scene& scene, const PathOptions& o, std::ostream& out
     validate_scene(frame);
     frames.push_back(std::move(frame));
   }
+  // --shard: this shard's frames alone (shard.h); its record names them for relief stitch.
+  const std::optional<Shard> shard =
+      o.shard.empty() ? std::nullopt : std::optional(parse_shard(o.shard, std::getenv));
+  const ShardSpan span = shard ? shard_frames(o.frames, *shard) : ShardSpan{0, o.frames};
   // Frames of an earlier path left in the directory would mix with these (a shorter path keeps
   // the old frames past its last), and one of them being a directory would stop this path
-  // half-way: refused before anything is written.
+  // half-way: refused before anything is written. The shards of one path may share a
+  // directory: each refuses only its own frames and record.
   std::error_code error;
   if (std::filesystem::is_directory(o.out_dir, error)) {
     for (const auto& entry : std::filesystem::directory_iterator(o.out_dir, error)) {
       const std::string name = entry.path().filename().string();
-      if (name.starts_with("frame_") && name.ends_with(".png")) {
+      int k = -1;
+      const bool frame = name.starts_with("frame_") && name.ends_with(".png") &&
+                         std::sscanf(name.c_str(), "frame_%d.png", &k) == 1;
+      const bool ours = !shard || (frame && k >= span.begin && k < span.end) ||
+                        name == path_shard_file_name(*shard);
+      if ((frame || (shard && name == path_shard_file_name(*shard))) && ours) {
         return bad("--out " + o.out_dir + " already holds " + name +
-                   " (from an earlier path?); allowed: a new directory, or one without "
-                   "frame_*.png");
+                   " (from an earlier path?); allowed: a new directory, or one without " +
+                   (shard ? "this shard's frames and record" : std::string("frame_*.png")));
       }
     }
   }
@@ -119,12 +134,12 @@ int run_path_command(const Scene& scene, const PathOptions& o, std::ostream& out
 
   OutputDirectory directory(o.out_dir);
   TerminalProgress progress("relief path", "frames");
-  for (int k = 0; k < o.frames; ++k) {
+  for (int k = span.begin; k < span.end; ++k) {
     const Scene& frame_scene = frames[std::size_t(k)];
     char altitude[64];
     std::snprintf(altitude, sizeof altitude, "altitude %.4g",
                   frame_scene.camera.position[1] - scene.terrain.base_height);
-    progress.update(k, o.frames, altitude);
+    progress.update(k - span.begin, span.end - span.begin, altitude);
     const Frame frame = render_frame(frame_scene, resources, request);
     char name[32];
     std::snprintf(name, sizeof name, "frame_%04d.png", k);
@@ -133,10 +148,21 @@ int run_path_command(const Scene& scene, const PathOptions& o, std::ostream& out
                                          scene_metadata(frame_scene)));
     directory.keep();
   }
-  progress.update(o.frames, o.frames);
+  if (shard) {  // last: a record stands for frames that are all written
+    const std::string record = path_shard_record_text(*shard, o.frames);
+    write_file_atomically(
+        std::filesystem::path(o.out_dir) / path_shard_file_name(*shard),
+        std::span(reinterpret_cast<const unsigned char*>(record.data()), record.size()));
+  }
+  progress.update(span.end - span.begin, span.end - span.begin);
   progress.finish();
-  out << "wrote " << o.frames << " frames to " << o.out_dir << " (altitude "
-      << format_number(o.from_altitude) << " to " << format_number(o.to_altitude) << ")\n";
+  out << "wrote " << span.end - span.begin << " frames to " << o.out_dir << " (altitude "
+      << format_number(o.from_altitude) << " to " << format_number(o.to_altitude);
+  if (shard) {
+    out << "; shard " << shard->index << "/" << shard->count << ": frames " << span.begin << " to "
+        << span.end - 1;
+  }
+  out << ")\n";
   return kExitOk;
 }
 

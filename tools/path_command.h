@@ -27,6 +27,9 @@ struct PathOptions {
   double to_pitch_deg = -8.0;
   Backend backend = Backend::kSimd;
   MemoryBudget budget;
+  // --shard I/N (tools/shard.h): frames [floor(I F / N), floor((I + 1) F / N)) alone, and the
+  // record relief-shard-I-of-N.json beside them; empty: every frame.
+  std::string shard;
 };
 
 // Adds the command and its own options (SCENE, --set, --threads, --max-memory, --backend:

@@ -2,6 +2,7 @@
 #include <ostream>
 #include <string>
 
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "core/counter_hash.h"
@@ -14,6 +15,7 @@
 #include "raster/resolve.h"
 #include "tools/atomic_file.h"
 #include "tools/cli.h"
+#include "tools/cli_options.h"
 #include "tools/commands.h"
 #include "tools/distinct_paths.h"
 #include "tools/soup.h"
@@ -162,6 +164,37 @@ int run_raster_command(const RasterOptions& options, std::ostream& out) {
       << "culling), " << covered << " of " << pixels << " pixels covered\nwrote " << p
       << ".{primitive.bin,depth.pfm,barycentric.pfm,coverage.png,json}\n";
   return kExitOk;
+}
+
+CLI::App* add_raster_command(CLI::App& app, RasterOptions& raster_options) {
+  CLI::App* raster_cmd = app.add_subcommand(
+      "raster",
+      "Rasterise a triangle soup (README.md, 'Triangle soups') and write the primitive "
+      "id, depth and barycentric buffers, for comparison with a GPU.");
+  raster_cmd->add_option("FILE", raster_options.soup, "Triangle soup text file")->required();
+  raster_cmd
+      ->add_option("--out", raster_options.prefix,
+                   "Output prefix: writes PREFIX.primitive.bin, PREFIX.depth.pfm, "
+                   "PREFIX.barycentric.pfm, PREFIX.coverage.png, PREFIX.json")
+      ->required();
+  raster_cmd->add_option("--cull", raster_options.cull, "Face culling: none (default), back, front")
+      ->check(CLI::IsMember({"none", "back", "front"}));
+  raster_cmd
+      ->add_option("--front-face", raster_options.front_face,
+                   "Front-facing winding in GL window coordinates: ccw (default) or cw")
+      ->check(CLI::IsMember({"ccw", "cw"}));
+  raster_cmd
+      ->add_option("--depth-test", raster_options.depth_test,
+                   "Depth test: greater (default, reverse-Z; depth cleared to 0), gequal, "
+                   "less, lequal (cleared to 1), equal, always, never")
+      ->check(CLI::IsMember({"greater", "gequal", "less", "lequal", "equal", "always", "never"}));
+  raster_cmd
+      ->add_option("--viewport", raster_options.viewport,
+                   "glViewport X Y WIDTH HEIGHT for clip-coordinate soups (default: the "
+                   "framebuffer); may exceed the framebuffer")
+      ->expected(4)
+      ->check(kFiniteViewportValue);
+  return raster_cmd;
 }
 
 }  // namespace relief

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <iomanip>
 #include <optional>
 #include <ostream>
@@ -21,6 +22,7 @@
 #include "tools/distinct_paths.h"
 #include "tools/float_image_file.h"
 #include "tools/render_report.h"
+#include "tools/shard.h"
 
 namespace relief {
 
@@ -92,7 +94,22 @@ int run_render_command(const Scene& scene, const RenderOptions& options, std::os
   request.outputs.normal = !options.normal_output.empty();
   request.outputs.world_height = !options.height_output.empty();
   request.outputs.octaves = !options.octaves_output.empty();
-  const MemoryEstimate estimate = estimate_render_memory(scene, request.backend, request.outputs);
+  // --shard: a band of whole tile rows of the image (shard.h), the PNG alone.
+  std::optional<ShardSpan> band;
+  if (!options.shard.empty()) {
+    band = shard_rows(scene.viewport.height, parse_shard(options.shard, std::getenv));
+    if (!float_path.empty() || request.outputs.depth || request.outputs.primitive ||
+        request.outputs.normal || request.outputs.world_height || request.outputs.octaves) {
+      throw ShardError("--shard " + brief_text(options.shard) +
+                       " writes the PNG alone, which relief stitch assembles; leave out --float "
+                       "(and output.float_image), --depth, --primitive, --normal, --height and "
+                       "--octaves");
+    }
+  }
+  const MemoryEstimate estimate =
+      band ? estimate_rows_render_memory(scene, request.backend, request.outputs,
+                                         band->end - band->begin)
+           : estimate_render_memory(scene, request.backend, request.outputs);
   check_memory(estimate, options.budget, "this render",
                "Lower viewport.width/height or grid.width/height");
   request.max_bin_bytes = memory_left(estimate, options.budget);
@@ -107,14 +124,23 @@ int run_render_command(const Scene& scene, const RenderOptions& options, std::os
   RenderRuns runs;
   runs.setup_ms = setup_ms;
   for (int run = 0; run < options.repeat; ++run) {
-    frame = render_frame(scene, resources, request);
+    frame = band
+                ? render_frame_rows(scene, resources, request, band->begin, band->end - band->begin)
+                : render_frame(scene, resources, request);
     runs.add(frame.stats);
   }
 
   const FrameImage& image = frame.image;
   const std::size_t row = std::size_t(image.width);
   // Every image carries the scene that made it (image/image_metadata.h).
-  const std::vector<ImageText> metadata = scene_metadata(scene);
+  std::vector<ImageText> metadata = scene_metadata(scene);
+  if (band) {
+    const Shard shard = parse_shard(options.shard, std::getenv);
+    const int height = scene.viewport.height;
+    metadata.push_back(
+        {std::string(kShardKey), shard_record_text({shard, image.width, height, height - band->end,
+                                                    band->end - band->begin})});
+  }
   const auto floats = [&](const std::string& name, int channels, std::span<const float> values) {
     return encode_float_image(float_format_of(name).value_or(FloatFormat::kPfm), image.width,
                               image.height, channels, values, row * std::size_t(channels),

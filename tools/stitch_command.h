@@ -1,0 +1,35 @@
+// `relief stitch` (README.md, "Shards"): the parts that `--shard I/N` rendered, assembled.
+//   relief stitch -o IMAGE.png SHARD.png...   the image from its row bands (relief render
+//                                              --shard): bytes identical to one render
+//   relief stitch --out DIR SHARD_DIR...      a path's frames from its shards' directories
+//                                              (relief path --shard), copied into DIR
+// A set that is incomplete (a shard missing: named with its rows or frames), mixed (shards of
+// another image, scene, size or N), or damaged (a frame or band missing or unreadable) is
+// refused with exit 2 and nothing written.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "pipeline/memory_budget.h"
+
+namespace CLI {
+class App;
+}  // namespace CLI
+
+namespace relief {
+
+struct StitchOptions {
+  std::vector<std::string> inputs;
+  std::string output;   // -o: an image
+  std::string out_dir;  // --out: a path's frames
+  MemoryBudget budget;
+};
+
+CLI::App* add_stitch_command(CLI::App& app, StitchOptions& options);
+
+// Throws ShardError (bad input), MemoryLimitError, OutputError.
+int run_stitch_command(const StitchOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace relief
