@@ -29,9 +29,11 @@ RENDER_PACKAGES := cmake make g++ pkg-config \
 # gnuplot-nox draws relief sweep's plot (an external program, run only by that command; the
 # tests require it).
 # python3 runs the independent transcriptions that the golden numbers of the tests come from
-# (tests/oracles/, standard library only).
+# (tests/oracles/, standard library only). slurm-wlm and munge: the test that starts a
+# one-node Slurm and renders shards on it (tests/slurm/slurm_test.sh).
 PACKAGES := $(RENDER_PACKAGES) catch2 libbenchmark-dev \
-            libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri gnuplot-nox python3
+            libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri gnuplot-nox python3 \
+            slurm-wlm munge
 
 # make fuzz alone: libFuzzer comes with clang (Debian's clang is clang 14; its runtime
 # libraries, libFuzzer among them, are libclang-rt-14-dev). Not needed by make test.

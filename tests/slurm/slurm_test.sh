@@ -1,0 +1,83 @@
+#!/bin/bash
+# Slurm, the real one (README.md, "Shards"): a one-node Slurm started here from Debian's
+# packages (tools/slurm/local_cluster.sh), a 4-task job array and its stitch job for a large
+# image and for a 64-frame path (tools/slurm/submit.sh), and the bytes checked against the
+# same image and path rendered in one process. The daemons are stopped whatever happens. A
+# machine that cannot start them fails the test with the reason; nothing is skipped.
+#
+#   tests/slurm/slurm_test.sh RELIEF SOURCE_DIR
+# RELIEF_SLURM_IMAGE_SIDE: the image's side (8192; the sanitizer build's ctest sets less).
+set -euo pipefail
+relief=$1
+source_dir=$2
+side=${RELIEF_SLURM_IMAGE_SIDE:-8192}
+frames=64
+slurm="$source_dir/tools/slurm"
+work=$(mktemp -d /tmp/relief-slurm-test.XXXXXX)
+cleanup() {
+  "$slurm/local_cluster.sh" stop "$work/cluster" || true
+  rm -rf "$work"
+}
+trap cleanup EXIT
+started=$(date +%s)
+
+"$slurm/local_cluster.sh" start "$work/cluster"
+export SLURM_CONF="$work/cluster/slurm.conf"
+
+# Waits for job $1 to end; fails with its state and output unless it COMPLETED.
+wait_for_job() {
+  local id=$1 state=""
+  for _ in $(seq 1800); do
+    state=$(scontrol show job "$id" -o 2>/dev/null | grep -o 'JobState=[A-Z_]*' | cut -d= -f2)
+    case "$state" in
+      COMPLETED) return 0 ;;
+      FAILED | CANCELLED | TIMEOUT | NODE_FAIL | OUT_OF_MEMORY | PREEMPTED | BOOT_FAIL | DEADLINE)
+        echo "slurm_test: job $id ended $state" >&2
+        cat "$work"/*/slurm-*.out >&2 2>/dev/null || true
+        return 1 ;;
+    esac
+    sleep 0.5
+  done
+  echo "slurm_test: job $id still ${state:-unknown} after 900 s" >&2
+  return 1
+}
+
+image=(default --set "viewport.width=$side" --set "viewport.height=$side")
+path=(planet --frames "$frames" --from-altitude 3e5 --to-altitude 800
+      --set viewport.width=160 --set viewport.height=120 --set grid.width=96 --set grid.height=96)
+
+read -r image_array image_stitch < <("$slurm/submit.sh" 4 "$work/image-parts" "$work/stitched.png" \
+                                     "$relief" render "${image[@]}")
+read -r path_array path_stitch < <("$slurm/submit.sh" 4 "$work/path-parts" "$work/stitched-path" \
+                                   "$relief" path "${path[@]}")
+echo "slurm_test: submitted arrays $image_array and $path_array, stitch jobs $image_stitch and $path_stitch"
+
+# The same image and path in one process, while Slurm works.
+"$relief" render "${image[@]}" -o "$work/one.png" >/dev/null
+"$relief" path "${path[@]}" --out "$work/one-path" >/dev/null
+
+passed=0
+failed=0
+wait_for_job "$image_stitch"
+if cmp "$work/one.png" "$work/stitched.png"; then
+  echo "slurm_test: ${side}x${side} image from 4 tasks: identical ($(md5sum < "$work/one.png" | cut -c1-32))"
+  passed=$((passed + 1))
+else
+  failed=$((failed + 1))
+fi
+wait_for_job "$path_stitch"
+different=0
+for frame in "$work"/one-path/frame_*.png; do
+  cmp -s "$frame" "$work/stitched-path/$(basename "$frame")" || different=$((different + 1))
+done
+count=$(ls "$work"/stitched-path/frame_*.png | wc -l)
+if ((different == 0 && count == frames)); then
+  echo "slurm_test: $frames-frame path from 4 tasks: identical"
+  passed=$((passed + 1))
+else
+  echo "slurm_test: $different of $frames frames differ, $count stitched" >&2
+  failed=$((failed + 1))
+fi
+echo "slurm_test: $(($(date +%s) - started)) s"
+echo "$passed passed, $failed failed"
+((failed == 0))
