@@ -30,10 +30,11 @@ RENDER_PACKAGES := cmake make g++ pkg-config \
 # tests require it).
 # python3 runs the independent transcriptions that the golden numbers of the tests come from
 # (tests/oracles/, standard library only). slurm-wlm and munge: the test that starts a
-# one-node Slurm and renders shards on it (tests/slurm/slurm_test.sh).
+# one-node Slurm and renders shards on it (tests/slurm/slurm_test.sh). pybind11-dev,
+# python3-dev, python3-numpy and python3-pytest: `import relief` and its pytest suite (python/).
 PACKAGES := $(RENDER_PACKAGES) catch2 libbenchmark-dev \
             libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri gnuplot-nox python3 \
-            slurm-wlm munge
+            slurm-wlm munge pybind11-dev python3-dev python3-numpy python3-pytest
 
 # make fuzz alone: libFuzzer comes with clang (Debian's clang is clang 14; its runtime
 # libraries, libFuzzer among them, are libclang-rt-14-dev). Not needed by make test.
@@ -42,8 +43,10 @@ FUZZ_TARGETS  := scene override soup texture
 
 # Every part on (the options' defaults, spelled out so that a cache configured otherwise is
 # corrected), and every part off for make render.
-ALL_PARTS  := -DRELIEF_BUILD_TESTS=ON -DRELIEF_BUILD_BENCHMARKS=ON -DRELIEF_WITH_GL=ON
-NO_PARTS   := -DRELIEF_BUILD_TESTS=OFF -DRELIEF_BUILD_BENCHMARKS=OFF -DRELIEF_WITH_GL=OFF
+ALL_PARTS  := -DRELIEF_BUILD_TESTS=ON -DRELIEF_BUILD_BENCHMARKS=ON -DRELIEF_WITH_GL=ON \
+              -DRELIEF_WITH_PYTHON=ON
+NO_PARTS   := -DRELIEF_BUILD_TESTS=OFF -DRELIEF_BUILD_BENCHMARKS=OFF -DRELIEF_WITH_GL=OFF \
+              -DRELIEF_WITH_PYTHON=OFF
 
 .PHONY: all deps deps-render deps-fuzz build render install test test-release test-sanitize \
         fuzz format clean
