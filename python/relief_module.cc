@@ -120,7 +120,11 @@ Backend backend_named(const std::string& name) {
 }
 
 py::dict render(PyScene& s, const std::string& backend_name, const std::vector<std::string>& extra,
-                int threads) {
+                int threads, const std::string& max_memory) {
+  if (threads < 0 || threads > 1024) {
+    throw SceneError("threads", "threads = " + std::to_string(threads) +
+                                    " is out of range; allowed 0 (every core) to 1024");
+  }
   FrameRequest request;
   request.backend = backend_named(backend_name);
   for (const std::string& output : extra) {
@@ -137,7 +141,12 @@ py::dict render(PyScene& s, const std::string& backend_name, const std::vector<s
     }
     *flag = true;
   }
-  const MemoryBudget budget = memory_budget(std::nullopt, "");
+  const std::optional<std::uintmax_t> memory_limit = parse_memory_size(max_memory);
+  if (!max_memory.empty() && !memory_limit) {
+    throw SceneError("max_memory", "max_memory = '" + max_memory +
+                                       "' is not a size such as 2G, 512M or 1000000 (bytes)");
+  }
+  const MemoryBudget budget = memory_budget(memory_limit, max_memory);
   const MemoryEstimate estimate = estimate_render_memory(s.scene, request.backend, request.outputs);
   check_memory(estimate, budget, "this render", "Lower viewport.width/height or grid.width/height");
   request.max_bin_bytes = memory_left(estimate, budget);
@@ -283,7 +292,9 @@ PYBIND11_MODULE(relief, m) {
       .def_property_readonly("json", [](const PyScene& s) { return scene_json_text(s.scene); });
   m.def("render", &render, py::arg("scene"), py::arg("backend") = "simd",
         py::arg("outputs") = std::vector<std::string>{}, py::arg("threads") = 0,
-        "Render a frame: a dict of numpy arrays (image, and the requested linear, depth, "
+        py::arg("max_memory") = "",
+        "Render a frame (max_memory as relief's --max-memory: 2G, 512M; empty: the machine's "
+        "available memory): a dict of numpy arrays (image, and the requested linear, depth, "
         "primitive, normal, height, octaves; None when not requested), stats, and png (the "
         "bytes relief render writes)");
   m.def("stages", &stages, py::arg("scene"), py::arg("backend") = "simd",

@@ -75,6 +75,20 @@ def test_set_validates_like_the_command_line():
         relief.Scene("no-such-preset-or-file")
     with pytest.raises(KeyError):
         scene.get("terrain.nope")
+    for bad in (float("nan"), float("inf"), 10**30, "quintic"):
+        with pytest.raises(relief.SceneError):
+            scene.set("terrain.H", bad)
+    with pytest.raises(relief.SceneError):
+        relief.render(scene, backend="vulkan")
+    with pytest.raises(relief.SceneError):
+        relief.render(scene, outputs=["albedo"])
+    with pytest.raises(relief.SceneError):
+        relief.render(scene, threads=-1)
+    with pytest.raises(MemoryError):  # estimated before any work
+        relief.render(relief.Scene("default", ["viewport.width=4096", "viewport.height=4096"]),
+                      outputs=["linear", "normal"], max_memory="64M")
+    with pytest.raises(relief.SceneError):
+        relief.render(scene, max_memory="lots")
 
 
 def test_the_image_array_is_the_png_relief_writes():
