@@ -1,5 +1,5 @@
-// Frames of scenes that need less than the default one (README.md, "Skipped work"), each with
-// the frame's skips on and with every skip off, side by side in one run: the time falls with
+// Frames of scenes that need less than the default one (docs/stages.md, "Skipped work"), each
+// with the frame's skips on and with every skip off, side by side in one run: the time falls with
 // the work, and the counters say which work. Frames of the default viewport and grid (1280 x
 // 1024, 512 x 512), on all threads. Run:
 //   build/bench/relief_bench_skip --benchmark_repetitions=5

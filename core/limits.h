@@ -134,7 +134,7 @@ inline constexpr double kMaxBasisSeam = 2.0;
 // --- Scene fields: ranges that keep the float pipeline meaningful --------------------------
 //
 // Every numeric scene field has a range; docs/scene-limits.md derives each bound from the
-// stage and formula that breaks outside it, and README.md's scene reference quotes them.
+// stage and formula that breaks outside it, and docs/scene-reference.md quotes them.
 // Derived values are rounded to the safe side (to a power of ten unless said otherwise).
 
 // The float that every per-vertex and per-pixel quantity is stored in.

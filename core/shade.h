@@ -40,7 +40,7 @@ struct PixelAttributes {
   Real drop;  // a planet's curvature drop below the height (planet_bend.h); 0 on the plane
 };
 
-// The work stage 8 did, counted per pixel (README.md, "Skipped work").
+// The work stage 8 did, counted per pixel (docs/stages.md, "Skipped work").
 struct ShadeWork {
   std::uint64_t terrain_pixels = 0;     // covered pixels shaded as terrain
   std::uint64_t background_pixels = 0;  // sky, fog or open water

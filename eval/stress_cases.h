@@ -1,4 +1,4 @@
-// The cases of the stability stress suite (README.md, "Stability stress suite"): a base scene
+// The cases of the stability stress suite (docs/stress.md): a base scene
 // pushed to the ends of each axis the float pipeline is sensitive to, one field at a time.
 // relief stress prints them as a table and tests/eval/stress_test.cc runs the same list at a
 // smaller size; stress_run.h runs one case on every backend and checks it.

@@ -2,7 +2,7 @@
 // every grid buffer (stages 2-4 at every vertex) and every per-pixel output finite, the peak
 // memory within the render's estimate (job_memory.h), refusals where the case expects them
 // and nowhere else, and on the distance axis the float error against reference-double within
-// the bounds below. README.md, "Stability stress suite", shows the table.
+// the bounds below. docs/stress.md, "Stability stress suite", shows the table.
 #pragma once
 
 #include <cstdint>

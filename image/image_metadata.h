@@ -2,8 +2,8 @@
 // (the PNG keyword registered for it, ISO/IEC 15948 §11.3.4.2) = "relief VERSION", and for
 // the images of a scene "relief:scene" = the effective scene as `relief scene` prints it
 // (defaults, preset or file, then the --set overrides), which `relief render` loads back
-// (README.md, "Image metadata"). PNG files carry them as text chunks (png_text.h), EXR files
-// as string attributes of the same names (tools/float_image_file.h).
+// (docs/using-relief.md, "Image metadata"). PNG files carry them as text chunks (png_text.h),
+// EXR files as string attributes of the same names (tools/float_image_file.h).
 #pragma once
 
 #include <string_view>

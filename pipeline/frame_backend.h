@@ -29,8 +29,8 @@ class FrameBackend {
   // Called once after every unit of stage `id` has run, before the next stage. May throw
   // MemoryLimitError (the bins are checked here, before they are allocated).
   virtual void after(StageId /*id*/) {}
-  // Whether stage `id` did anything and its work counters (README.md, "Skipped work"), once
-  // after(id) has run; `time` arrives with the name, the time and ran = (units > 0).
+  // Whether stage `id` did anything and its work counters (docs/stages.md, "Skipped work"),
+  // once after(id) has run; `time` arrives with the name, the time and ran = (units > 0).
   virtual void describe(StageId /*id*/, StageTime& /*time*/) const {}
   // Moves the frame's results (image, requested outputs, rasteriser statistics and the
   // per-part times the fused stage measured) into `frame`.

@@ -1,7 +1,7 @@
-// What a frame leaves out because its scene does not need it (README.md, "Skipped work"), each
-// decided once per frame from the plan and from what the earlier stages found. Every skip is on
-// by default; a test turns one off to prove that the image does not change by a bit while the
-// work counters drop (tests/pipeline/skip_test.cc).
+// What a frame leaves out because its scene does not need it (docs/stages.md, "Skipped work"),
+// each decided once per frame from the plan and from what the earlier stages found. Every skip
+// is on by default; a test turns one off to prove that the image does not change by a bit while
+// the work counters drop (tests/pipeline/skip_test.cc).
 #pragma once
 
 #include "core/stage_params.h"

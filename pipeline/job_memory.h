@@ -1,6 +1,7 @@
 // Estimated peak memory of each command's job, from the sizes of the buffers it allocates
-// (README.md, "Memory"). The figures are per element of the arrays the code holds at its peak,
-// rounded up; they are checked against a budget (memory_budget.h) before the job starts.
+// (docs/using-relief.md, "Memory"). The figures are per element of the arrays the code holds at
+// its peak, rounded up; they are checked against a budget (memory_budget.h) before the job
+// starts.
 #pragma once
 
 #include <cstdint>

@@ -48,7 +48,7 @@ struct StageHomes {
 struct StageInfo {
   StageId id;
   const char* name;    // as the timing reports print it
-  const char* number;  // the stages of README.md's table it covers
+  const char* number;  // the stages of docs/stages.md's table it covers
   const char* reads;
   const char* writes;
   WorkUnit unit;
@@ -83,7 +83,7 @@ inline constexpr StageInfo kFrameStages[] = {
      WorkUnit::kGridRows,
      16,
      {"core/vertex_culling.cc", "simd/vertex_outcodes-inl.h", kGlDrawsEveryTriangle,
-      "tests/pipeline/skip_test.cc", "README.md#Skipped work"}},
+      "tests/pipeline/skip_test.cc", "docs/stages.md#Skipped work"}},
     {StageId::kVertexNeeds,
      "vertex needs (height bounds)",
      "2",
@@ -92,7 +92,7 @@ inline constexpr StageInfo kFrameStages[] = {
      WorkUnit::kGridRows,
      16,
      {"core/vertex_culling.cc", "none: byte flags over neighbouring rows, about 1% of the frame",
-      kGlDrawsEveryTriangle, "tests/pipeline/skip_test.cc", "README.md#Skipped work"}},
+      kGlDrawsEveryTriangle, "tests/pipeline/skip_test.cc", "docs/stages.md#Skipped work"}},
     {StageId::kFractal,
      "fractal",
      "3",
@@ -110,7 +110,7 @@ inline constexpr StageInfo kFrameStages[] = {
      WorkUnit::kGridRows,
      16,
      {"core/vertex_culling.cc", "simd/vertex_outcodes-inl.h", kGlDrawsEveryTriangle,
-      "tests/pipeline/skip_test.cc", "README.md#Skipped work"}},
+      "tests/pipeline/skip_test.cc", "docs/stages.md#Skipped work"}},
     {StageId::kDrawNeeds,
      "vertex needs (heights)",
      "3",
@@ -119,7 +119,7 @@ inline constexpr StageInfo kFrameStages[] = {
      WorkUnit::kGridRows,
      16,
      {"core/vertex_culling.cc", "none: byte flags over neighbouring rows, about 1% of the frame",
-      kGlDrawsEveryTriangle, "tests/pipeline/skip_test.cc", "README.md#Skipped work"}},
+      kGlDrawsEveryTriangle, "tests/pipeline/skip_test.cc", "docs/stages.md#Skipped work"}},
     {StageId::kSurface,
      "surface",
      "4",
@@ -146,7 +146,7 @@ inline constexpr StageInfo kFrameStages[] = {
      WorkUnit::kTriangleChunks,
      1,
      {"raster/triangle_setup.cc", "simd/vertex_snap-inl.h", "none: the GPU's fixed-function set-up",
-      "tests/raster/raster_test.cc", "README.md#The rasteriser's rules"}},
+      "tests/raster/raster_test.cc", "docs/rasteriser.md#The rasteriser's rules"}},
     {StageId::kBinning,
      "binning",
      "6",
@@ -156,7 +156,7 @@ inline constexpr StageInfo kFrameStages[] = {
      1,
      {"raster/bins.cc", "none: integer bounding boxes into per-chunk bins, memory-bound",
       "none: the GPU's fixed-function rasteriser bins its own way", "tests/raster/raster_test.cc",
-      "README.md#The rasteriser's rules"}},
+      "docs/rasteriser.md#The rasteriser's rules"}},
     {StageId::kTiles,
      "tiles: raster, resolve, shade, encode",
      "6-9",
@@ -165,7 +165,7 @@ inline constexpr StageInfo kFrameStages[] = {
      WorkUnit::kScreenTiles,
      1,
      {"raster/rasterize.cc", "simd/raster_tile-inl.h", "gpu/shaders/terrain.frag",
-      "tests/pipeline/frame_test.cc", "README.md#Shading (stage 8)"}},
+      "tests/pipeline/frame_test.cc", "docs/stages.md#Shading (stage 8)"}},
 };
 
 inline constexpr std::size_t kFrameStageCount = sizeof(kFrameStages) / sizeof(kFrameStages[0]);

@@ -56,7 +56,7 @@ struct TileAttributes {
   }
 };
 
-// The work of the tiles (README.md, "Skipped work"), summed over all tiles.
+// The work of the tiles (docs/stages.md, "Skipped work"), summed over all tiles.
 struct TileWork {
   std::uint64_t tiles_drawn = 0;     // tiles with a triangle binned: rasterised and resolved
   std::uint64_t tile_triangles = 0;  // (triangle, tile) pairs rasterised

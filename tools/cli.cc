@@ -37,7 +37,8 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       "Relief renders procedural fractal landscapes (Schneider, Boldte & Westermann, VMV 2006) "
       "with a deterministic CPU pipeline.\n"
       "Scenes are JSON files or built-in presets; every field can be overridden with --set.\n"
-      "The scene reference and the stage-by-stage map to the paper are in README.md.",
+      "The scene reference is docs/scene-reference.md, the stage-by-stage map to the paper "
+      "docs/stages.md.",
       "relief"};
   app.require_subcommand(1);
   app.footer(

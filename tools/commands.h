@@ -62,7 +62,7 @@ int run_render_command(const Scene& scene, const RenderOptions& options, std::os
                        std::ostream& err);
 
 struct RasterOptions {
-  std::string soup;    // triangle soup file (README.md, "Triangle soups")
+  std::string soup;    // triangle soup file (docs/rasteriser.md, "Triangle soups")
   std::string prefix;  // output files PREFIX.*
   std::string cull = "none";
   std::string front_face = "ccw";

@@ -169,7 +169,7 @@ int run_raster_command(const RasterOptions& options, std::ostream& out) {
 CLI::App* add_raster_command(CLI::App& app, RasterOptions& raster_options) {
   CLI::App* raster_cmd = app.add_subcommand(
       "raster",
-      "Rasterise a triangle soup (README.md, 'Triangle soups') and write the primitive "
+      "Rasterise a triangle soup (docs/rasteriser.md, 'Triangle soups') and write the primitive "
       "id, depth and barycentric buffers, for comparison with a GPU.");
   raster_cmd->add_option("FILE", raster_options.soup, "Triangle soup text file")->required();
   raster_cmd

@@ -1,6 +1,6 @@
-// What `relief render` reports about its frames (README.md, "Skipped work"): the median stage
-// times of the runs, and with --stats each stage's ran-or-skipped, time and work counters, as
-// text or as JSON for CI (--stats-json).
+// What `relief render` reports about its frames (docs/stages.md, "Skipped work"): the median
+// stage times of the runs, and with --stats each stage's ran-or-skipped, time and work counters,
+// as text or as JSON for CI (--stats-json).
 #pragma once
 
 #include <ostream>

@@ -1,6 +1,6 @@
 // relief_scene_docs: writes, or checks, what the scene-field schema generates in the
-// repository: README.md's scene table (between its BEGIN/END markers) and the scene fuzzers'
-// dictionaries (fuzz/scene.dict, fuzz/override.dict).
+// repository: docs/scene-reference.md's scene table (between its BEGIN/END markers) and the
+// scene fuzzers' dictionaries (fuzz/scene.dict, fuzz/override.dict).
 //
 //   relief_scene_docs --write ROOT   rewrite them after a scene field changed
 //   relief_scene_docs --check ROOT   exit 1 naming each file that differs (ctest runs this)
@@ -21,6 +21,9 @@ constexpr std::string_view kBegin =
     ". -->\n";
 constexpr std::string_view kEnd = "<!-- END scene table -->\n";
 
+// The page that holds the table, relative to the repository root.
+constexpr std::string_view kTablePage = "docs/scene-reference.md";
+
 bool read_file(const std::string& path, std::string& text) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
@@ -38,28 +41,28 @@ bool write_file(const std::string& path, const std::string& text) {
   return static_cast<bool>(out.flush());
 }
 
-// README.md with the generated table between the markers; false if the markers are missing.
-bool with_table(const std::string& readme, std::string& out) {
-  const std::size_t begin = readme.find(kBegin);
-  const std::size_t end = readme.find(kEnd);
+// The page with the generated table between the markers; false if the markers are missing.
+bool with_table(const std::string& page, std::string& out) {
+  const std::size_t begin = page.find(kBegin);
+  const std::size_t end = page.find(kEnd);
   if (begin == std::string::npos || end == std::string::npos || end < begin) {
     return false;
   }
-  out = readme.substr(0, begin + kBegin.size()) + relief::scene_reference_table() +
-        readme.substr(end);
+  out = page.substr(0, begin + kBegin.size()) + relief::scene_reference_table() + page.substr(end);
   return true;
 }
 
 int run(const std::string& mode, const std::string& root) {
-  std::string readme;
-  std::string generated_readme;
-  if (!read_file(root + "/README.md", readme) || !with_table(readme, generated_readme)) {
-    std::cerr << "relief_scene_docs: " << root
-              << "/README.md is missing or has no scene-table markers\n";
+  const std::string table_page = root + "/" + std::string(kTablePage);
+  std::string page;
+  std::string generated_page;
+  if (!read_file(table_page, page) || !with_table(page, generated_page)) {
+    std::cerr << "relief_scene_docs: " << table_page
+              << " is missing or has no scene-table markers\n";
     return 2;
   }
   const std::pair<std::string, std::string> files[] = {
-      {root + "/README.md", generated_readme},
+      {table_page, generated_page},
       {root + "/fuzz/scene.dict", relief::scene_dictionary()},
       {root + "/fuzz/override.dict", relief::override_dictionary()},
   };

@@ -1,4 +1,4 @@
-// --shard I/N (README.md, "Shards"): which part of a job one process does, so that a long
+// --shard I/N (docs/shards.md): which part of a job one process does, so that a long
 // camera path or a large image is split across machines and stitched back (relief stitch)
 // into bytes identical to one render. Relief's frames are bit-identical across runs and
 // thread counts, so any machine may render any part. The parts are a pure function of the

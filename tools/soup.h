@@ -1,4 +1,4 @@
-// Triangle soups: the text format of `relief raster` (README.md, "Triangle soups").
+// Triangle soups: the text format of `relief raster` (docs/rasteriser.md, "Triangle soups").
 //
 //   # comment                 ('#' to the end of the line; blank lines are ignored)
 //   W H                       framebuffer size, 1..16384

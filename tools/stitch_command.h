@@ -1,4 +1,4 @@
-// `relief stitch` (README.md, "Shards"): the parts that `--shard I/N` rendered, assembled.
+// `relief stitch` (docs/shards.md): the parts that `--shard I/N` rendered, assembled.
 //   relief stitch -o IMAGE.png SHARD.png...   the image from its row bands (relief render
 //                                              --shard): bytes identical to one render
 //   relief stitch --out DIR SHARD_DIR...      a path's frames from its shards' directories

@@ -27,7 +27,7 @@ Field<BasisImageSettings> weight_field() {
               s.weight_image = resolve_scene_path(cx.in.string(v, p), cx.base_dir);
               return;
             }
-            // One rule, one message, whichever side is crossed (README's scene table).
+            // One rule, one message, whichever side is crossed (docs/scene-reference.md's table).
             const std::string allowed =
                 "allowed 0, or " + format_number(limits::kMinBasisWeight) + " <= " + p +
                 " <= " + format_number(limits::kMaxBasisWeight) + ", or a grey PNG's path";

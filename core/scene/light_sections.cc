@@ -1,5 +1,5 @@
-// The scene file's "lighting", "water", "sky" and "output" sections (README.md, "Scene
-// reference").
+// The scene file's "lighting", "water", "sky" and "output" sections
+// (docs/scene-reference.md).
 #include "core/limits.h"
 #include "core/scene/scene_sections.h"
 #include "core/scene/schema_fields.h"

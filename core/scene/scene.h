@@ -1,6 +1,6 @@
 // The scene: everything a frame is rendered from. Plain data with the built-in defaults as
-// member initialisers; scene_json.h loads, validates and prints it. README.md's scene
-// reference lists every field with its range.
+// member initialisers; scene_json.h loads, validates and prints it. docs/scene-reference.md
+// lists every field with its range.
 #pragma once
 
 #include <array>
@@ -172,7 +172,7 @@ struct ShadingSettings {
   double mip_blend = 0.3;  // §4.2: each mip level blended this far toward the mean colour
   bool triplanar = true;   // Mekala, Scape: three projections weighted by squared normals
   // The nearest level by default: as close to the ground truth as trilinear, one fetch
-  // instead of two (README, "Time against error").
+  // instead of two (docs/using-relief.md, "Time against error").
   TextureFilter texture_filter = TextureFilter::kBilinear;
   double dither = 0.6;        // Scape: transition dithering, in units of each layer's spreads
   double dither_scale = 9.0;  // world units per lattice cell of the dithering noise

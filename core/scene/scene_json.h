@@ -1,4 +1,4 @@
-// Scene files: loading, strict validation and printing (README.md, "Scene reference").
+// Scene files: loading, strict validation and printing (docs/scene-reference.md).
 //
 // A scene is built in layers: the built-in defaults, then a preset or a scene file, then each
 // --set override in command-line order. Every layer is a (partial) scene in JSON and goes

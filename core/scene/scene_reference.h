@@ -1,5 +1,5 @@
 // What the scene-field schema (scene_schema.h) generates besides the reader and the writer:
-// README.md's scene table and the scene fuzzers' dictionaries. tools/scene_docs_main.cc
+// docs/scene-reference.md's table and the scene fuzzers' dictionaries. tools/scene_docs_main.cc
 // writes them into the repository and checks them there (ctest scene_docs_match_the_schema).
 #pragma once
 
@@ -22,7 +22,7 @@ struct SceneFieldRow {
 };
 std::vector<SceneFieldRow> scene_field_rows();
 
-// README.md's "Scene reference" table, Markdown, ending in a newline.
+// The table of docs/scene-reference.md, Markdown, ending in a newline.
 std::string scene_reference_table();
 
 // The fuzzers' dictionaries (libFuzzer's -dict format, one quoted token per line, sorted):

@@ -1,4 +1,4 @@
-// The whole scene file: its sections and "time" (README.md, "Scene reference").
+// The whole scene file: its sections and "time" (docs/scene-reference.md).
 #include "core/limits.h"
 #include "core/scene/scene_sections.h"
 #include "core/scene/schema_fields.h"

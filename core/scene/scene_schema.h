@@ -1,7 +1,7 @@
 // The scene-field schema: every field of a scene file declared once, with its JSON key, the
 // member it sets, its type and allowed range, its unit and one line of meaning. The reader
-// (apply_scene_layer), the writer (scene_to_json), README.md's scene table and the fuzzers'
-// dictionaries (scene_reference.h) all walk it, so a field declared here reaches all four.
+// (apply_scene_layer), the writer (scene_to_json), docs/scene-reference.md's table and the
+// fuzzers' dictionaries (scene_reference.h) all walk it, so a field declared here reaches all four.
 // The builders of single fields are in schema_fields.h; each section's list in its
 // *_section.cc.
 #pragma once
@@ -28,7 +28,7 @@ struct LayerContext {
   std::filesystem::path base_dir;
 };
 
-// A field's documentation: README.md's scene table prints it.
+// A field's documentation: docs/scene-reference.md's table prints it.
 struct FieldDoc {
   std::string_view unit;     // "" where the value has none
   std::string_view meaning;  // one line

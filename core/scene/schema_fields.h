@@ -17,7 +17,7 @@
 
 namespace relief {
 
-// "[1.001, 16]", "(0, 1e9]", "|·| ≤ 1e12": a range as README.md's table prints it.
+// "[1.001, 16]", "(0, 1e9]", "|·| ≤ 1e12": a range as docs/scene-reference.md prints it.
 std::string range_text(const Range& range);
 // "4, 8, 16, ..., 4096" or "1, 2, 4 or 8": the powers of two from lo to hi.
 std::string powers_of_two_text(long long lo, long long hi);

@@ -1,5 +1,5 @@
-// The scene file's "terrain" section and its "lod" and "warp" objects (README.md, "Scene
-// reference"); terrain.sketch, .basis and .planet have files of their own.
+// The scene file's "terrain" section and its "lod" and "warp" objects
+// (docs/scene-reference.md); terrain.sketch, .basis and .planet have files of their own.
 #include <string>
 
 #include "core/limits.h"

@@ -1,4 +1,4 @@
-// The scene file's "camera", "viewport" and "grid" sections (README.md, "Scene reference").
+// The scene file's "camera", "viewport" and "grid" sections (docs/scene-reference.md).
 #include <cmath>
 #include <string>
 

@@ -49,8 +49,8 @@
 //   the PNG top to bottom, as every image viewer expects.
 // - Every object here is a value: copying a Scene is cheap (it shares its immutable state);
 //   functions may be called from several threads at once, on the same Scene too.
-// - The scene format (JSON, every field, its range) is documented in Relief's README.md,
-//   "Scene reference"; `relief scene NAME` prints a preset's effective scene.
+// - The scene format (JSON, every field, its range) is documented in Relief's
+//   docs/scene-reference.md; `relief scene NAME` prints a preset's effective scene.
 #pragma once
 
 #include <cstdint>
@@ -154,7 +154,7 @@ class Scene {
   // file are relative to the file's directory. `overrides`: "KEY=VALUE" assignments such as
   // "terrain.H=0.85" or "camera.position=[0, 900, 0]", applied in order; VALUE is read as JSON
   // when it parses and as a plain string otherwise (quintic). Exactly the semantics of the
-  // command line's SCENE and --set options (README.md, "Using relief").
+  // command line's SCENE and --set options (docs/using-relief.md).
   //
   // Errors (exit code 2): a file that cannot be read or is not JSON, an unknown preset, an
   // unknown key, a wrong type, a value out of range, a rule between fields broken (grid
@@ -232,9 +232,9 @@ struct Image {
 
 // One stage of a render (or one group of fused stages): its wall time, whether it ran (false:
 // the frame had nothing for it to do) and the work it did, by name: "vertices evaluated",
-// "point-octaves summed", "triangles set up", "texture fetches", ... (README.md, "Skipped
-// work"). The names and their order depend on the backend; the counts are the same on every
-// run and for every thread count.
+// "point-octaves summed", "triangles set up", "texture fetches", ... (docs/stages.md,
+// "Skipped work"). The names and their order depend on the backend; the counts are the same on
+// every run and for every thread count.
 struct StageReport {
   std::string name;
   double ms = 0;
@@ -277,7 +277,7 @@ Result<Rendering> render(const Scene& scene, const RenderOptions& options = {});
 Result<std::vector<unsigned char>> encode_png(const Image& image);
 
 // The same with the scene that made the image in a text chunk "relief:scene" (scene.to_json(),
-// UTF-8; README.md, "Image metadata"): the file `relief render` writes for that scene.
+// UTF-8; docs/using-relief.md, "Image metadata"): the file `relief render` writes for that scene.
 Result<std::vector<unsigned char>> encode_png(const Image& image, const Scene& scene);
 
 // A float buffer of an Image (linear, depth, normal, world_height, octaves) as a PFM file's

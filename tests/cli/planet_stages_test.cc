@@ -26,7 +26,8 @@ struct Pfm {
   std::vector<float> values;  // rows bottom to top, channels interleaved
 };
 
-// The PFM layout of docs and README ("Float outputs"): "PF" or "Pf", "W H", "-1.0", then floats.
+// The PFM layout of the docs (docs/using-relief.md, "Float outputs" and "Stage outputs"): "PF"
+// or "Pf", "W H", "-1.0", then floats.
 Pfm read_pfm(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   REQUIRE(in);

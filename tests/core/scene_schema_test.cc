@@ -1,4 +1,4 @@
-// The scene-field schema's table (README.md's scene reference, core/scene/scene_reference.h)
+// The scene-field schema's table (docs/scene-reference.md, core/scene/scene_reference.h)
 // checked against the scene's reader and writer from outside: every field the writer prints
 // has a row, every row names a field the reader knows, and every range the table prints is the
 // one the reader enforces at both ends.

@@ -2,8 +2,8 @@
 // same thresholds must give the same verdict (exit code) and the same figures to the precision
 // idiff prints them (%g, six digits). Both call ImageBufAlgo::compare, so any difference is in
 // how relief reads the files or decides the verdict. Where relief deliberately differs (sizes,
-// channel counts: README.md, "Comparing images") the test says so and checks idiff's side too,
-// so that a changed idiff is noticed.
+// channel counts: docs/using-relief.md, "Comparing images") the test says so and checks idiff's
+// side too, so that a changed idiff is noticed.
 #include <sys/stat.h>
 
 #include <cmath>

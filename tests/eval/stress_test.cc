@@ -1,4 +1,4 @@
-// The stability stress suite (README.md, "Stability stress suite"): the very case list of
+// The stability stress suite (docs/stress.md): the very case list of
 // relief stress at a small size on the CPU backends, every buffer finite, peaks within the
 // estimate, refusals where expected; and the allocator fix the suite found.
 #include <algorithm>

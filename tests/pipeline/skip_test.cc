@@ -1,6 +1,6 @@
 // The work a frame skips (pipeline/frame_skips.h): each skip, turned off, must leave every
 // output bit-identical while the counters that measure its work rise; and the counters must
-// add up (README.md, "Skipped work").
+// add up (docs/stages.md, "Skipped work").
 #include <string>
 #include <vector>
 

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Slurm, the real one (README.md, "Shards"): a one-node Slurm started here from Debian's
+# Slurm, the real one (docs/shards.md, "Slurm"): a one-node Slurm started here from Debian's
 # packages (tools/slurm/local_cluster.sh), a 4-task job array and its stitch job for a large
 # image and for a 64-frame path (tools/slurm/submit.sh), and the bytes checked against the
 # same image and path rendered in one process. The daemons are stopped whatever happens. A

@@ -41,7 +41,7 @@ inline StressSettings stress_settings(std::vector<Backend> backends) {
 // - image: only silhouettes move when a vertex's rounding moves coverage; at the tests' 64 x 48
 //   frame a silhouette crosses some 100 of 3072 pixels, and a rounding moves a fraction of
 //   them: 2% of the sRGB bytes more than two codes apart;
-// - memory: the estimate plus what it leaves out on purpose (README.md, "Stability stress
+// - memory: the estimate plus what it leaves out on purpose (docs/stress.md, "Stability stress
 //   suite"): 2 MiB (the first triangle slab's huge page), 1 MiB a worker thread (a tile's
 //   scratch) and, for GL, 16 MiB of driver state.
 inline constexpr double kTestHeightErrorBound = 2e-4;

@@ -1,6 +1,6 @@
 #!/bin/bash
-# Submits a relief render or path to Slurm as N shards and one stitch job (README.md,
-# "Shards"):
+# Submits a relief render or path to Slurm as N shards and one stitch job (docs/shards.md,
+# "Slurm"):
 #
 #   tools/slurm/submit.sh N PARTS OUT RELIEF render|path ARGS...
 #
