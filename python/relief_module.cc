@@ -88,6 +88,18 @@ struct PyFrame {
   Frame frame;
 };
 
+// A read-only numpy array over `data`, which `owner` keeps alive (the array holds a copy of
+// the shared pointer): a view, never a copy.
+template <class T, class Owner>
+py::object readonly_view(const std::shared_ptr<Owner>& owner, const T* data,
+                         std::vector<py::ssize_t> shape, std::vector<py::ssize_t> strides) {
+  py::capsule base(new std::shared_ptr<Owner>(owner),
+                   [](void* p) { delete static_cast<std::shared_ptr<Owner>*>(p); });
+  py::array out(py::dtype::of<T>(), std::move(shape), std::move(strides), data, base);
+  py::detail::array_proxy(out.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return out;
+}
+
 // rows x cols [x channels] of `data`, stored bottom row first, viewed top row first.
 template <class T>
 py::object view(const std::shared_ptr<PyFrame>& owner, const std::vector<T>& data, int channels) {
@@ -103,11 +115,7 @@ py::object view(const std::shared_ptr<PyFrame>& owner, const std::vector<T>& dat
     shape.push_back(channels);
     strides.push_back(sizeof(T));
   }
-  py::capsule base(new std::shared_ptr<PyFrame>(owner),
-                   [](void* p) { delete static_cast<std::shared_ptr<PyFrame>*>(p); });
-  py::array out(py::dtype::of<T>(), shape, strides, top, base);
-  py::detail::array_proxy(out.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
-  return out;
+  return readonly_view(owner, top, std::move(shape), std::move(strides));
 }
 
 Backend backend_named(const std::string& name) {
@@ -202,14 +210,9 @@ py::dict stages(PyScene& s, const std::string& backend_name) {
     if (values.empty()) {
       return py::none();
     }
-    py::capsule base(new std::shared_ptr<TerrainRun<float>>(run),
-                     [](void* p) { delete static_cast<std::shared_ptr<TerrainRun<float>>*>(p); });
-    py::array out(
-        py::dtype::of<T>(), {layout.height, layout.width},
-        {static_cast<py::ssize_t>(sizeof(T)) * layout.pitch, static_cast<py::ssize_t>(sizeof(T))},
-        values.data(), base);
-    py::detail::array_proxy(out.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
-    return out;
+    return readonly_view(
+        run, values.data(), {layout.height, layout.width},
+        {static_cast<py::ssize_t>(sizeof(T)) * layout.pitch, static_cast<py::ssize_t>(sizeof(T))});
   };
   const GridBuffers<float>& g = run->grid;
   py::dict out;

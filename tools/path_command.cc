@@ -28,7 +28,7 @@ namespace relief {
 
 namespace {
 
-constexpr int kMaxFrames = 10000;
+constexpr int kMaxFrames = kMaxPathFrames;
 constexpr double kMinPitchDeg = -89.0, kMaxPitchDeg = 89.0;
 
 }  // namespace
@@ -115,9 +115,11 @@ int run_path_command(const Scene& scene, const PathOptions& o, std::ostream& out
       int k = -1;
       const bool frame = name.starts_with("frame_") && name.ends_with(".png") &&
                          std::sscanf(name.c_str(), "frame_%d.png", &k) == 1;
-      const bool ours = !shard || (frame && k >= span.begin && k < span.end) ||
-                        name == path_shard_file_name(*shard);
-      if ((frame || (shard && name == path_shard_file_name(*shard))) && ours) {
+      // Unsharded: any frame. A shard: its own frames and its own record.
+      const bool taken =
+          shard ? (frame && k >= span.begin && k < span.end) || name == path_shard_file_name(*shard)
+                : frame;
+      if (taken) {
         return bad("--out " + o.out_dir + " already holds " + name +
                    " (from an earlier path?); allowed: a new directory, or one without " +
                    (shard ? "this shard's frames and record" : std::string("frame_*.png")));

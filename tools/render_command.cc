@@ -95,9 +95,11 @@ int run_render_command(const Scene& scene, const RenderOptions& options, std::os
   request.outputs.world_height = !options.height_output.empty();
   request.outputs.octaves = !options.octaves_output.empty();
   // --shard: a band of whole tile rows of the image (shard.h), the PNG alone.
+  std::optional<Shard> shard;
   std::optional<ShardSpan> band;
   if (!options.shard.empty()) {
-    band = shard_rows(scene.viewport.height, parse_shard(options.shard, std::getenv));
+    shard = parse_shard(options.shard, std::getenv);
+    band = shard_rows(scene.viewport.height, *shard);
     if (!float_path.empty() || request.outputs.depth || request.outputs.primitive ||
         request.outputs.normal || request.outputs.world_height || request.outputs.octaves) {
       throw ShardError("--shard " + brief_text(options.shard) +
@@ -135,10 +137,9 @@ int run_render_command(const Scene& scene, const RenderOptions& options, std::os
   // Every image carries the scene that made it (image/image_metadata.h).
   std::vector<ImageText> metadata = scene_metadata(scene);
   if (band) {
-    const Shard shard = parse_shard(options.shard, std::getenv);
     const int height = scene.viewport.height;
     metadata.push_back(
-        {std::string(kShardKey), shard_record_text({shard, image.width, height, height - band->end,
+        {std::string(kShardKey), shard_record_text({*shard, image.width, height, height - band->end,
                                                     band->end - band->begin})});
   }
   const auto floats = [&](const std::string& name, int channels, std::span<const float> values) {

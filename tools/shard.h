@@ -21,6 +21,8 @@ class App;
 namespace relief {
 
 inline constexpr int kMaxShards = 4096;
+// The most frames relief path renders (path_command.cc), and so the most a path shard names.
+inline constexpr int kMaxPathFrames = 10000;
 
 struct Shard {
   int index = 0;

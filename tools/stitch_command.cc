@@ -234,8 +234,14 @@ std::vector<PathShard> read_path_records(const std::vector<std::string>& dirs) {
                          " is not a path shard's record of relief path --shard");
       }
       const PathShard s{dir, {r["index"].get<int>(), r["count"].get<int>()}, r["frames"]};
-      if (s.shard.count < 1 || s.shard.index >= s.shard.count ||
-          name != path_shard_file_name(s.shard)) {
+      // Bounded before anything is sized by them: a record is input like any other.
+      if (s.frames < 1 || s.frames > kMaxPathFrames) {
+        throw ShardError("record " + brief_text(entry.path().string()) + " names " +
+                         std::to_string(s.frames) + " frames; allowed 1 to " +
+                         std::to_string(kMaxPathFrames));
+      }
+      if (s.shard.count < 1 || s.shard.count > std::min(kMaxShards, s.frames) ||
+          s.shard.index >= s.shard.count || name != path_shard_file_name(s.shard)) {
         throw ShardError("record " + brief_text(entry.path().string()) + " names shard " +
                          shard_name(s.shard));
       }

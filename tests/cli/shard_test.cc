@@ -249,6 +249,23 @@ TEST_CASE("pathShardsStitchToTheFramesOfOnePath", "[shard]") {
                         "its shard or frame count differs", joined + "3");
   test::require_refused(run({"stitch", "--out", joined + "4", dir.path().string()}),
                         "holds no relief-shard-I-of-N.json record", joined + "4");
+  // A record is input: frame and shard counts past relief path's limits are refused before
+  // anything is sized by them (2^30 frames would have been gigabytes of file names).
+  const std::filesystem::path forged = dir.path() / "forged";
+  std::filesystem::create_directories(forged);
+  test::write_file(forged / "relief-shard-0-of-1.json",
+                   R"({"command": "path", "index": 0, "count": 1, "frames": 1073741824})");
+  test::require_refused(run({"stitch", "--out", joined + "5", forged.string()}),
+                        "names 1073741824 frames; allowed 1 to 10000", joined + "5");
+  test::write_file(forged / "relief-shard-0-of-1.json",
+                   R"({"command": "path", "index": 0, "count": 1, "frames": 0})");
+  test::require_refused(run({"stitch", "--out", joined + "6", forged.string()}), "names 0 frames",
+                        joined + "6");
+  std::filesystem::remove(forged / "relief-shard-0-of-1.json");
+  test::write_file(forged / "relief-shard-0-of-9.json",
+                   R"({"command": "path", "index": 0, "count": 9, "frames": 5})");
+  test::require_refused(run({"stitch", "--out", joined + "7", forged.string()}), "names shard 0/9",
+                        joined + "7");
 }
 
 }  // namespace
