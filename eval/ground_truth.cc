@@ -5,6 +5,7 @@
 #include <numbers>
 #include <numeric>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include "core/frame_plan.h"
@@ -121,20 +122,39 @@ GroundTruthLod ground_truth_lod(const Scene& scene, const SceneResources& resour
   return out;
 }
 
-MemoryEstimate ground_truth_memory(const Scene& scene, const GroundTruthSettings& settings) {
+int ground_truth_shard_unit(int supersample) {
+  return band_granule(supersample) / supersample;
+}
+
+MemoryEstimate ground_truth_memory(const Scene& scene, const GroundTruthSettings& settings,
+                                   FrameRows output_rows) {
   const Scene big = supersampled_scene(scene, settings);
+  const int height = scene.viewport.height;
+  const int rows = std::min(output_rows.end, height) - std::clamp(output_rows.begin, 0, height);
   return estimate_ground_truth_memory(big, ground_truth_band_rows(scene, settings),
-                                      scene.viewport.width, scene.viewport.height);
+                                      scene.viewport.width, std::max(rows, 0));
 }
 
 GroundTruthImage render_ground_truth(const Scene& scene, const SceneResources& resources,
                                      const GroundTruthSettings& settings,
-                                     std::uint64_t max_bin_bytes, const BandProgress& progress) {
+                                     std::uint64_t max_bin_bytes, const BandProgress& progress,
+                                     FrameRows output_rows) {
   const int n = settings.supersample;
   const Scene big = supersampled_scene(scene, settings);
+  const int height = scene.viewport.height;
+  const int unit = ground_truth_shard_unit(n);
+  if (output_rows.begin < 0 || output_rows.begin % unit != 0 || output_rows.begin >= height ||
+      output_rows.end <= output_rows.begin ||
+      (output_rows.end < height && output_rows.end % unit != 0)) {
+    throw std::invalid_argument(
+        "render_ground_truth: output rows [" + std::to_string(output_rows.begin) + ", " +
+        std::to_string(output_rows.end) + ") are not whole steps of " + std::to_string(unit) +
+        " rows of the " + std::to_string(height) + " rows");
+  }
   GroundTruthImage out;
   out.width = scene.viewport.width;
-  out.height = scene.viewport.height;
+  out.first_row = output_rows.begin;
+  out.height = std::min(output_rows.end, height) - output_rows.begin;
   out.lod = ground_truth_lod(scene, resources, settings.octave_epsilon);
   const std::size_t pixels = std::size_t(out.width) * out.height;
   out.linear.assign(3 * pixels, 0.0f);
@@ -146,7 +166,9 @@ GroundTruthImage render_ground_truth(const Scene& scene, const SceneResources& r
   request.octave_count_rule = distance_lod_rule(out.lod.lod);
   request.max_bin_bytes = max_bin_bytes;
   const int band_rows = ground_truth_band_rows(scene, settings);
-  out.bands = (big.viewport.height + band_rows - 1) / band_rows;
+  // Supersampled rows [first, end): whole granules (a multiple of the tile size and of N).
+  const FrameRows rows{out.first_row * n, (out.first_row + out.height) * n};
+  out.bands = (rows.end - rows.begin + band_rows - 1) / band_rows;
   int done = 0;
   // Each output pixel's N x N samples lie in one band (bands are whole multiples of N): the
   // box filter sums them in double in a fixed order, row by row, and divides by N^2.
@@ -164,7 +186,7 @@ GroundTruthImage render_ground_truth(const Scene& scene, const SceneResources& r
             }
           }
         }
-        const std::size_t k = 3 * (std::size_t(y) * out.width + x);
+        const std::size_t k = 3 * (std::size_t(y - out.first_row) * out.width + x);
         for (int c = 0; c < 3; ++c) {
           out.linear[k + c] = static_cast<float>(sum[c] * inv_samples);
           out.srgb[k + c] = srgb_byte(out.linear[k + c]);
@@ -176,7 +198,7 @@ GroundTruthImage render_ground_truth(const Scene& scene, const SceneResources& r
       progress(done, out.bands);
     }
   };
-  out.stats = render_frame_bands(big, resources, request, band_rows, reduce);
+  out.stats = render_frame_bands(big, resources, request, band_rows, reduce, rows);
   return out;
 }
 

@@ -74,11 +74,19 @@ struct GroundTruthLod {
 GroundTruthLod ground_truth_lod(const Scene& scene, const SceneResources& resources,
                                 double octave_epsilon);
 
-// Peak memory (job_memory.h, estimate_ground_truth_memory, for the supersampled scene).
-MemoryEstimate ground_truth_memory(const Scene& scene, const GroundTruthSettings& settings);
+// Output rows per step of a shard of the ground truth (relief reference --shard, tools/shard.h):
+// lcm(raster::kTileSize, N) / N for N x N samples, so that a shard's supersampled rows are
+// whole tiles (render_frame_bands) and whole output pixels. supersample: 1 to kMaxSupersample.
+int ground_truth_shard_unit(int supersample);
+
+// Peak memory (job_memory.h, estimate_ground_truth_memory, for the supersampled scene), the
+// output image holding `output_rows` (render_ground_truth).
+MemoryEstimate ground_truth_memory(const Scene& scene, const GroundTruthSettings& settings,
+                                   FrameRows output_rows = {});
 
 struct GroundTruthImage {
-  int width = 0, height = 0;       // the scene's viewport
+  int width = 0, height = 0;       // the scene's viewport, or its width and the rows rendered
+  int first_row = 0;               // the framebuffer row of the image's bottom row
   std::vector<float> linear;       // RGB per pixel, rows bottom to top: the box-filtered radiance
   std::vector<std::uint8_t> srgb;  // 3 per pixel: srgb_byte of `linear`
   FrameStats stats;                // of the supersampled frame
@@ -91,9 +99,13 @@ using BandProgress = std::function<void(int, int)>;
 
 // Renders the ground truth of a validated scene (validate_ground_truth passed) with resources
 // built from it. `max_bin_bytes`: the rasteriser bins' share of the budget (frame.h).
+// `output_rows`: the framebuffer rows of the output image to render, [begin, end), begin a
+// multiple of ground_truth_shard_unit below the viewport's top, end above it and a multiple
+// of it or at or past the top (std::invalid_argument otherwise); each row bit-identical to
+// the same row of the whole image.
 GroundTruthImage render_ground_truth(const Scene& scene, const SceneResources& resources,
                                      const GroundTruthSettings& settings,
                                      std::uint64_t max_bin_bytes = UINT64_MAX,
-                                     const BandProgress& progress = {});
+                                     const BandProgress& progress = {}, FrameRows output_rows = {});
 
 }  // namespace relief

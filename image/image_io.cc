@@ -19,11 +19,15 @@ std::vector<unsigned char> encode_png_rgb(int width, int height, std::span<const
   return insert_png_text(png, text);
 }
 
+std::string pfm_header(int width, int height, int channels) {
+  return std::string(channels == 3 ? "PF" : "Pf") + "\n" + std::to_string(width) + " " +
+         std::to_string(height) + "\n-1.0\n";
+}
+
 std::vector<unsigned char> encode_pfm(int width, int height, int channels,
                                       std::span<const float> values, std::size_t stride) {
   static_assert(std::endian::native == std::endian::little, "PFM writer assumes little-endian");
-  const std::string header = std::string(channels == 3 ? "PF" : "Pf") + "\n" +
-                             std::to_string(width) + " " + std::to_string(height) + "\n-1.0\n";
+  const std::string header = pfm_header(width, height, channels);
   std::vector<unsigned char> out(header.begin(), header.end());
   const std::size_t row_floats = static_cast<std::size_t>(width) * channels;
   out.reserve(out.size() + row_floats * height * sizeof(float));

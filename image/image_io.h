@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "image/png_text.h"
@@ -24,5 +25,8 @@ std::vector<unsigned char> encode_png_rgb(int width, int height, std::span<const
 // `values` has row 0 = bottom row, `stride` floats between row starts.
 std::vector<unsigned char> encode_pfm(int width, int height, int channels,
                                       std::span<const float> values, std::size_t stride);
+
+// The header encode_pfm writes before the values.
+std::string pfm_header(int width, int height, int channels);
 
 }  // namespace relief

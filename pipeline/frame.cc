@@ -125,7 +125,11 @@ FrameStats render_bands_with(const Scene& scene, const SceneResources& resources
   const StageInfo& tiles = kFrameStages[std::size(kFrameStages) - 1];
   const Clock::time_point tiles_start = Clock::now();
   for (int first_row = row_begin; first_row < row_end; first_row += band_rows) {
-    backend.set_band(first_row, band_rows);  // the backend stops at the viewport's top
+    // The last band ends at row_end, rounded up to whole tiles (row_end is a multiple of the
+    // tile size or the viewport's top, where the backend stops).
+    const int tile = raster::kTileSize;
+    backend.set_band(first_row,
+                     std::min(band_rows, (row_end - first_row + tile - 1) / tile * tile));
     backend.prepare(StageId::kTiles);
     const std::size_t units = backend.units(StageId::kTiles);
     tbb::parallel_for(
@@ -152,7 +156,8 @@ FrameStats render_bands_with(const Scene& scene, const SceneResources& resources
 
 FrameStats render_frame_bands(const Scene& scene, const SceneResources& resources,
                               const FrameRequest& request, int band_rows,
-                              const std::function<void(const FrameImage&, int)>& consume) {
+                              const std::function<void(const FrameImage&, int)>& consume,
+                              FrameRows rows) {
   if (request.backend == Backend::kGl) {
     throw std::invalid_argument("render_frame_bands: the GL backend renders whole frames only");
   }
@@ -161,9 +166,20 @@ FrameStats render_frame_bands(const Scene& scene, const SceneResources& resource
                                 std::to_string(raster::kTileSize));
   }
   const int height = scene.viewport.height;
+  if (rows.begin < 0 || rows.begin % raster::kTileSize != 0 || rows.begin >= height ||
+      rows.end <= rows.begin || (rows.end < height && rows.end % raster::kTileSize != 0)) {
+    throw std::invalid_argument("render_frame_bands: rows [" + std::to_string(rows.begin) + ", " +
+                                std::to_string(rows.end) + ") of " + std::to_string(height) +
+                                " do not start at a multiple of " +
+                                std::to_string(raster::kTileSize) +
+                                " below the top and end at one or past the top");
+  }
+  const int end = std::min(rows.end, height);
   return request.backend == Backend::kReferenceDouble
-             ? render_bands_with<double>(scene, resources, request, band_rows, 0, height, consume)
-             : render_bands_with<float>(scene, resources, request, band_rows, 0, height, consume);
+             ? render_bands_with<double>(scene, resources, request, band_rows, rows.begin, end,
+                                         consume)
+             : render_bands_with<float>(scene, resources, request, band_rows, rows.begin, end,
+                                        consume);
 }
 
 namespace {

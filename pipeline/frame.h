@@ -8,6 +8,7 @@
 // error that docs/architecture.md measures.
 #pragma once
 
+#include <climits>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -133,9 +134,17 @@ Frame render_frame(const Scene& scene, const SceneResources& resources,
 // is handed to `consume(band, first_row)` and then dropped, so that the per-pixel memory is
 // one band's. The bands together are bit-identical to render_frame's image. CPU backends only
 // (throws std::invalid_argument for the GL backend). Returns the frame's statistics.
+// `rows`: the framebuffer rows banded, [begin, end) (a shard of relief reference): begin a
+// multiple of raster::kTileSize below the viewport's top, end above begin and a multiple of it
+// or at or past the top (then up to the top); std::invalid_argument otherwise.
+struct FrameRows {
+  int begin = 0;
+  int end = INT_MAX;
+};
 FrameStats render_frame_bands(const Scene& scene, const SceneResources& resources,
                               const FrameRequest& request, int band_rows,
-                              const std::function<void(const FrameImage&, int)>& consume);
+                              const std::function<void(const FrameImage&, int)>& consume,
+                              FrameRows rows = {});
 
 // Framebuffer rows [first_row, first_row + rows) of the frame alone (relief render --shard):
 // first_row a multiple of raster::kTileSize, rows positive and a multiple of it or reaching the

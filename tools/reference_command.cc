@@ -3,6 +3,7 @@
 // files; the render is the pipeline's.
 #include <chrono>
 #include <climits>
+#include <cstdlib>
 #include <iomanip>
 #include <optional>
 #include <ostream>
@@ -15,6 +16,7 @@
 #include "core/scene/json_input.h"
 #include "eval/ground_truth.h"
 #include "eval/height_error.h"
+#include "image/crc32.h"
 #include "image/image_io.h"
 #include "image/image_metadata.h"
 #include "pipeline/job_memory.h"
@@ -27,6 +29,7 @@
 #include "tools/float_image_file.h"
 #include "tools/reference_command.h"
 #include "tools/render_report.h"
+#include "tools/shard.h"
 #include "tools/terminal_progress.h"
 
 namespace relief {
@@ -91,6 +94,8 @@ CLI::App* add_reference_command(CLI::App& app, ReferenceOptions& options) {
                    "footprint at the vertex's distance (1e-6 to 1); the scene's last_octave caps "
                    "them")
       ->capture_default_str();
+  add_shard_option(command, options.shard,
+                   "image's rows, in steps of lcm(64, N) / N rows for N x N samples");
   command->add_flag("--stats", options.stats,
                     "Also print the stage times of the supersampled frame and the float error "
                     "of the heights at the scene's own grid vertices");
@@ -131,7 +136,16 @@ int run_reference_command(const Scene& scene, const ReferenceOptions& options, s
     err << "relief: error: " << e.what() << "\n";
     return kExitBadInput;
   }
-  const MemoryEstimate estimate = ground_truth_memory(scene, options.settings);
+  // --shard: a band of whole steps of the image's rows (shard.h), its PNG and float file.
+  std::optional<Shard> shard;
+  FrameRows rows;
+  if (!options.shard.empty()) {
+    shard = parse_shard(options.shard, std::getenv);
+    const ShardSpan band = shard_rows(scene.viewport.height, *shard,
+                                      ground_truth_shard_unit(options.settings.supersample));
+    rows = {band.begin, band.end};
+  }
+  const MemoryEstimate estimate = ground_truth_memory(scene, options.settings, rows);
   check_memory(estimate, options.budget, "this reference render",
                "Lower --supersample or --grid-scale, or the scene's viewport or grid");
 
@@ -139,20 +153,35 @@ int run_reference_command(const Scene& scene, const ReferenceOptions& options, s
   const SceneResources resources = load_scene_resources(scene);  // validates texture files
   print_scene_notes(resources.notes, err);
   TerminalProgress progress("relief reference", "bands");
-  const GroundTruthImage image =
-      render_ground_truth(scene, resources, options.settings, memory_left(estimate, options.budget),
-                          [&](int done, int total) { progress.update(done, total); });
+  const GroundTruthImage image = render_ground_truth(
+      scene, resources, options.settings, memory_left(estimate, options.budget),
+      [&](int done, int total) { progress.update(done, total); }, rows);
   progress.finish();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   std::vector<ImageText> metadata = scene_metadata(scene);
   metadata.push_back({"relief:reference", settings_text(options.settings)});
+  const std::vector<unsigned char> float_file =
+      encode_float_image(*float_format_of(float_path), image.width, image.height, 3, image.linear,
+                         3 * std::size_t(image.width), metadata);
+  std::vector<ImageText> png_text = metadata;
+  if (shard) {  // the PNG names its float file, its size and CRC (shard.h)
+    const int height = scene.viewport.height;
+    png_text.push_back(
+        {std::string(kShardKey),
+         shard_record_text({*shard,
+                            image.width,
+                            height,
+                            height - (image.first_row + image.height),
+                            image.height,
+                            ground_truth_shard_unit(options.settings.supersample),
+                            {{"float", companion_file_name(options.output, float_path),
+                              float_file.size(), crc32(float_file)}}})});
+  }
   OutputSet files;  // both appear, or neither
-  files.add(options.output, encode_png_rgb(image.width, image.height, image.srgb, metadata));
-  files.add(float_path,
-            encode_float_image(*float_format_of(float_path), image.width, image.height, 3,
-                               image.linear, 3 * std::size_t(image.width), metadata));
+  files.add(options.output, encode_png_rgb(image.width, image.height, image.srgb, png_text));
+  files.add(float_path, float_file);
   files.commit();
 
   const GroundTruthSettings& s = options.settings;
@@ -172,6 +201,12 @@ int run_reference_command(const Scene& scene, const ReferenceOptions& options, s
     runs.add(image.stats);
     print_stage_stats(out, runs);
     print_height_error(out, scene);
+  }
+  if (shard) {
+    out << "  shard " << shard->index << "/" << shard->count << ": image rows "
+        << scene.viewport.height - (image.first_row + image.height) << " to "
+        << scene.viewport.height - image.first_row - 1 << " (top to bottom) of "
+        << scene.viewport.height << "\n";
   }
   out << "wrote " << options.output << " and " << float_path << "\n";
   return kExitOk;

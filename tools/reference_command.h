@@ -23,6 +23,7 @@ struct ReferenceOptions {
   GroundTruthSettings settings;
   bool stats = false;  // stage times, and the float height error at the scene's grid
   MemoryBudget budget;
+  std::string shard;      // --shard I/N (tools/shard.h); empty: the whole image
   std::string scene_arg;  // SCENE as given: a file is an input no output may name
   const CLI::Option* output_option = nullptr;  // to tell -o "" from no -o
   const CLI::Option* float_option = nullptr;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/scene/json_input.h"
+#include "image/crc32.h"
 #include "image/image_io.h"
 #include "image/image_metadata.h"
 #include "pipeline/build_info.h"
@@ -94,19 +95,12 @@ int run_render_command(const Scene& scene, const RenderOptions& options, std::os
   request.outputs.normal = !options.normal_output.empty();
   request.outputs.world_height = !options.height_output.empty();
   request.outputs.octaves = !options.octaves_output.empty();
-  // --shard: a band of whole tile rows of the image (shard.h), the PNG alone.
+  // --shard: a band of whole tile rows of the image (shard.h), every requested output of it.
   std::optional<Shard> shard;
   std::optional<ShardSpan> band;
   if (!options.shard.empty()) {
     shard = parse_shard(options.shard, std::getenv);
     band = shard_rows(scene.viewport.height, *shard);
-    if (!float_path.empty() || request.outputs.depth || request.outputs.primitive ||
-        request.outputs.normal || request.outputs.world_height || request.outputs.octaves) {
-      throw ShardError("--shard " + brief_text(options.shard) +
-                       " writes the PNG alone, which relief stitch assembles; leave out --float "
-                       "(and output.float_image), --depth, --primitive, --normal, --height and "
-                       "--octaves");
-    }
   }
   const MemoryEstimate estimate =
       band ? estimate_rows_render_memory(scene, request.backend, request.outputs,
@@ -135,37 +129,53 @@ int run_render_command(const Scene& scene, const RenderOptions& options, std::os
   const FrameImage& image = frame.image;
   const std::size_t row = std::size_t(image.width);
   // Every image carries the scene that made it (image/image_metadata.h).
-  std::vector<ImageText> metadata = scene_metadata(scene);
-  if (band) {
-    const int height = scene.viewport.height;
-    metadata.push_back(
-        {std::string(kShardKey), shard_record_text({*shard, image.width, height, height - band->end,
-                                                    band->end - band->begin})});
-  }
+  const std::vector<ImageText> metadata = scene_metadata(scene);
   const auto floats = [&](const std::string& name, int channels, std::span<const float> values) {
     return encode_float_image(float_format_of(name).value_or(FloatFormat::kPfm), image.width,
                               image.height, channels, values, row * std::size_t(channels),
                               metadata);
   };
-  OutputSet files;  // every requested file appears, or none does
-  files.add(path, encode_png_rgb(image.width, image.height, image.srgb, metadata));
+  // The extra outputs first: a shard's PNG names each with its size and CRC (shard.h).
+  std::vector<std::pair<std::string, std::vector<unsigned char>>> extras;
+  std::vector<ShardCompanion> companions;
+  const auto extra = [&](std::string_view kind, const std::string& file,
+                         std::vector<unsigned char> bytes) {
+    if (shard) {
+      companions.push_back(
+          {std::string(kind), companion_file_name(path, file), bytes.size(), crc32(bytes)});
+    }
+    extras.emplace_back(file, std::move(bytes));
+  };
   if (!float_path.empty()) {
-    files.add(float_path, floats(float_path, 3, image.linear));
+    extra("float", float_path, floats(float_path, 3, image.linear));
   }
   if (request.outputs.depth) {
-    files.add(options.depth_output, floats(options.depth_output, 1, image.depth));
-  }
-  if (request.outputs.primitive) {
-    files.add(options.primitive_output, bytes_of(image.primitive));
+    extra("depth", options.depth_output, floats(options.depth_output, 1, image.depth));
   }
   if (request.outputs.normal) {
-    files.add(options.normal_output, floats(options.normal_output, 3, image.normal));
+    extra("normal", options.normal_output, floats(options.normal_output, 3, image.normal));
   }
   if (request.outputs.world_height) {
-    files.add(options.height_output, floats(options.height_output, 1, image.world_height));
+    extra("height", options.height_output, floats(options.height_output, 1, image.world_height));
   }
   if (request.outputs.octaves) {
-    files.add(options.octaves_output, floats(options.octaves_output, 1, image.octaves));
+    extra("octaves", options.octaves_output, floats(options.octaves_output, 1, image.octaves));
+  }
+  if (request.outputs.primitive) {
+    const std::span<const unsigned char> ids = bytes_of(image.primitive);
+    extra("primitive", options.primitive_output, {ids.begin(), ids.end()});
+  }
+  std::vector<ImageText> png_text = metadata;
+  if (band) {
+    const int height = scene.viewport.height;
+    png_text.push_back({std::string(kShardKey),
+                        shard_record_text({*shard, image.width, height, height - band->end,
+                                           band->end - band->begin, kImageShardUnit, companions})});
+  }
+  OutputSet files;  // every requested file appears, or none does
+  files.add(path, encode_png_rgb(image.width, image.height, image.srgb, png_text));
+  for (const auto& [file, bytes] : extras) {
+    files.add(file, bytes);
   }
   std::string stats_text;
   if (!options.stats_json.empty()) {

@@ -1,6 +1,8 @@
 #include "tools/shard.h"
 
 #include <charconv>
+#include <filesystem>
+#include <functional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -83,51 +85,123 @@ ShardSpan shard_frames(int frames, const Shard& s) {
   return {at(s.index), at(s.index + 1)};
 }
 
-ShardSpan shard_rows(int height, const Shard& s) {
-  const int tile = raster::kTileSize;
-  const int tile_rows = (height + tile - 1) / tile;
-  if (s.count > tile_rows) {
+ShardSpan shard_rows(int height, const Shard& s, int unit) {
+  if (unit < 1 || unit > kImageShardUnit) {
+    throw ShardError("a shard's step of " + std::to_string(unit) + " rows is out of range 1 to " +
+                     std::to_string(kImageShardUnit));
+  }
+  const int steps = (height + unit - 1) / unit;
+  if (s.count > steps) {
     throw ShardError("--shard " + std::to_string(s.index) + "/" + std::to_string(s.count) +
                      ": an image " + std::to_string(height) + " rows high has " +
-                     std::to_string(tile_rows) + " rows of " + std::to_string(tile) + "-pixel " +
-                     "tiles, so at most " + std::to_string(tile_rows) + " shards");
+                     std::to_string(steps) +
+                     (unit == kImageShardUnit ? std::string(" rows of 64-pixel tiles")
+                                              : " bands of " + std::to_string(unit) + " rows") +
+                     ", so at most " + std::to_string(steps) + " shards");
   }
   const auto at = [&](long long i) {
-    return std::min(height, static_cast<int>(i * tile_rows / s.count) * tile);
+    return std::min(height, static_cast<int>(i * steps / s.count) * unit);
   };
   return {at(s.index), at(s.index + 1)};
 }
 
 std::string shard_record_text(const ImageShardRecord& r) {
-  const nlohmann::ordered_json record = {{"index", r.shard.index}, {"count", r.shard.count},
-                                         {"width", r.width},       {"height", r.height},
-                                         {"top", r.top},           {"rows", r.rows}};
+  nlohmann::ordered_json outputs = nlohmann::ordered_json::object();
+  for (const ShardCompanion& c : r.companions) {
+    outputs[c.kind] = {{"file", c.file}, {"bytes", c.bytes}, {"crc32", c.crc}};
+  }
+  const nlohmann::ordered_json record = {
+      {"index", r.shard.index}, {"count", r.shard.count}, {"width", r.width}, {"height", r.height},
+      {"top", r.top},           {"rows", r.rows},         {"unit", r.unit},   {"outputs", outputs}};
   return record.dump();
 }
 
+namespace {
+
+// The "outputs" object of a record: known kinds, each once, each a file name, a size and a CRC.
+std::vector<ShardCompanion> parse_companions(
+    const nlohmann::json& outputs, const std::function<void(const std::string&)>& refuse) {
+  if (!outputs.is_object()) {
+    refuse("has no object \"outputs\"");
+  }
+  std::vector<ShardCompanion> companions;
+  for (const ShardOutputKind& kind : kShardOutputKinds) {
+    const std::string key(kind.kind);
+    if (!outputs.contains(key)) {
+      continue;
+    }
+    const nlohmann::json& entry = outputs[key];
+    const auto whole = [&](const char* name, std::uint64_t max) {
+      return entry.contains(name) && entry[name].is_number_unsigned() &&
+             entry[name].get<std::uint64_t>() <= max;
+    };
+    if (!entry.is_object() || entry.size() != 3 || !entry.contains("file") ||
+        !entry["file"].is_string() || entry["file"].get<std::string>().empty() ||
+        !whole("bytes", std::uint64_t(1) << 62) || !whole("crc32", 0xFFFFFFFFu)) {
+      refuse("has an output \"" + key + "\" that is not {\"file\", \"bytes\", \"crc32\"}");
+    }
+    companions.push_back({key, entry["file"].get<std::string>(),
+                          entry["bytes"].get<std::uint64_t>(),
+                          entry["crc32"].get<std::uint32_t>()});
+  }
+  if (companions.size() != outputs.size()) {
+    refuse("names an output other than float, depth, normal, height, octaves and primitive");
+  }
+  return companions;
+}
+
+}  // namespace
+
 ImageShardRecord parse_shard_record(std::string_view text, const std::string& source) {
-  const auto refuse = [&](const std::string& why) -> ImageShardRecord {
+  const auto refuse = [&](const std::string& why) {
     throw ShardError(source + ": its " + std::string(kShardKey) + " record " + why);
   };
   const nlohmann::json record = nlohmann::json::parse(text, nullptr, false);
-  const char* keys[] = {"index", "count", "width", "height", "top", "rows"};
-  int values[6] = {};
-  if (!record.is_object() || record.size() != 6) {
-    return refuse("is not an object of " + std::to_string(std::size(keys)) + " numbers");
+  const char* keys[] = {"index", "count", "width", "height", "top", "rows", "unit"};
+  int values[std::size(keys)] = {};
+  if (!record.is_object() || record.size() != std::size(keys) + 1) {
+    refuse("is not an object of " + std::to_string(std::size(keys)) + " numbers and the outputs");
   }
   for (std::size_t k = 0; k < std::size(keys); ++k) {
     if (!record.contains(keys[k]) || !record[keys[k]].is_number_integer() ||
         record[keys[k]].get<long long>() < 0 || record[keys[k]].get<long long>() > 1 << 30) {
-      return refuse(std::string("has no whole number \"") + keys[k] + "\"");
+      refuse(std::string("has no whole number \"") + keys[k] + "\"");
     }
     values[k] = record[keys[k]].get<int>();
   }
-  ImageShardRecord r{{values[0], values[1]}, values[2], values[3], values[4], values[5]};
+  ImageShardRecord r{
+      {values[0], values[1]}, values[2], values[3], values[4], values[5], values[6], {}};
   if (r.shard.count < 1 || r.shard.count > kMaxShards || r.shard.index >= r.shard.count) {
-    return refuse("names shard " + std::to_string(r.shard.index) + " of " +
-                  std::to_string(r.shard.count));
+    refuse("names shard " + std::to_string(r.shard.index) + " of " + std::to_string(r.shard.count));
   }
+  if (r.unit < 1 || r.unit > kImageShardUnit) {
+    refuse("has a step of " + std::to_string(r.unit) + " rows; allowed 1 to " +
+           std::to_string(kImageShardUnit));
+  }
+  r.companions =
+      parse_companions(record.contains("outputs") ? record["outputs"] : nlohmann::json(), refuse);
   return r;
+}
+
+const ShardCompanion* find_companion(const ImageShardRecord& record, std::string_view kind) {
+  for (const ShardCompanion& c : record.companions) {
+    if (c.kind == kind) {
+      return &c;
+    }
+  }
+  return nullptr;
+}
+
+std::string companion_file_name(const std::string& png, const std::string& file) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  const fs::path base = fs::absolute(fs::path(png), error).parent_path().lexically_normal();
+  const fs::path target = fs::absolute(fs::path(file), error).lexically_normal();
+  if (error) {
+    return file;
+  }
+  const fs::path relative = target.lexically_relative(base);
+  return relative.empty() ? target.string() : relative.string();
 }
 
 std::string path_shard_file_name(const Shard& s) {

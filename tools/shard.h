@@ -4,15 +4,19 @@
 // thread counts, so any machine may render any part. The parts are a pure function of the
 // job's size and N:
 //   - a path of F frames: shard I takes frames [floor(I F / N), floor((I + 1) F / N));
-//   - an image H rows high: its T = ceil(H / 64) rows of 64 x 64 tiles, shard I taking tile
-//     rows [floor(I T / N), floor((I + 1) T / N)) counted from the bottom, the framebuffer's
-//     row 0 (whole tiles: a tile row is the rasteriser's unit, render_frame_rows).
+//   - an image H rows high: its T = ceil(H / U) steps of U rows, shard I taking steps
+//     [floor(I T / N), floor((I + 1) T / N)) counted from the bottom, the framebuffer's row 0.
+//     relief render: U = 64, a row of 64 x 64 tiles (the rasteriser's unit, render_frame_rows);
+//     relief reference with S x S samples a pixel: U = lcm(64, S) / S, whole tiles of the
+//     supersampled frame and whole output pixels (ground_truth_shard_unit).
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace CLI {
 class App;
@@ -55,22 +59,55 @@ struct ShardSpan {
 // have none).
 ShardSpan shard_frames(int frames, const Shard& s);
 
-// Shard `s`'s framebuffer rows (bottom to top) of an image `height` rows high. Throws
-// ShardError when N exceeds its tile rows.
-ShardSpan shard_rows(int height, const Shard& s);
+// Shard `s`'s framebuffer rows (bottom to top) of an image `height` rows high, in steps of
+// `unit` rows (1 to 64). Throws ShardError when N exceeds its steps.
+inline constexpr int kImageShardUnit = 64;  // relief render: a row of tiles
+ShardSpan shard_rows(int height, const Shard& s, int unit = kImageShardUnit);
+
+// The extra outputs an image shard may carry beside its PNG: each option of relief render's
+// (relief reference writes "float"), the file's channels (1 or 3 floats, PFM or EXR by its
+// name; 0: the raw 32-bit primitive ids of --primitive, bottom row first).
+struct ShardOutputKind {
+  std::string_view kind;    // in the record
+  std::string_view option;  // of relief render and relief stitch
+  int channels = 0;
+};
+inline constexpr ShardOutputKind kShardOutputKinds[] = {
+    {"float", "--float", 3},   {"depth", "--depth", 1},     {"normal", "--normal", 3},
+    {"height", "--height", 1}, {"octaves", "--octaves", 1}, {"primitive", "--primitive", 0}};
+
+// One such output of a shard: its file (relative to the PNG's directory, or absolute where no
+// relative path leads there), its size and its CRC-32, so that relief stitch takes only the
+// file this shard wrote.
+struct ShardCompanion {
+  std::string kind;
+  std::string file;
+  std::uint64_t bytes = 0;
+  std::uint32_t crc = 0;
+};
 
 // The text chunk an image shard carries beside the scene (image_metadata.h), and what it says:
-// {"index": I, "count": N, "width": W, "height": H, "top": Y, "rows": R}, the shard holding the
-// PNG rows [Y, Y + R) of the W x H image (top to bottom).
+// {"index": I, "count": N, "width": W, "height": H, "top": Y, "rows": R, "unit": U,
+//  "outputs": {KIND: {"file": F, "bytes": B, "crc32": C}, ...}}: the shard holds the PNG rows
+// [Y, Y + R) of the W x H image (top to bottom), its bands cut in steps of U rows, and the same
+// rows of each extra output.
 inline constexpr std::string_view kShardKey = "relief:shard";
 struct ImageShardRecord {
   Shard shard;
   int width = 0, height = 0;
   int top = 0, rows = 0;
+  int unit = kImageShardUnit;
+  std::vector<ShardCompanion> companions;  // in kShardOutputKinds's order
 };
 std::string shard_record_text(const ImageShardRecord& record);
 // Throws ShardError (naming `source`) for text that is not such a record.
 ImageShardRecord parse_shard_record(std::string_view text, const std::string& source);
+
+// The companion of `kind` in `record`, or null.
+const ShardCompanion* find_companion(const ImageShardRecord& record, std::string_view kind);
+
+// `file` as a shard's record names it: relative to the directory of `png` where it can be.
+std::string companion_file_name(const std::string& png, const std::string& file);
 
 // The record a path shard leaves beside its frames, "relief-shard-I-of-N.json":
 // {"command": "path", "index": I, "count": N, "frames": F}.

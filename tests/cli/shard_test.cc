@@ -192,8 +192,6 @@ TEST_CASE("renderShardOptionsOutsideTheirRangeAreRefused", "[shard]") {
   refused({"--shard", "0/17", "--set", "viewport.height=1024"},
           "has 16 rows of 64-pixel tiles, so at most 16 shards");
   refused({"--shard", "2/2", "--set", "viewport.height=200"}, "is not a whole number below N");
-  refused({"--shard", "0/2", "--float", (dir.path() / "x.pfm").string()}, "writes the PNG alone");
-  refused({"--shard", "0/2", "--depth", (dir.path() / "d.pfm").string()}, "writes the PNG alone");
 }
 
 TEST_CASE("pathShardsStitchToTheFramesOfOnePath", "[shard]") {

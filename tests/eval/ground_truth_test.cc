@@ -84,6 +84,45 @@ TEST_CASE("bandsOfAFrameAreTheWholeFrame", "[ground-truth]") {
   CHECK(srgb == whole.image.srgb);
 }
 
+// relief reference --shard: rows of the output image in steps of lcm(64, N) / N are the same
+// rows of the whole image, bit for bit; ranges that are not whole steps are refused.
+TEST_CASE("outputRowsOfTheGroundTruthAreThoseRowsOfTheWholeImage", "[ground-truth]") {
+  const Scene scene = resolve_scene(
+      "lake", {"viewport.width=40", "viewport.height=70", "grid.width=32", "grid.height=32"});
+  const SceneResources resources = load_scene_resources(scene);
+  for (const int n : {2, 4}) {
+    const GroundTruthImage whole = render_ground_truth(scene, resources, tiny_settings(n));
+    const int unit = ground_truth_shard_unit(n);  // 32, 16
+    for (const FrameRows rows : {FrameRows{0, unit}, FrameRows{unit, 70}, FrameRows{unit, 1000}}) {
+      INFO(n << " samples: rows " << rows.begin << " to " << rows.end);
+      const GroundTruthImage part =
+          render_ground_truth(scene, resources, tiny_settings(n), UINT64_MAX, {}, rows);
+      CHECK(part.first_row == rows.begin);
+      CHECK(part.height == std::min(rows.end, 70) - rows.begin);
+      const auto at = [&](const auto& v) {
+        return v.begin() + std::ptrdiff_t(3 * 40 * rows.begin);
+      };
+      CHECK(std::equal(part.linear.begin(), part.linear.end(), at(whole.linear)));
+      CHECK(std::equal(part.srgb.begin(), part.srgb.end(), at(whole.srgb)));
+    }
+    for (const FrameRows bad : {FrameRows{-unit, unit}, FrameRows{1, unit}, FrameRows{0, unit + 1},
+                                FrameRows{unit, unit}, FrameRows{70 / unit * unit + unit, 1000}}) {
+      INFO(n << " samples: rows " << bad.begin << " to " << bad.end);
+      CHECK_THROWS_AS(render_ground_truth(scene, resources, tiny_settings(n), UINT64_MAX, {}, bad),
+                      std::invalid_argument);
+    }
+  }
+  // render_frame_bands's rows: whole tiles, below the top.
+  FrameRequest request;
+  request.outputs.linear = true;
+  const auto none = [](const FrameImage&, int) {};
+  for (const FrameRows bad : {FrameRows{-64, 64}, FrameRows{32, 128}, FrameRows{0, 32},
+                              FrameRows{64, 64}, FrameRows{128, 1000}}) {
+    CHECK_THROWS_AS(render_frame_bands(scene, resources, request, 64, none, bad),
+                    std::invalid_argument);
+  }
+}
+
 TEST_CASE("octaveRuleSumsOctavesDownToEpsilonOfAPixelUpToTheCap", "[ground-truth]") {
   const Scene scene = tiny_scene();
   const SceneResources resources = load_scene_resources(scene);

@@ -50,11 +50,25 @@ read -r image_array image_stitch < <("$slurm/submit.sh" 4 "$work/image-parts" "$
                                      "$relief" render "${image[@]}")
 read -r path_array path_stitch < <("$slurm/submit.sh" 4 "$work/path-parts" "$work/stitched-path" \
                                    "$relief" path "${path[@]}")
-echo "slurm_test: submitted arrays $image_array and $path_array, stitch jobs $image_stitch and $path_stitch"
+# A small image with extra outputs (RELIEF_OUTPUTS) and a ground truth, 4 tasks each.
+small=(lake --set viewport.width=320 --set viewport.height=256 --set grid.width=128
+       --set grid.height=128)
+read -r extras_array extras_stitch < <(RELIEF_OUTPUTS=float,depth,primitive "$slurm/submit.sh" 4 \
+                                       "$work/extras-parts" "$work/extras.png" "$relief" render \
+                                       "${small[@]}")
+reference=("${small[@]}" --supersample 2 --grid-scale 2)
+read -r reference_array reference_stitch < <("$slurm/submit.sh" 4 "$work/reference-parts" \
+                                             "$work/reference.png" "$relief" reference \
+                                             "${reference[@]}")
+echo "slurm_test: submitted arrays $image_array, $path_array, $extras_array and" \
+     "$reference_array, stitch jobs $image_stitch, $path_stitch, $extras_stitch and $reference_stitch"
 
 # The same image and path in one process, while Slurm works.
 "$relief" render "${image[@]}" -o "$work/one.png" >/dev/null
 "$relief" path "${path[@]}" --out "$work/one-path" >/dev/null
+"$relief" render "${small[@]}" -o "$work/one-extras.png" --float "$work/one-extras.float.exr" \
+  --depth "$work/one-extras.depth.exr" --primitive "$work/one-extras.primitive.bin" >/dev/null
+"$relief" reference "${reference[@]}" -o "$work/one-reference.png" >/dev/null
 
 passed=0
 failed=0
@@ -78,6 +92,24 @@ else
   echo "slurm_test: $different of $frames frames differ, $count stitched" >&2
   failed=$((failed + 1))
 fi
+# Every file of the two small jobs: the same bytes as one process wrote.
+same_files() {
+  local what=$1
+  shift
+  for pair in "$@"; do
+    if ! cmp "$work/one-${pair}" "$work/${pair}"; then
+      failed=$((failed + 1))
+      return
+    fi
+  done
+  echo "slurm_test: $what from 4 tasks: identical"
+  passed=$((passed + 1))
+}
+wait_for_job "$extras_stitch"
+same_files "320x256 image with its float, depth and primitive outputs" extras.png \
+  extras.float.exr extras.depth.exr extras.primitive.bin
+wait_for_job "$reference_stitch"
+same_files "320x256 ground truth (2x2 samples) with its float image" reference.png reference.exr
 echo "slurm_test: $(($(date +%s) - started)) s"
 echo "$passed passed, $failed failed"
 ((failed == 0))

@@ -2,16 +2,17 @@
 # Submits a relief render or path to Slurm as N shards and one stitch job (docs/shards.md,
 # "Slurm"):
 #
-#   tools/slurm/submit.sh N PARTS OUT RELIEF render|path ARGS...
+#   tools/slurm/submit.sh N PARTS OUT RELIEF render|reference|path ARGS...
 #
 # a job array of N tasks (render_shards.sbatch: task I renders shard I/N into the directory
 # PARTS) and a stitch job (stitch.sbatch) that starts once every task succeeded
-# (--dependency=afterok) and writes OUT: the image, bytes identical to one `relief render`, or
-# the directory of the path's frames. Prints the two job ids, "ARRAY STITCH". Extra sbatch
+# (--dependency=afterok) and writes OUT: the image, bytes identical to one `relief render` or
+# `relief reference` (with the reference's float image, and a render's extra outputs named in
+# RELIEF_OUTPUTS: stitch.sbatch), or the directory of the path's frames. Prints the two job ids, "ARRAY STITCH". Extra sbatch
 # options (a partition, a time limit) go in SBATCH_* variables, which sbatch reads itself.
 set -euo pipefail
 if (($# < 5)); then
-  echo "usage: $0 N PARTS OUT RELIEF render|path ARGS..." >&2
+  echo "usage: $0 N PARTS OUT RELIEF render|reference|path ARGS..." >&2
   exit 2
 fi
 count=$1
