@@ -1,6 +1,9 @@
 #include "image/png_layout.h"
 
 #include <algorithm>
+#include <span>
+
+#include "image/crc32.h"
 
 namespace relief {
 
@@ -30,7 +33,7 @@ std::string chunk_name(const unsigned char* type) {
 
 }  // namespace
 
-PngLayout png_layout(const unsigned char* bytes, std::size_t size) {
+PngLayout png_layout(const unsigned char* bytes, std::size_t size, bool check_crc) {
   static constexpr std::uint32_t kMaxChunkLength = 0x7fffffff;  // §5.3
   PngLayout layout;
   std::size_t at = 8;  // after the signature
@@ -58,6 +61,13 @@ PngLayout png_layout(const unsigned char* bytes, std::size_t size) {
       // found by the texture fuzzer); no encoder writes it.
       layout.problem = "chunk IDAT at byte " + std::to_string(at) +
                        " is empty and comes before the image data (not supported)";
+      return layout;
+    }
+    if (check_crc &&
+        crc32(std::span<const unsigned char>(bytes + at + 4, std::size_t{length} + 4)) !=
+            big_endian(bytes + at + 8 + length)) {
+      layout.problem = "chunk " + name + " at byte " + std::to_string(at) +
+                       " does not match its CRC-32 (the file is damaged)";
       return layout;
     }
     if (name == "IDAT") {

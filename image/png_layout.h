@@ -21,9 +21,11 @@ struct PngLayout {
 
 // Walks the chunks after the signature up to IEND: each needs its 12 bytes of length, type and
 // CRC and its data within the file, and a length of at most 2^31 - 1 (§5.3); an empty IDAT
-// before the first with data is refused too (stb_image mishandles it). `problem` says which
+// before the first with data is refused too (stb_image mishandles it). With `check_crc`, each
+// chunk's CRC-32 (§5.3) must also be that of its type and data, so that a damaged file is told
+// from a whole one (a decoder checks neither the CRCs nor zlib's Adler-32). `problem` says which
 // chunk broke which rule, at which byte offset.
-PngLayout png_layout(const unsigned char* bytes, std::size_t size);
+PngLayout png_layout(const unsigned char* bytes, std::size_t size, bool check_crc = false);
 
 // The size of the filtered image data that `header` describes (one filter byte per row, rows
 // of whole bytes; the seven reduced images of Adam7 when `interlaced`, §8.2), or 0 for a bit

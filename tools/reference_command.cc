@@ -171,6 +171,7 @@ int run_reference_command(const Scene& scene, const ReferenceOptions& options, s
     png_text.push_back(
         {std::string(kShardKey),
          shard_record_text({*shard,
+                            std::string(backend_name(Backend::kReferenceDouble)),
                             image.width,
                             height,
                             height - (image.first_row + image.height),

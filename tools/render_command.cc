@@ -169,7 +169,8 @@ int run_render_command(const Scene& scene, const RenderOptions& options, std::os
   if (band) {
     const int height = scene.viewport.height;
     png_text.push_back({std::string(kShardKey),
-                        shard_record_text({*shard, image.width, height, height - band->end,
+                        shard_record_text({*shard, std::string(backend_name(request.backend)),
+                                           image.width, height, height - band->end,
                                            band->end - band->begin, kImageShardUnit, companions})});
   }
   OutputSet files;  // every requested file appears, or none does

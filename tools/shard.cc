@@ -32,11 +32,19 @@ std::optional<long long> whole_number(std::string_view text) {
 }  // namespace
 
 void add_shard_option(CLI::App* command, std::string& text, std::string_view unit) {
-  command->add_option("--shard", text,
-                      "Render shard I of N (0 <= I < N <= " + std::to_string(kMaxShards) +
-                          ") of the " + std::string(unit) +
-                          ", for relief stitch; auto/N takes I from SLURM_ARRAY_TASK_ID or "
-                          "JOB_COMPLETION_INDEX");
+  command
+      ->add_option("--shard", text,
+                   "Render shard I of N (0 <= I < N <= " + std::to_string(kMaxShards) +
+                       ") of the " + std::string(unit) +
+                       ", for relief stitch; auto/N takes I from SLURM_ARRAY_TASK_ID or "
+                       "JOB_COMPLETION_INDEX")
+      // Given empty (a job script's unset variable) it would render the whole image in
+      // every task: refused like any other bad value.
+      ->check(CLI::Validator(
+          [](const std::string& value) {
+            return value.empty() ? std::string("is empty; allowed I/N or auto/N") : "";
+          },
+          "I/N"));
 }
 
 Shard parse_shard(std::string_view text,
@@ -111,8 +119,9 @@ std::string shard_record_text(const ImageShardRecord& r) {
     outputs[c.kind] = {{"file", c.file}, {"bytes", c.bytes}, {"crc32", c.crc}};
   }
   const nlohmann::ordered_json record = {
-      {"index", r.shard.index}, {"count", r.shard.count}, {"width", r.width}, {"height", r.height},
-      {"top", r.top},           {"rows", r.rows},         {"unit", r.unit},   {"outputs", outputs}};
+      {"index", r.shard.index}, {"count", r.shard.count}, {"backend", r.backend},
+      {"width", r.width},       {"height", r.height},     {"top", r.top},
+      {"rows", r.rows},         {"unit", r.unit},         {"outputs", outputs}};
   return record.dump();
 }
 
@@ -159,8 +168,15 @@ ImageShardRecord parse_shard_record(std::string_view text, const std::string& so
   const nlohmann::json record = nlohmann::json::parse(text, nullptr, false);
   const char* keys[] = {"index", "count", "width", "height", "top", "rows", "unit"};
   int values[std::size(keys)] = {};
-  if (!record.is_object() || record.size() != std::size(keys) + 1) {
-    refuse("is not an object of " + std::to_string(std::size(keys)) + " numbers and the outputs");
+  if (!record.is_object() || record.size() != std::size(keys) + 2) {
+    refuse("is not an object of " + std::to_string(std::size(keys)) +
+           " numbers, the backend and the outputs");
+  }
+  // A backend's name (frame.h): a short word; which one, the set's agreement decides.
+  if (!record.contains("backend") || !record["backend"].is_string() ||
+      record["backend"].get<std::string>().empty() ||
+      record["backend"].get<std::string>().size() > 32) {
+    refuse("has no backend name");
   }
   for (std::size_t k = 0; k < std::size(keys); ++k) {
     if (!record.contains(keys[k]) || !record[keys[k]].is_number_integer() ||
@@ -169,8 +185,14 @@ ImageShardRecord parse_shard_record(std::string_view text, const std::string& so
     }
     values[k] = record[keys[k]].get<int>();
   }
-  ImageShardRecord r{
-      {values[0], values[1]}, values[2], values[3], values[4], values[5], values[6], {}};
+  ImageShardRecord r{{values[0], values[1]},
+                     record["backend"].get<std::string>(),
+                     values[2],
+                     values[3],
+                     values[4],
+                     values[5],
+                     values[6],
+                     {}};
   if (r.shard.count < 1 || r.shard.count > kMaxShards || r.shard.index >= r.shard.count) {
     refuse("names shard " + std::to_string(r.shard.index) + " of " + std::to_string(r.shard.count));
   }
@@ -194,11 +216,14 @@ const ShardCompanion* find_companion(const ImageShardRecord& record, std::string
 
 std::string companion_file_name(const std::string& png, const std::string& file) {
   namespace fs = std::filesystem;
+  // Resolved directories (links followed, as the kernel will when the name is opened from the
+  // PNG's directory): a lexical "../x" from a linked directory would lead elsewhere.
   std::error_code error;
-  const fs::path base = fs::absolute(fs::path(png), error).parent_path().lexically_normal();
-  const fs::path target = fs::absolute(fs::path(file), error).lexically_normal();
+  const fs::path base =
+      fs::weakly_canonical(fs::absolute(fs::path(png), error), error).parent_path();
+  const fs::path target = fs::weakly_canonical(fs::absolute(fs::path(file), error), error);
   if (error) {
-    return file;
+    return fs::absolute(fs::path(file), error).lexically_normal().string();
   }
   const fs::path relative = target.lexically_relative(base);
   return relative.empty() ? target.string() : relative.string();

@@ -87,13 +87,14 @@ struct ShardCompanion {
 };
 
 // The text chunk an image shard carries beside the scene (image_metadata.h), and what it says:
-// {"index": I, "count": N, "width": W, "height": H, "top": Y, "rows": R, "unit": U,
-//  "outputs": {KIND: {"file": F, "bytes": B, "crc32": C}, ...}}: the shard holds the PNG rows
-// [Y, Y + R) of the W x H image (top to bottom), its bands cut in steps of U rows, and the same
-// rows of each extra output.
+// {"index": I, "count": N, "backend": B, "width": W, "height": H, "top": Y, "rows": R,
+//  "unit": U, "outputs": {KIND: {"file": F, "bytes": B, "crc32": C}, ...}}: the shard holds the
+// PNG rows [Y, Y + R) of the W x H image (top to bottom), rendered by backend B, its bands cut
+// in steps of U rows, and the same rows of each extra output.
 inline constexpr std::string_view kShardKey = "relief:shard";
 struct ImageShardRecord {
   Shard shard;
+  std::string backend;  // who rendered it (frame.h, backend_name): shards of one image agree
   int width = 0, height = 0;
   int top = 0, rows = 0;
   int unit = kImageShardUnit;

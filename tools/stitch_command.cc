@@ -22,6 +22,7 @@
 #include "core/scene/scene_json.h"
 #include "image/image_io.h"
 #include "image/png_header.h"
+#include "image/png_layout.h"
 #include "image/png_text.h"
 #include "pipeline/png_checks.h"
 #include "tools/atomic_file.h"
@@ -36,13 +37,24 @@ namespace relief {
 
 namespace {
 
-ImageShard read_image_shard(const std::string& file) {
-  const std::vector<unsigned char> png = read_shard_file(file, "shard");
-  const std::optional<PngHeader> header = parse_png_header(png.data(), png.size());
+// A shard's PNG whole: its chunks and their CRCs checked (a damaged file is refused, not
+// decoded into wrong pixels).
+std::vector<unsigned char> read_shard_png(const std::string& file) {
+  std::vector<unsigned char> png = read_shard_file(file, "shard");
   const std::string source = "shard " + brief_text(file);
-  if (!header) {
+  if (!parse_png_header(png.data(), png.size())) {
     throw ShardError(source + " is not a PNG image");
   }
+  if (const PngLayout layout = png_layout(png.data(), png.size(), true); !layout.problem.empty()) {
+    throw ShardError(source + ": " + layout.problem);
+  }
+  return png;
+}
+
+ImageShard read_image_shard(const std::string& file) {
+  const std::vector<unsigned char> png = read_shard_png(file);
+  const std::optional<PngHeader> header = parse_png_header(png.data(), png.size());
+  const std::string source = "shard " + brief_text(file);
   ImageShard shard{file, {}, {}};
   std::optional<ImageShardRecord> record;
   for (ImageText& entry : read_png_text(png)) {
@@ -87,6 +99,9 @@ std::vector<ImageShard> complete_image_set(std::vector<ImageShard> shards,
     }
     if (r.width != r0.width || r.height != r0.height) {
       differs("image size");
+    }
+    if (r.backend != r0.backend) {
+      differs("backend (" + brief_text(r.backend) + " against " + brief_text(r0.backend) + ")");
     }
     if (r.unit != r0.unit) {
       differs("step of rows (" + std::to_string(r.unit) + " against " + std::to_string(r0.unit) +
@@ -144,15 +159,16 @@ std::vector<unsigned char> stitch_png(const std::vector<ImageShard>& shards,
   const std::size_t row_bytes = 3 * std::size_t(width);
   std::vector<std::uint8_t> rgb(row_bytes * std::size_t(height));  // bottom row first
   for (const ImageShard& s : shards) {
-    const std::vector<unsigned char> png = read_shard_file(s.file, "shard");
+    const std::vector<unsigned char> png = read_shard_png(s.file);
     const std::string field = "shard " + brief_text(s.file);
     if (png.size() > std::size_t(INT_MAX)) {  // stb takes an int size
       throw ShardError(field + " is larger than " + std::to_string(INT_MAX) + " bytes");
     }
     try {
       check_png_image_data(png, field, "");
-    } catch (const SceneError& e) {
-      throw ShardError(e.what());
+    } catch (const SceneError& e) {  // "scene: FIELD ...": the field is the shard here
+      const std::string what = e.what();
+      throw ShardError(what.starts_with("scene: ") ? what.substr(7) : what);
     }
     int w = 0, h = 0, channels = 0;
     reset_stb_failure_reason();
@@ -186,6 +202,10 @@ int stitch_image(const StitchOptions& o, std::ostream& out) {
         throw ShardError(std::string(kind.option) + " " + brief_text(o.extras[k]) +
                          ": give a file name ending in .pfm or .exr");
       }
+      if (kind.channels == 0 && !has_extension(o.extras[k], ".bin")) {
+        throw ShardError(std::string(kind.option) + " " + brief_text(o.extras[k]) +
+                         ": the ids are written raw; give a file name ending in .bin");
+      }
       paths.push_back({std::string(kind.option), o.extras[k], true});
     }
   }
@@ -195,6 +215,15 @@ int stitch_image(const StitchOptions& o, std::ostream& out) {
   if (const std::optional<std::string> conflict = same_file_conflict(paths)) {
     throw ShardError(*conflict);
   }
+  // Each file is read whole: the largest must fit before the first is read (a shard padded
+  // with a large private chunk is input like any other).
+  std::uintmax_t largest_file = 0;
+  for (const std::string& file : o.inputs) {
+    largest_file = std::max(largest_file, shard_file_size(file));
+  }
+  MemoryEstimate reading;
+  reading.add("the largest shard file", largest_file);
+  check_memory(reading, o.budget, "reading these shards", "Give the shards of relief render");
   std::vector<ImageShard> shards;
   for (const std::string& file : o.inputs) {
     shards.push_back(read_image_shard(file));
@@ -220,13 +249,14 @@ int stitch_image(const StitchOptions& o, std::ostream& out) {
   estimate.add("image", row_bytes * std::uintmax_t(height));
   estimate.add("its PNG encoding (filtered rows and deflate's bound)",
                2 * (row_bytes + 1) * std::uintmax_t(height));
-  estimate.add("one shard's file and pixels", 2 * row_bytes * std::uintmax_t(tallest));
+  estimate.add("one shard's file and pixels", largest_file + row_bytes * std::uintmax_t(tallest));
   for (std::size_t k = 0; k < std::size(kShardOutputKinds); ++k) {
     if (!o.extras[k].empty()) {
-      add_extra_memory(estimate, kShardOutputKinds[k], width, height, tallest);
+      add_extra_memory(estimate, kShardOutputKinds[k], shards);
     }
   }
-  check_memory(estimate, o.budget, "stitching this image", "Give --max-memory more");
+  check_memory(estimate, o.budget, "stitching this image",
+               "Stitch the extra outputs one at a time");
 
   OutputSet files;  // the image and every extra output, or nothing
   files.add(o.output, stitch_png(shards, o.output));

@@ -3,6 +3,7 @@
 // each the bytes one render writes. A companion is taken only when its size and CRC-32 are
 // those its shard's PNG recorded when it was written beside it: a file of another render
 // (an older shard, a shard of another image given the same name) is refused, not stitched.
+#include <algorithm>
 #include <cstring>
 #include <memory>
 #include <string>
@@ -69,19 +70,41 @@ std::vector<float> companion_floats(const std::vector<unsigned char>& bytes,
 }  // namespace
 
 std::filesystem::path companion_path(const ImageShard& shard, const ShardCompanion& companion) {
+  // From the PNG's resolved directory, as companion_file_name recorded it.
   const std::filesystem::path file(companion.file);
-  return file.is_absolute() ? file : std::filesystem::path(shard.file).parent_path() / file;
+  if (file.is_absolute()) {
+    return file;
+  }
+  std::error_code error;
+  const std::filesystem::path png = std::filesystem::weakly_canonical(shard.file, error);
+  return (error ? std::filesystem::path(shard.file) : png).parent_path() / file;
 }
 
-void add_extra_memory(MemoryEstimate& estimate, const ShardOutputKind& kind, int width, int height,
-                      int tallest) {
+void add_extra_memory(MemoryEstimate& estimate, const ShardOutputKind& kind,
+                      const std::vector<ImageShard>& shards) {
+  const ImageShardRecord& r0 = shards.front().record;
+  std::uintmax_t largest_file = 0;
+  int tallest = 0;
+  for (const ImageShard& s : shards) {
+    const ShardCompanion& c = *find_companion(s.record, kind.kind);
+    const std::filesystem::path file = companion_path(s, c);
+    const std::uintmax_t size = shard_file_size(file);
+    if (size != c.bytes) {
+      throw ShardError("shard " + brief_text(s.file) + "'s " + std::string(kind.kind) + " output " +
+                       brief_text(file.string()) + " holds " + std::to_string(size) +
+                       " bytes, not the " + std::to_string(c.bytes) +
+                       " its shard wrote (written again since, damaged or missing)");
+    }
+    largest_file = std::max(largest_file, size);
+    tallest = std::max(tallest, s.record.rows);
+  }
   // Floats, or 4 bytes of primitive id, per channel and pixel.
   const std::uintmax_t pixel = 4 * std::uintmax_t(kind.channels == 0 ? 1 : kind.channels);
-  const std::uintmax_t image = pixel * std::uintmax_t(width) * std::uintmax_t(height);
-  const std::uintmax_t band = pixel * std::uintmax_t(width) * std::uintmax_t(tallest);
+  const std::uintmax_t image = pixel * std::uintmax_t(r0.width) * std::uintmax_t(r0.height);
+  const std::uintmax_t band = pixel * std::uintmax_t(r0.width) * std::uintmax_t(tallest);
   estimate.add(std::string(kind.kind) + " image and its encoding", 2 * image);
   // The file, its values and (EXR) the rows as read.
-  estimate.add(std::string(kind.kind) + " of one shard", 3 * band);
+  estimate.add(std::string(kind.kind) + " of one shard", largest_file + 2 * band);
 }
 
 std::vector<unsigned char> stitch_extra(const ShardOutputKind& kind, const std::string& output,
@@ -100,9 +123,10 @@ std::vector<unsigned char> stitch_extra(const ShardOutputKind& kind, const std::
   for (const ImageShard& s : shards) {
     const ShardCompanion& c = *find_companion(s.record, kind.kind);
     const std::filesystem::path file = companion_path(s, c);
-    const std::string what = "the " + std::string(kind.kind) + " output " +
-                             brief_text(file.string()) + " of shard " + brief_text(s.file);
-    const std::vector<unsigned char> bytes = read_shard_file(file.string(), "the file of " + what);
+    const std::string label =
+        "shard " + brief_text(s.file) + "'s " + std::string(kind.kind) + " output";
+    const std::string what = label + " " + brief_text(file.string());
+    const std::vector<unsigned char> bytes = read_shard_file(file.string(), label);
     if (bytes.size() != c.bytes || crc32(bytes) != c.crc) {
       throw ShardError(what +
                        " is not the file that shard wrote: its size or CRC-32 differs "

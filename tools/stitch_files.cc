@@ -15,6 +15,12 @@ std::vector<unsigned char> read_shard_file(const std::string& file, const std::s
   }
 }
 
+std::uintmax_t shard_file_size(const std::filesystem::path& file) {
+  std::error_code error;
+  const std::uintmax_t size = std::filesystem::file_size(file, error);
+  return error ? 0 : size;
+}
+
 std::string shard_name(const Shard& s) {
   return std::to_string(s.index) + "/" + std::to_string(s.count);
 }

@@ -23,6 +23,9 @@ inline constexpr std::uintmax_t kMaxShardFileBytes = std::uintmax_t(1) << 32;
 // larger than kMaxShardFileBytes.
 std::vector<unsigned char> read_shard_file(const std::string& file, const std::string& what);
 
+// The size of `file`, or 0 where it cannot be told (read_shard_file then says why).
+std::uintmax_t shard_file_size(const std::filesystem::path& file);
+
 // "I/N".
 std::string shard_name(const Shard& s);
 
@@ -36,10 +39,11 @@ struct ImageShard {
 // Where a shard's companion lies: its record's name, relative to the PNG's directory.
 std::filesystem::path companion_path(const ImageShard& shard, const ShardCompanion& companion);
 
-// The memory stitch_extra needs for `kind` of a width x height image whose tallest shard has
-// `tallest` rows.
-void add_extra_memory(MemoryEstimate& estimate, const ShardOutputKind& kind, int width, int height,
-                      int tallest);
+// The memory stitch_extra needs for `kind` of the image of `shards`, after checking that each
+// shard's companion of that kind has the size its record gives (ShardError otherwise, before
+// any is read).
+void add_extra_memory(MemoryEstimate& estimate, const ShardOutputKind& kind,
+                      const std::vector<ImageShard>& shards);
 
 // The stitched file of `kind` (stitch_extras.cc): each shard's companion of that kind (which
 // each has: complete_image_set checked) read, its size and CRC checked against the record, its

@@ -5,13 +5,16 @@
 // file its shard wrote, or one asked for that a shard lacks, is refused with nothing written.
 #include <catch2/catch.hpp>
 
+#include <cstdint>
 #include <filesystem>
 #include <initializer_list>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "eval/ground_truth.h"
+#include "image/crc32.h"
 #include "tests/support/cli_support.h"
 #include "tests/support/test_support.h"
 #include "tools/shard.h"
@@ -225,9 +228,10 @@ TEST_CASE("companionsThatAreNotTheirShardsFilesAreRefused", "[shard]") {
 TEST_CASE("forgedCompanionRecordsAreRefused", "[shard]") {
   const auto refused = [](const std::string& outputs) {
     INFO(outputs);
-    const std::string text = R"({"index": 0, "count": 1, "width": 8, "height": 8, "top": 0, )"
-                             R"("rows": 8, "unit": 64, "outputs": )" +
-                             outputs + "}";
+    const std::string text =
+        R"({"index": 0, "count": 1, "backend": "simd", "width": 8, "height": 8, "top": 0, )"
+        R"("rows": 8, "unit": 64, "outputs": )" +
+        outputs + "}";
     CHECK_THROWS_AS(parse_shard_record(text, "shard"), ShardError);
   };
   refused("[]");
@@ -238,8 +242,16 @@ TEST_CASE("forgedCompanionRecordsAreRefused", "[shard]") {
   refused(R"({"float": {"file": "a.pfm", "bytes": 1}})");
   refused(R"({"float": {"file": "a.pfm", "bytes": 1, "crc32": 1, "x": 2}})");
   refused(R"({"float": "a.pfm"})");
+  // No backend, or not a name.
+  for (const char* backend : {"", R"("backend": "", )", R"("backend": 3, )"}) {
+    CHECK_THROWS_AS(parse_shard_record(std::string(R"({"index": 0, "count": 1, )") + backend +
+                                           R"("width": 8, "height": 8, "top": 0, "rows": 8, )"
+                                           R"("unit": 64, "outputs": {}})",
+                                       "shard"),
+                    ShardError);
+  }
   const ImageShardRecord r = parse_shard_record(
-      R"({"index": 0, "count": 1, "width": 8, "height": 8, "top": 0, "rows": 8, "unit": 16, )"
+      R"({"index": 0, "count": 1, "backend": "simd", "width": 8, "height": 8, "top": 0, "rows": 8, "unit": 16, )"
       R"("outputs": {"depth": {"file": "d.pfm", "bytes": 300, "crc32": 7}}})",
       "shard");
   REQUIRE(r.companions.size() == 1);
@@ -248,10 +260,77 @@ TEST_CASE("forgedCompanionRecordsAreRefused", "[shard]") {
   CHECK(find_companion(r, "float") == nullptr);
   CHECK_THROWS_AS(
       parse_shard_record(
-          R"({"index": 0, "count": 1, "width": 8, "height": 8, "top": 0, "rows": 8, "unit": 0, )"
+          R"({"index": 0, "count": 1, "backend": "simd", "width": 8, "height": 8, "top": 0, "rows": 8, "unit": 0, )"
           R"("outputs": {}})",
           "shard"),
       ShardError);
+}
+
+// The holes a hostile pass found: shards of different backends, a damaged PNG (a flipped bit
+// in its image data: stb checks neither the chunk CRCs nor zlib's Adler-32), companions written
+// from a linked directory, an empty --shard, a shard padded past --max-memory, raw ids under
+// another extension.
+TEST_CASE("damagedOrMixedShardsAndLinkedDirectoriesAreHandled", "[shard]") {
+  test::TempDir dir("shard-hostile");
+  const auto file = [&](const std::string& name) { return (dir.path() / name).string(); };
+  const auto render = [&](std::vector<std::string> extra) {
+    std::vector<std::string> a = with_size({"render", "default"}, 120, 100);
+    a.insert(a.end(), extra.begin(), extra.end());
+    return run(a);
+  };
+  require_ok(render({"--shard", "0/2", "-o", file("a0.png")}));
+  require_ok(render({"--shard", "1/2", "-o", file("a1.png")}));
+  require_ok(render({"--shard", "1/2", "-o", file("d1.png"), "--backend", "reference-double"}));
+  const std::string out = file("out.png");
+  test::require_refused(run({"stitch", "-o", out, file("a0.png"), file("d1.png")}),
+                        "backend (reference-double against simd) differs", out);
+  // One bit of the image data flipped: the IDAT chunk's CRC no longer matches.
+  std::vector<unsigned char> png = read_bytes(file("a1.png"));
+  std::size_t idat = 0;
+  for (std::size_t k = 8; k + 8 < png.size(); ++k) {
+    if (std::string(png.begin() + std::ptrdiff_t(k), png.begin() + std::ptrdiff_t(k) + 4) ==
+        "IDAT") {
+      idat = k;
+      break;
+    }
+  }
+  REQUIRE(idat > 0);
+  png[idat + 4 + 20] ^= 4;
+  test::write_file(file("damaged.png"), std::string(png.begin(), png.end()));
+  test::require_refused(run({"stitch", "-o", out, file("a0.png"), file("damaged.png")}),
+                        "does not match its CRC-32", out);
+  // The same shard with 3 MiB of private chunk: past --max-memory 2M before it is read.
+  std::vector<unsigned char> padded = read_bytes(file("a1.png"));
+  const std::vector<unsigned char> data(3 << 20, 7);
+  std::vector<unsigned char> chunk = {0, 0x30, 0, 0, 'p', 'r', 'V', 't'};
+  chunk.insert(chunk.end(), data.begin(), data.end());
+  const std::uint32_t crc = crc32(std::span<const unsigned char>(chunk).subspan(4));
+  for (const int shift : {24, 16, 8, 0}) {
+    chunk.push_back(static_cast<unsigned char>(crc >> shift));
+  }
+  padded.insert(padded.begin() + 33, chunk.begin(), chunk.end());  // after IHDR
+  test::write_file(file("padded.png"), std::string(padded.begin(), padded.end()));
+  test::require_refused(
+      run({"stitch", "--max-memory", "2M", "-o", out, file("a0.png"), file("padded.png")}),
+      "reading these shards", out);
+  require_ok(run({"stitch", "-o", out, file("a0.png"), file("padded.png")}));
+  std::filesystem::remove(out);
+  // Written from a linked directory: the record leads from the PNG's real directory.
+  std::filesystem::create_directories(dir.path() / "real" / "deep");
+  std::filesystem::create_directory_symlink(dir.path() / "real" / "deep", dir.path() / "link");
+  for (const std::string i : {"0", "1"}) {
+    require_ok(render({"--shard", i + "/2", "-o", file("link/l" + i + ".png"), "--float",
+                       file("f" + i + ".pfm")}));
+  }
+  require_ok(run(
+      {"stitch", "-o", out, "--float", file("out.pfm"), file("link/l0.png"), file("link/l1.png")}));
+  require_ok(render({"-o", file("whole.png"), "--float", file("whole.pfm")}));
+  CHECK(read_bytes(file("out.pfm")) == read_bytes(file("whole.pfm")));
+  // An empty --shard (an unset variable in a job script) and raw ids named .exr.
+  test::require_refused(render({"--shard", "", "-o", file("e.png")}), "--shard", file("e.png"));
+  test::require_refused(run({"stitch", "-o", file("p.png"), "--primitive", file("p.exr"),
+                             file("a0.png"), file("a1.png")}),
+                        "give a file name ending in .bin", file("p.png"));
 }
 
 }  // namespace
