@@ -146,6 +146,16 @@ Vec3<Real> planet_background(const ShadeParams<Real>& p, const ShadeResources& r
 }  // namespace
 
 template <class Real>
+Vec3<Real> facing_normal(const Vec3<Real>& n, const Vec3<Real>& view, ShadeWork& work) {
+  const Real away = dot(n, view);
+  if (!(away > Real(0))) {
+    return n;
+  }
+  ++work.facing_normals;
+  return normalize_or(n - view * away, view * Real(-1));
+}
+
+template <class Real>
 Vec3<Real> terrain_radiance(const ShadeParams<Real>& p, const ShadeResources& r,
                             const PixelAttributes<Real>& a, ShadeWork& work) {
   ++work.terrain_pixels;
@@ -192,7 +202,7 @@ Vec3<Real> terrain_radiance(const ShadeParams<Real>& p, const ShadeResources& r,
   }
   // Domain: the largest weight is >= 1/8 > kMinLayerWeight, so used > 0.
   albedo = albedo * (Real(1) / used);
-  Vec3<Real> radiance = light(p, albedo, n, view, specular / used, work);
+  Vec3<Real> radiance = light(p, albedo, facing_normal(n, view, work), view, specular / used, work);
 
   Real fog_distance = distance;
   if (p.water_enabled && p.terrain_water && relative_y < p.water_level && view.y < Real(0)) {
@@ -275,6 +285,8 @@ void shade_pixels(const ShadeParams<Real>& p, const ShadeResources& r, const Sha
   }
 }
 
+template Vec3<float> facing_normal<float>(const Vec3<float>&, const Vec3<float>&, ShadeWork&);
+template Vec3<double> facing_normal<double>(const Vec3<double>&, const Vec3<double>&, ShadeWork&);
 template Vec3<float> terrain_radiance<float>(const ShadeParams<float>&, const ShadeResources&,
                                              const PixelAttributes<float>&, ShadeWork&);
 template Vec3<double> terrain_radiance<double>(const ShadeParams<double>&, const ShadeResources&,

@@ -49,6 +49,7 @@ struct ShadeWork {
   std::uint64_t fogged_pixels = 0;      // pixels through the fog pass
   std::uint64_t dither_samples = 0;     // dithering noise lookups
   std::uint64_t specular_pixels = 0;    // pixels whose specular term was computed
+  std::uint64_t facing_normals = 0;     // normals facing away from the eye, turned (shade.cc)
 
   ShadeWork& operator+=(const ShadeWork& o) {
     terrain_pixels += o.terrain_pixels;
@@ -58,9 +59,21 @@ struct ShadeWork {
     fogged_pixels += o.fogged_pixels;
     dither_samples += o.dither_samples;
     specular_pixels += o.specular_pixels;
+    facing_normals += o.facing_normals;
     return *this;
   }
 };
+
+// The normal the light sees (docs/stages.md, stage 8): the interpolated normal, or where it
+// faces away from the eye (n . view > 0, `view` running from the eye to the pixel) its part
+// perpendicular to the view ray, n - (n . view) view, normalised (-view where that part
+// vanishes). A pixel on a crest's silhouette interpolates between the near slope's vertex
+// normals and those of the hidden far slope; lit as the hidden slope it drew 1-px dark lines
+// along ridges that the ground truth's finer grid hardly shows. Continuous in n: the
+// perpendicular part of a normal that barely faces away is that normal.
+// (Counted in work.facing_normals.) `n` and `view` unit vectors.
+template <class Real>
+Vec3<Real> facing_normal(const Vec3<Real>& n, const Vec3<Real>& view, ShadeWork& work);
 
 // Radiance of a covered pixel, before the exposure; counts its work into `work`.
 template <class Real>

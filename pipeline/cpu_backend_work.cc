@@ -139,6 +139,7 @@ void CpuBackend<Real>::describe(StageId id, StageTime& time) const {
       count("texture fetches", shade.texture_fetches);
       count("dither samples", shade.dither_samples);
       count("specular terms", shade.specular_pixels);
+      count("normals turned to face the eye", shade.facing_normals);
       count("water pixels", shade.water_pixels);
       count("fogged pixels", shade.fogged_pixels);
       return;

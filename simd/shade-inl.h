@@ -115,6 +115,20 @@ HWY_INLINE V3<V> LayerAlbedo(D d, const ShadeParams<float>& p, const LayerParams
   return Scale3(sum, hn::Div(hn::Set(d, 1.0f), used));
 }
 
+// facing_normal (shade.cc) for the lanes of `covered`.
+template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
+HWY_INLINE V3<V> FacingNormal(D d, const V3<V>& n, const V3<V>& view, M covered, ShadeWork& work) {
+  const V away = Dot3(n, view);
+  const M turned = hn::And(covered, hn::Gt(away, hn::Zero(d)));
+  const std::size_t count = hn::CountTrue(d, turned);
+  if (count == 0) {
+    return n;
+  }
+  work.facing_normals += count;
+  const V3<V> toward_eye{hn::Neg(view.x), hn::Neg(view.y), hn::Neg(view.z)};
+  return Select3(turned, NormalizeOr(d, Sub3(n, Scale3(view, away)), toward_eye), n);
+}
+
 // light (shade.cc) for the lanes of `covered`.
 template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
 HWY_INLINE V3<V> Light(D d, const ShadeParams<float>& p, const V3<V>& albedo, const V3<V>& n,
@@ -207,7 +221,8 @@ HWY_INLINE V3<V> TerrainRadiance(D d, const ShadeContext& ctx, const AttributeVe
     used = hn::IfThenElse(gate, hn::Add(used, w), used);
   }
   albedo = Scale3(albedo, hn::Div(one, used));
-  V3<V> radiance = Light(d, p, albedo, n, view, hn::Div(specular, used), covered, work);
+  V3<V> radiance = Light(d, p, albedo, FacingNormal(d, n, view, covered, work), view,
+                         hn::Div(specular, used), covered, work);
 
   V fog_distance = distance;
   if (p.water_enabled && p.terrain_water) {

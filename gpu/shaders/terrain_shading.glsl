@@ -85,6 +85,17 @@ vec3 layer_albedo(int layer, Attributes a, vec3 n) {
   return r;
 }
 
+// The normal the light sees: where the interpolated normal faces away from the eye, its part
+// perpendicular to the view ray, normalised (shade.cc, facing_normal).
+vec3 facing_normal(vec3 n, vec3 view) {
+  precise float away = dot3(n, view);
+  if (!(away > 0.0)) {
+    return n;
+  }
+  precise vec3 perpendicular = n - view * away;
+  return normalize_or(perpendicular, -view);
+}
+
 // Sun (Lambert, Phong), hemispherical sky light and ambient (Scape).
 vec3 light(vec3 albedo, vec3 n, vec3 view, float specular) {
   const vec3 to_sun = f3(P.sun_direction);
@@ -142,7 +153,7 @@ vec3 terrain_radiance(Attributes a) {
   }
   albedo = albedo * (1.0 / used);
   precise float shininess_weight = specular / used;
-  precise vec3 radiance = light(albedo, n, view, shininess_weight);
+  precise vec3 radiance = light(albedo, facing_normal(n, view), view, shininess_weight);
 
   precise float fog_distance = distance;
   if (P.water_enabled != 0 && P.terrain_water != 0 && relative_y < P.water_level && view.y < 0.0) {

@@ -94,11 +94,12 @@ bool same_work(const ShadeWork& a, const ShadeWork& b) {
   return a.terrain_pixels == b.terrain_pixels && a.background_pixels == b.background_pixels &&
          a.texture_fetches == b.texture_fetches && a.water_pixels == b.water_pixels &&
          a.fogged_pixels == b.fogged_pixels && a.dither_samples == b.dither_samples &&
-         a.specular_pixels == b.specular_pixels;
+         a.specular_pixels == b.specular_pixels && a.facing_normals == b.facing_normals;
 }
 
 TEST_CASE("simdShadingOfAwkwardRectanglesIsTheScalarShadingAndWritesOnlyTheRectangle", "[simd]") {
   const EachTarget targets;
+  ShadeWork all;  // of the scalar shading: every branch reached
   // The lake: water, fog and specular; alpine: triplanar texturing and snow.
   for (const char* preset : {"lake", "alpine"}) {
     const Scene scene = resolve_scene(
@@ -145,9 +146,13 @@ TEST_CASE("simdShadingOfAwkwardRectanglesIsTheScalarShadingAndWritesOnlyTheRecta
           CHECK(test::same_bits(got, expected));
           CHECK(same_work(work, expected_work));
         }
+        all += expected_work;
       }
     }
   }
+  // Normals facing away from the eye turned (facing_normal), and others not.
+  CHECK(all.facing_normals > 0);
+  CHECK(all.facing_normals < all.terrain_pixels);
 }
 
 TEST_CASE("simdSrgbEncodingOfAwkwardRangesIsSrgbByteAndWritesOnlyItsRange", "[simd]") {
