@@ -131,8 +131,17 @@ MemoryEstimate ground_truth_memory(const Scene& scene, const GroundTruthSettings
   const Scene big = supersampled_scene(scene, settings);
   const int height = scene.viewport.height;
   const int rows = std::min(output_rows.end, height) - std::clamp(output_rows.begin, 0, height);
-  return estimate_ground_truth_memory(big, ground_truth_band_rows(scene, settings),
-                                      scene.viewport.width, std::max(rows, 0));
+  MemoryEstimate estimate = estimate_ground_truth_memory(
+      big, ground_truth_band_rows(scene, settings), scene.viewport.width, std::max(rows, 0));
+  if (settings.distances) {  // a float of depth per sample of a band, and per output pixel
+    const std::uintmax_t band_samples =
+        std::uintmax_t(big.viewport.width) *
+        std::uintmax_t(std::min(ground_truth_band_rows(scene, settings), big.viewport.height));
+    estimate.add("depths of a band and the distances",
+                 4 * band_samples +
+                     4 * std::uintmax_t(scene.viewport.width) * std::uintmax_t(std::max(rows, 0)));
+  }
+  return estimate;
 }
 
 GroundTruthImage render_ground_truth(const Scene& scene, const SceneResources& resources,
@@ -159,10 +168,14 @@ GroundTruthImage render_ground_truth(const Scene& scene, const SceneResources& r
   const std::size_t pixels = std::size_t(out.width) * out.height;
   out.linear.assign(3 * pixels, 0.0f);
   out.srgb.assign(3 * pixels, 0);
+  if (settings.distances) {
+    out.distance.assign(pixels, 0.0f);
+  }
 
   FrameRequest request;
   request.backend = Backend::kReferenceDouble;
   request.outputs.linear = true;
+  request.outputs.depth = settings.distances;
   request.octave_count_rule = distance_lod_rule(out.lod.lod);
   request.max_bin_bytes = max_bin_bytes;
   const int band_rows = ground_truth_band_rows(scene, settings);
@@ -170,6 +183,25 @@ GroundTruthImage render_ground_truth(const Scene& scene, const SceneResources& r
   const FrameRows rows{out.first_row * n, (out.first_row + out.height) * n};
   out.bands = (rows.end - rows.begin + band_rows - 1) / band_rows;
   int done = 0;
+  // The mean view-axis distance of pixel (x, y)'s samples that see terrain: near / depth for
+  // depth > 0 (reverse-Z, vertex_transform.h; the division's domain), or 0 where fewer than
+  // half of them do.
+  const double near = scene.camera.near;
+  const auto mean_distance = [&](const FrameImage& band, int first_row, int x, int y) {
+    double sum = 0;
+    int terrain = 0;
+    for (int sy = 0; sy < n; ++sy) {
+      const std::size_t row = std::size_t(y * n + sy - first_row) * band.width;
+      for (int sx = 0; sx < n; ++sx) {
+        const float depth = band.depth[row + std::size_t(x * n + sx)];
+        if (depth > 0.0f) {
+          sum += near / double(depth);
+          ++terrain;
+        }
+      }
+    }
+    return 2 * terrain >= n * n ? static_cast<float>(sum / terrain) : 0.0f;
+  };
   // Each output pixel's N x N samples lie in one band (bands are whole multiples of N): the
   // box filter sums them in double in a fixed order, row by row, and divides by N^2.
   const auto reduce = [&](const FrameImage& band, int first_row) {
@@ -190,6 +222,9 @@ GroundTruthImage render_ground_truth(const Scene& scene, const SceneResources& r
         for (int c = 0; c < 3; ++c) {
           out.linear[k + c] = static_cast<float>(sum[c] * inv_samples);
           out.srgb[k + c] = srgb_byte(out.linear[k + c]);
+        }
+        if (settings.distances) {
+          out.distance[k / 3] = mean_distance(band, first_row, x, y);
         }
       }
     }

@@ -42,6 +42,7 @@ struct GroundTruthSettings {
   int grid_scale = 4;             // grid vertices per axis: the scene's times this
   double octave_epsilon = 0.125;  // of a pixel's footprint at the vertex's distance
   int band_rows = 0;              // supersampled rows per band; 0: from kGroundTruthBandBytes
+  bool distances = false;         // also GroundTruthImage::distance (convergence.h's bands)
 };
 
 // A setting out of range, alone or for this scene (bad input, exit code 2): the message names
@@ -89,7 +90,10 @@ struct GroundTruthImage {
   int first_row = 0;               // the framebuffer row of the image's bottom row
   std::vector<float> linear;       // RGB per pixel, rows bottom to top: the box-filtered radiance
   std::vector<std::uint8_t> srgb;  // 3 per pixel: srgb_byte of `linear`
-  FrameStats stats;                // of the supersampled frame
+  // With settings.distances, 1 per pixel: the mean distance along the view axis of the pixel's
+  // samples that see terrain (near / depth of each), or 0 where fewer than half of them do.
+  std::vector<float> distance;
+  FrameStats stats;  // of the supersampled frame
   GroundTruthLod lod;
   int bands = 0;
 };

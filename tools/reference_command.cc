@@ -7,6 +7,7 @@
 #include <iomanip>
 #include <optional>
 #include <ostream>
+#include <span>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -14,8 +15,10 @@
 #include <CLI/CLI.hpp>
 
 #include "core/scene/json_input.h"
+#include "eval/convergence.h"
 #include "eval/ground_truth.h"
 #include "eval/height_error.h"
+#include "eval/image_error.h"
 #include "image/crc32.h"
 #include "image/image_io.h"
 #include "image/image_metadata.h"
@@ -25,6 +28,7 @@
 #include "tools/cli.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
+#include "tools/convergence_report.h"
 #include "tools/distinct_paths.h"
 #include "tools/float_image_file.h"
 #include "tools/reference_command.h"
@@ -96,6 +100,12 @@ CLI::App* add_reference_command(CLI::App& app, ReferenceOptions& options) {
       ->capture_default_str();
   add_shard_option(command, options.shard,
                    "image's rows, in steps of lcm(64, N) / N rows for N x N samples");
+  command->add_flag("--converge", options.converge,
+                    "Also render the frame at twice the settings (samples a pixel and grid "
+                    "each way, half the octave epsilon) and report the difference: mean FLIP "
+                    "and PSNR over the image and per band of distance (sky, near, middle and far "
+                    "thirds of the terrain). Costs about 16 times the render");
+  command->add_option("--json", options.json, "With --converge: the figures as a JSON file");
   command->add_flag("--stats", options.stats,
                     "Also print the stage times of the supersampled frame and the float error "
                     "of the heights at the scene's own grid vertices");
@@ -123,17 +133,38 @@ int run_reference_command(const Scene& scene, const ReferenceOptions& options, s
         << ": give a file name ending in .pfm or .exr\n";
     return kExitBadInput;
   }
+  if (!options.json.empty() && !options.converge) {
+    err << "relief: error: --json " << brief_text(options.json)
+        << " writes the figures of --converge; give --converge too\n";
+    return kExitBadInput;
+  }
+  if (options.converge && !options.shard.empty()) {
+    err << "relief: error: --converge measures the whole image; leave out --shard "
+        << brief_text(options.shard) << "\n";
+    return kExitBadInput;
+  }
   std::vector<CommandPath> paths = scene_input_paths(options.scene_arg, scene);
   paths.push_back({"-o", options.output});
   paths.push_back({"--float", float_path});
+  if (!options.json.empty()) {
+    paths.push_back({"--json", options.json});
+  }
   if (const std::optional<std::string> conflict = same_file_conflict(paths)) {
     err << "relief: error: " << *conflict << "\n";
     return kExitBadInput;
   }
+  GroundTruthSettings settings = options.settings;
+  settings.distances = options.converge;
+  const GroundTruthSettings doubled = doubled_settings(settings);
   try {
-    validate_ground_truth(scene, options.settings);
+    validate_ground_truth(scene, settings);
+    if (options.converge) {
+      validate_ground_truth(scene, doubled);
+    }
   } catch (const GroundTruthError& e) {
-    err << "relief: error: " << e.what() << "\n";
+    err << "relief: error: "
+        << (options.converge ? "--converge renders at twice the settings: " : "") << e.what()
+        << "\n";
     return kExitBadInput;
   }
   // --shard: a band of whole steps of the image's rows (shard.h), its PNG and float file.
@@ -145,18 +176,38 @@ int run_reference_command(const Scene& scene, const ReferenceOptions& options, s
                                       ground_truth_shard_unit(options.settings.supersample));
     rows = {band.begin, band.end};
   }
-  const MemoryEstimate estimate = ground_truth_memory(scene, options.settings, rows);
+  const MemoryEstimate estimate = ground_truth_memory(scene, settings, rows);
   check_memory(estimate, options.budget, "this reference render",
                "Lower --supersample or --grid-scale, or the scene's viewport or grid");
+  // --converge: the doubled render while the first image is kept, then FLIP's planes.
+  MemoryEstimate doubled_estimate = ground_truth_memory(scene, doubled);
+  if (options.converge) {
+    const std::uintmax_t pixels =
+        std::uintmax_t(scene.viewport.width) * std::uintmax_t(scene.viewport.height);
+    doubled_estimate.add("the first image and its distances", pixels * (12 + 3 + 4));
+    doubled_estimate.add("the error's planes",
+                         image_error_bytes(scene.viewport.width, scene.viewport.height));
+    check_memory(doubled_estimate, options.budget, "this reference render at twice its settings",
+                 "Lower --supersample or --grid-scale, or the scene's viewport or grid");
+  }
 
   const auto start = std::chrono::steady_clock::now();
   const SceneResources resources = load_scene_resources(scene);  // validates texture files
   print_scene_notes(resources.notes, err);
   TerminalProgress progress("relief reference", "bands");
   const GroundTruthImage image = render_ground_truth(
-      scene, resources, options.settings, memory_left(estimate, options.budget),
+      scene, resources, settings, memory_left(estimate, options.budget),
       [&](int done, int total) { progress.update(done, total); }, rows);
   progress.finish();
+  std::optional<ConvergenceReport> convergence;
+  if (options.converge) {
+    TerminalProgress twice("relief reference at twice the settings", "bands");
+    const GroundTruthImage finer = render_ground_truth(
+        scene, resources, doubled, memory_left(doubled_estimate, options.budget),
+        [&](int done, int total) { twice.update(done, total); });
+    twice.finish();
+    convergence = compare_truths(image, finer, settings);
+  }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -183,6 +234,13 @@ int run_reference_command(const Scene& scene, const ReferenceOptions& options, s
   OutputSet files;  // both appear, or neither
   files.add(options.output, encode_png_rgb(image.width, image.height, image.srgb, png_text));
   files.add(float_path, float_file);
+  std::string json_text;
+  if (convergence && !options.json.empty()) {
+    json_text = convergence_json(*convergence).dump(2) + "\n";
+    files.add(options.json,
+              std::span<const unsigned char>(
+                  reinterpret_cast<const unsigned char*>(json_text.data()), json_text.size()));
+  }
   files.commit();
 
   const GroundTruthSettings& s = options.settings;
@@ -202,6 +260,11 @@ int run_reference_command(const Scene& scene, const ReferenceOptions& options, s
     runs.add(image.stats);
     print_stage_stats(out, runs);
     print_height_error(out, scene);
+  }
+  if (convergence) {
+    print_convergence(out, *convergence);
+    out << "  the render at twice the settings: estimated peak memory "
+        << doubled_estimate.describe() << "\n";
   }
   if (shard) {
     out << "  shard " << shard->index << "/" << shard->count << ": image rows "

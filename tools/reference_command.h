@@ -24,6 +24,8 @@ struct ReferenceOptions {
   bool stats = false;  // stage times, and the float height error at the scene's grid
   MemoryBudget budget;
   std::string shard;      // --shard I/N (tools/shard.h); empty: the whole image
+  bool converge = false;  // also render at twice the settings and report the difference
+  std::string json;       // --json: the convergence figures (with --converge)
   std::string scene_arg;  // SCENE as given: a file is an input no output may name
   const CLI::Option* output_option = nullptr;  // to tell -o "" from no -o
   const CLI::Option* float_option = nullptr;

@@ -1,0 +1,96 @@
+#include "eval/convergence.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "core/srgb.h"
+#include "eval/image_error.h"
+
+namespace relief {
+
+namespace {
+
+// As image_error: the display value of a linear channel, clamped to [0, 1] (NaN as 0).
+double display_value(float linear) {
+  return srgb_encode(linear > 0.0f ? std::min(double(linear), 1.0) : 0.0);
+}
+
+}  // namespace
+
+GroundTruthSettings doubled_settings(const GroundTruthSettings& settings) {
+  GroundTruthSettings out = settings;
+  out.supersample = 2 * settings.supersample;
+  out.grid_scale = 2 * settings.grid_scale;
+  out.octave_epsilon = 0.5 * settings.octave_epsilon;
+  out.band_rows = 0;
+  out.distances = false;
+  return out;
+}
+
+std::vector<int> distance_bands(const GroundTruthImage& image) {
+  const std::size_t pixels = image.distance.size();
+  std::vector<int> band(pixels, 0);
+  std::vector<std::size_t> terrain;
+  for (std::size_t k = 0; k < pixels; ++k) {
+    if (image.distance[k] > 0.0f) {
+      terrain.push_back(k);
+    }
+  }
+  // Nearest first; equal distances in index order (a total order: the same bands every run).
+  std::sort(terrain.begin(), terrain.end(), [&](std::size_t a, std::size_t b) {
+    return image.distance[a] < image.distance[b] ||
+           (image.distance[a] == image.distance[b] && a < b);
+  });
+  const std::size_t third = terrain.size() / 3;
+  const std::size_t near_count = terrain.size() - 2 * third;
+  for (std::size_t r = 0; r < terrain.size(); ++r) {
+    band[terrain[r]] = r < near_count ? 1 : (r < near_count + third ? 2 : 3);
+  }
+  return band;
+}
+
+ConvergenceReport compare_truths(const GroundTruthImage& base, const GroundTruthImage& doubled,
+                                 const GroundTruthSettings& settings, double pixels_per_degree) {
+  ConvergenceReport report;
+  report.settings = settings;
+  report.doubled = doubled_settings(settings);
+  const ImageError error =
+      image_error(base.linear, doubled.linear, base.width, base.height, pixels_per_degree);
+  const std::vector<int> bands = distance_bands(base);
+  std::vector<double> flip_sum(kDistanceBands, 0.0), squares(kDistanceBands, 0.0);
+  std::vector<std::size_t> count(kDistanceBands, 0);
+  std::vector<double> farthest(kDistanceBands, 0.0);
+  double all_flip = 0, all_squares = 0;
+  for (std::size_t k = 0; k < bands.size(); ++k) {
+    const int b = bands[k];
+    double sq = 0;
+    for (int c = 0; c < 3; ++c) {
+      const double d =
+          display_value(base.linear[3 * k + c]) - display_value(doubled.linear[3 * k + c]);
+      sq += d * d;
+    }
+    flip_sum[b] += error.flip_map[k];
+    squares[b] += sq;
+    ++count[b];
+    farthest[b] = std::max(farthest[b], double(base.distance[k]));
+    all_flip += error.flip_map[k];
+    all_squares += sq;
+  }
+  // PSNR = 20 log10(1 / RMSE), peak 1; log's domain: RMSE > 0, else +infinity.
+  const auto psnr = [](double sum_sq, std::size_t pixels) {
+    const double rmse = pixels > 0 ? std::sqrt(sum_sq / (3.0 * double(pixels))) : 0.0;
+    return rmse > 0 ? -20.0 * std::log10(rmse) : INFINITY;
+  };
+  const std::size_t pixels = bands.size();
+  report.all = {"all", pixels, pixels > 0 ? all_flip / double(pixels) : 0.0,
+                psnr(all_squares, pixels), *std::max_element(farthest.begin(), farthest.end())};
+  for (int b = 0; b < kDistanceBands; ++b) {
+    report.bands.push_back({kDistanceBandNames[b], count[b],
+                            count[b] > 0 ? flip_sum[b] / double(count[b]) : 0.0,
+                            psnr(squares[b], count[b]), farthest[b]});
+  }
+  return report;
+}
+
+}  // namespace relief
