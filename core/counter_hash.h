@@ -22,6 +22,7 @@ inline constexpr std::uint64_t kGoldenGamma = 0x9E3779B97F4A7C15ull;
 enum class HashStream : std::uint64_t {
   kLattice = 0,       // noise lattice values: a = (j << 32) | i, b = attempt draw index
   kOctaveOffset = 1,  // per-octave lattice offsets: a = octave index, b = axis (0 x, 1 z)
+  kHeightField = 2,   // generated height maps: a = (method << 8) | level, b = point index
 };
 
 // counter_hash(seed, stream, a, b) = mix64(mix64(mix64(mix64(seed + g) + stream + g) + a + g)

@@ -19,6 +19,16 @@ std::vector<unsigned char> encode_png_rgb(int width, int height, std::span<const
   return insert_png_text(png, text);
 }
 
+std::vector<unsigned char> encode_png_grey16_with_text(int width, int height,
+                                                       std::span<const std::uint16_t> levels,
+                                                       std::span<const ImageText> text) {
+  std::vector<unsigned char> png = encode_png_grey16(width, height, levels);
+  if (text.empty() || png.empty()) {
+    return png;
+  }
+  return insert_png_text(png, text);
+}
+
 std::string pfm_header(int width, int height, int channels) {
   return std::string(channels == 3 ? "PF" : "Pf") + "\n" + std::to_string(width) + " " +
          std::to_string(height) + "\n-1.0\n";

@@ -19,6 +19,11 @@ namespace relief {
 std::vector<unsigned char> encode_png_rgb(int width, int height, std::span<const std::uint8_t> rgb,
                                           std::span<const ImageText> text = {});
 
+// 16-bit grey, `levels` row 0 = the top row; `text` as above.
+std::vector<unsigned char> encode_png_grey16_with_text(int width, int height,
+                                                       std::span<const std::uint16_t> levels,
+                                                       std::span<const ImageText> text = {});
+
 // PFM (Portable Float Map): ASCII header "Pf" (1 channel) or "PF" (3 channels), then
 // "width height", then "-1" (negative: little-endian), each on its own line, then
 // width * height * channels IEEE-754 binary32 values, rows bottom-to-top, channels interleaved.

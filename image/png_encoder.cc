@@ -37,25 +37,28 @@ struct CompressorDeleter {
   void operator()(libdeflate_compressor* c) const { libdeflate_free_compressor(c); }
 };
 
-}  // namespace
-
-std::vector<unsigned char> encode_png_rgb8(int width, int height,
-                                           std::span<const std::uint8_t> rgb) {
+// The PNG of `height` rows of `row_bytes` bytes each, `pixel_bytes` to a pixel (Sub's offset),
+// colour type and bit depth as IHDR gives them; `row(y, out)` writes row y (top row first).
+template <class RowWriter>
+std::vector<unsigned char> encode_png(int width, int height, std::size_t pixel_bytes,
+                                      unsigned char colour_type, unsigned char bit_depth,
+                                      const RowWriter& row) {
   if (width < 1 || height < 1) {
     return {};  // PNG has no empty image (§11.2.1)
   }
-  const std::size_t row_bytes = static_cast<std::size_t>(width) * 3;
-  assert(rgb.size() == row_bytes * static_cast<std::size_t>(height));
+  const std::size_t row_bytes = static_cast<std::size_t>(width) * pixel_bytes;
   // §7.3 and §9.2: each scanline is its filter type byte, then Sub's differences, byte x minus
-  // byte x - 3 (the same channel of the pixel to the left, 0 left of the first), modulo 256.
+  // byte x - pixel_bytes (the same byte of the pixel to the left, 0 left of the first), modulo
+  // 256.
   std::vector<unsigned char> filtered((row_bytes + 1) * static_cast<std::size_t>(height));
+  std::vector<unsigned char> raw(row_bytes);
   for (int y = 0; y < height; ++y) {
-    const std::uint8_t* row = rgb.data() + static_cast<std::size_t>(height - 1 - y) * row_bytes;
+    row(y, raw.data());
     unsigned char* out = filtered.data() + static_cast<std::size_t>(y) * (row_bytes + 1);
     out[0] = 1;  // Sub
-    std::memcpy(out + 1, row, 3);
-    for (std::size_t x = 3; x < row_bytes; ++x) {
-      out[1 + x] = static_cast<unsigned char>(row[x] - row[x - 3]);
+    std::memcpy(out + 1, raw.data(), pixel_bytes);
+    for (std::size_t x = pixel_bytes; x < row_bytes; ++x) {
+      out[1 + x] = static_cast<unsigned char>(raw[x] - raw[x - pixel_bytes]);
     }
   }
   const std::unique_ptr<libdeflate_compressor, CompressorDeleter> compressor(
@@ -74,18 +77,45 @@ std::vector<unsigned char> encode_png_rgb8(int width, int height,
   std::vector<unsigned char> png;
   png.reserve(8 + 25 + zlib_bytes + 12 * (zlib_bytes / kMaxIdatBytes + 1) + 12);
   png.insert(png.end(), kSignature, kSignature + 8);
-  // IHDR (§11.2.1): width, height, bit depth 8, colour type 2 (RGB), deflate, adaptive
-  // filtering, no interlace.
+  // IHDR (§11.2.1): width, height, bit depth, colour type, deflate, adaptive filtering, no
+  // interlace.
   std::vector<unsigned char> header;
   append_u32(header, static_cast<std::uint32_t>(width));
   append_u32(header, static_cast<std::uint32_t>(height));
-  header.insert(header.end(), {8, 2, 0, 0, 0});
+  header.insert(header.end(), {bit_depth, colour_type, 0, 0, 0});
   append_chunk(png, "IHDR", header.data(), header.size());
   for (std::size_t at = 0; at < zlib_bytes; at += kMaxIdatBytes) {
     append_chunk(png, "IDAT", zlib.data() + at, std::min(kMaxIdatBytes, zlib_bytes - at));
   }
   append_chunk(png, "IEND", nullptr, 0);
   return png;
+}
+
+}  // namespace
+
+std::vector<unsigned char> encode_png_rgb8(int width, int height,
+                                           std::span<const std::uint8_t> rgb) {
+  const std::size_t row_bytes = static_cast<std::size_t>(std::max(width, 0)) * 3;
+  assert(rgb.size() == row_bytes * static_cast<std::size_t>(std::max(height, 0)));
+  // Colour type 2 (RGB), 8 bits; rows stored bottom row first.
+  return encode_png(width, height, 3, 2, 8, [&](int y, unsigned char* out) {
+    std::memcpy(out, rgb.data() + static_cast<std::size_t>(height - 1 - y) * row_bytes,
+                row_bytes);
+  });
+}
+
+std::vector<unsigned char> encode_png_grey16(int width, int height,
+                                             std::span<const std::uint16_t> levels) {
+  const std::size_t w = static_cast<std::size_t>(std::max(width, 0));
+  assert(levels.size() == w * static_cast<std::size_t>(std::max(height, 0)));
+  // Colour type 0 (greyscale), 16 bits, each sample big-endian (§7.1); rows top row first.
+  return encode_png(width, height, 2, 0, 16, [&](int y, unsigned char* out) {
+    const std::uint16_t* row = levels.data() + static_cast<std::size_t>(y) * w;
+    for (std::size_t x = 0; x < w; ++x) {
+      out[2 * x] = static_cast<unsigned char>(row[x] >> 8);
+      out[2 * x + 1] = static_cast<unsigned char>(row[x] & 0xFF);
+    }
+  });
 }
 
 }  // namespace relief

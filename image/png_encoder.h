@@ -1,4 +1,4 @@
-// PNG encoding of 8-bit RGB (PNG 3rd edition, W3C 2025): every row filtered with Sub (§9.2,
+// PNG encoding of 8-bit RGB and 16-bit grey (PNG 3rd edition, W3C 2025): every row filtered with Sub (§9.2,
 // filter type 1) and the whole image deflated at once by libdeflate at its fastest level, in
 // one IDAT chunk per GiB. Pixels are lossless whatever the filter and level; they trade file
 // size for time, and this choice encodes a 1280 x 1024 render about 8 times faster than
@@ -16,5 +16,10 @@ namespace relief {
 // failure: out of memory in the compressor, or a width or height below 1.
 std::vector<unsigned char> encode_png_rgb8(int width, int height,
                                            std::span<const std::uint8_t> rgb);
+
+// 16-bit greyscale (a height map): `levels` width * height values, row 0 = the top row (as the
+// file stores it). Empty on failure, as above.
+std::vector<unsigned char> encode_png_grey16(int width, int height,
+                                             std::span<const std::uint16_t> levels);
 
 }  // namespace relief

@@ -22,6 +22,7 @@
 #include "tools/atomic_file.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
+#include "tools/generate_command.h"
 #include "tools/image_library.h"
 #include "tools/path_command.h"
 #include "tools/reference_command.h"
@@ -169,6 +170,8 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   add_backend(path_cmd, backend, simd_target);
   StitchOptions stitch;  // the parts of --shard put together (stitch_command.h)
   add_max_memory(add_stitch_command(app, stitch), max_memory);
+  GenerateOptions generate;  // height maps by the seeds' generators (generate_command.h)
+  add_max_memory(add_generate_command(app, generate), max_memory);
 
   // CLI11 answers an unknown command with "A subcommand is required"; say what is wrong.
   std::string commands;
@@ -243,7 +246,8 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   }
   const MemoryBudget budget = memory_budget(parse_memory_size(max_memory), max_memory);
   stages.budget = render.budget = raster_options.budget = crosscheck.budget = budget;
-  reference.budget = error_options.budget = sweep.budget = path.budget = stitch.budget = budget;
+  reference.budget = error_options.budget = sweep.budget = path.budget = stitch.budget =
+      generate.budget = budget;
   reference.scene_arg = crosscheck.scene_arg = scene_args.scene;
   if (error_cmd->parsed()) {
     return run_error_command(error_options, out, err);
@@ -298,6 +302,9 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   try {
     if (app.got_subcommand("stitch")) {
       return run_stitch_command(stitch, out, err);
+    }
+    if (app.got_subcommand("generate")) {
+      return run_generate_command(generate, out, err);
     }
     if (raster_cmd->parsed()) {
       const auto& v = raster_options.viewport;
