@@ -2,8 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <numeric>
+#include <sstream>
+#include <string>
 
+#include "core/limits.h"
 #include "core/srgb.h"
 #include "eval/image_error.h"
 
@@ -26,6 +30,37 @@ GroundTruthSettings doubled_settings(const GroundTruthSettings& settings) {
   out.band_rows = 0;
   out.distances = false;
   return out;
+}
+
+void validate_convergence(const Scene& scene, const GroundTruthSettings& s) {
+  validate_ground_truth(scene, s);
+  const auto refuse = [](const std::string& option, const std::string& value,
+                         const std::string& allowed) {
+    throw GroundTruthError(option + " " + value + " leaves no room for --converge, which renders " +
+                           "at twice it; allowed " + allowed + " with --converge");
+  };
+  const int side = std::max(scene.viewport.width, scene.viewport.height);
+  const int max_supersample = std::min(kMaxSupersample, limits::kMaxViewportSide / side);
+  if (2 * s.supersample > max_supersample) {
+    refuse("--supersample", std::to_string(s.supersample),
+           "1..." + std::to_string(max_supersample / 2) + " for this " +
+               std::to_string(scene.viewport.width) + "x" + std::to_string(scene.viewport.height) +
+               " viewport");
+  }
+  const int grid = std::max(scene.grid.width, scene.grid.height);
+  const int max_scale = std::min(kMaxGridScale, limits::kMaxGridSide / grid);
+  if (2 * s.grid_scale > max_scale) {
+    refuse("--grid-scale", std::to_string(s.grid_scale),
+           "1..." + std::to_string(max_scale / 2) + " for this " +
+               std::to_string(scene.grid.width) + "x" + std::to_string(scene.grid.height) +
+               " grid");
+  }
+  if (0.5 * s.octave_epsilon < kMinOctaveEpsilon) {
+    std::ostringstream value;
+    value << std::setprecision(17) << s.octave_epsilon;
+    refuse("--octave-epsilon", value.str(), "2e-06...1");
+  }
+  validate_ground_truth(scene, doubled_settings(s));  // what is left: none, by the above
 }
 
 std::vector<int> distance_bands(const GroundTruthImage& image) {

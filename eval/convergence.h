@@ -21,6 +21,11 @@ namespace relief {
 // Twice `settings`: supersample and grid_scale doubled, octave_epsilon halved, band_rows 0.
 GroundTruthSettings doubled_settings(const GroundTruthSettings& settings);
 
+// Throws GroundTruthError unless `settings` and twice them are in range for `scene`
+// (validate_ground_truth): the message names the option, the value given and the range that
+// leaves room to double it.
+void validate_convergence(const Scene& scene, const GroundTruthSettings& settings);
+
 // Per pixel of `image` (rendered with distances): 0 sky, 1 near, 2 middle, 3 far. The terrain
 // pixels are ranked by distance (ties by index) and cut into three runs of equal count (the
 // remainder to the near ones).

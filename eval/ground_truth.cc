@@ -1,6 +1,7 @@
 #include "eval/ground_truth.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <numbers>
 #include <numeric>
@@ -20,9 +21,12 @@ namespace relief {
 namespace {
 
 [[noreturn]] void refuse(const std::string& option, double value, const std::string& allowed) {
-  std::ostringstream text;
-  text << option << " " << value << " is out of range; allowed " << allowed;
-  throw GroundTruthError(text.str());
+  // The shortest text that reads back as the value: 1.0000000000000002 is not "1".
+  char number[32];
+  const auto [end, error] = std::to_chars(number, number + sizeof number, value);
+  throw GroundTruthError(option + " " +
+                         (error == std::errc() ? std::string(number, end) : std::to_string(value)) +
+                         " is out of range; allowed " + allowed);
 }
 
 // Bands hold whole tiles (render_frame_bands) and whole output pixels.

@@ -89,7 +89,33 @@ ProtectedInputs::~ProtectedInputs() {
   protected_inputs().clear();
 }
 
+std::optional<std::string> output_path_problem(const std::filesystem::path& path) {
+  constexpr std::size_t kMaxNameBytes = 255;  // NAME_MAX of Linux's file systems
+  if (path.filename().string().size() > kMaxNameBytes) {
+    return quoted(path) + ": the file name is " + std::to_string(path.filename().string().size()) +
+           " bytes; the file system allows at most " + std::to_string(kMaxNameBytes);
+  }
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (std::filesystem::is_directory(status)) {
+    return quoted(path) + " is a directory; give a file name";
+  }
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    return quoted(path) + " is not a regular file (a device, FIFO or socket); give a file name";
+  }
+  const std::filesystem::path dir =
+      path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  if (!std::filesystem::is_directory(dir, ec)) {
+    return quoted(path) + ": its directory " + quoted(dir) + " does not exist";
+  }
+  return std::nullopt;
+}
+
 void OutputSet::add(const std::filesystem::path& path, std::span<const unsigned char> bytes) {
+  if (path.filename().string().size() > 255) {  // NAME_MAX: the rename would fail at commit
+    discard();
+    throw OutputError("cannot write " + quoted(path) + ": the file name is longer than 255 bytes");
+  }
   for (const CommandPath& input : protected_inputs()) {
     if (!input.path.empty() && same_file(path, input.path)) {
       discard();

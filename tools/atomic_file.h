@@ -5,6 +5,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -64,6 +65,13 @@ class ProtectedInputs {
   ProtectedInputs(const ProtectedInputs&) = delete;
   ProtectedInputs& operator=(const ProtectedInputs&) = delete;
 };
+
+// Why `path` cannot be written, checked before the work that makes it (an expensive command
+// refuses up front, exit 2, rather than failing after it): it is a directory or a special
+// file, its directory does not exist or is not one, or its name is longer than the file system
+// allows (NAME_MAX, 255 bytes: the rename into place would fail after earlier files of the set
+// were renamed). nullopt when none of these holds.
+std::optional<std::string> output_path_problem(const std::filesystem::path& path);
 
 // One file on its own: an OutputSet of one.
 void write_file_atomically(const std::filesystem::path& path, std::span<const unsigned char> bytes);

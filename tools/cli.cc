@@ -69,7 +69,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   stages_cmd
       ->add_option("--repeat", stages.repeat,
                    "Run the stages this many times and report the median stage times")
-      ->check(integer_in(1, 1000));
+      ->transform(integer_in(1, 1000));
   add_threads(stages_cmd, threads);
   std::string max_memory;
   add_max_memory(stages_cmd, max_memory);
@@ -108,7 +108,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   render_cmd
       ->add_option("--repeat", render.repeat,
                    "Render this many times and report the median stage times")
-      ->check(integer_in(1, 1000));
+      ->transform(integer_in(1, 1000));
   add_threads(render_cmd, threads);
   add_max_memory(render_cmd, max_memory);
   add_backend(render_cmd, backend, simd_target);

@@ -83,10 +83,18 @@ CLI::Validator integer_in(long long lo, long long hi) {
                  (any_int ? std::string()
                           : " from " + std::to_string(lo) + " to " + std::to_string(hi));
         }
+        // Decimal, as read here: CLI11 would take a leading 0 for octal ("010" as 8).
+        text = std::to_string(v);
         return "";
       },
       "INT in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
 }
+
+const CLI::Validator kNonEmptyNumber(
+    [](std::string& text) -> std::string {
+      return text.empty() ? std::string("is empty; give a number") : std::string();
+    },
+    "NUMBER");
 
 bool has_extension(const std::string& name, std::string_view extension) {
   if (name.size() < extension.size()) {
@@ -139,7 +147,7 @@ void add_threads(CLI::App* command, int& threads) {
   command
       ->add_option("--threads", threads,
                    "Worker threads (default: all cores). Results are bit-identical for any count.")
-      ->check(integer_in(1, 1024));
+      ->transform(integer_in(1, 1024));
 }
 
 void add_float_format(CLI::App* command, FloatFormat& format) {

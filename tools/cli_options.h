@@ -30,7 +30,13 @@ extern const CLI::Validator kFiniteViewportValue;
 // A whole number written in digits (an optional sign) from lo to hi; the message names the
 // value and the range. CLI::Range let "1e3" and "1.5" through to a message about the range,
 // and a value CLI11 could not convert reached the user as "Could not convert".
+// Give it with ->transform (->check hands a validator a copy): the text is then rewritten in
+// canonical decimal, so that CLI11's conversion reads it as this check did (CLI11 reads "010"
+// as octal 8).
 CLI::Validator integer_in(long long lo, long long hi);
+
+// A number is given: CLI11 turns an empty value into 0 ("--amplitude ''" was a flat map).
+extern const CLI::Validator kNonEmptyNumber;
 
 // `name` ends in `extension` (lower case), in any letter case.
 bool has_extension(const std::string& name, std::string_view extension);

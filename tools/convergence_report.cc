@@ -18,8 +18,10 @@ nlohmann::ordered_json band_json(const BandError& b) {
   return {{"band", b.band},
           {"pixels", b.pixels},
           {"max_distance", b.max_distance},
-          {"mean_flip", b.mean_flip},
-          {"psnr_db", std::isfinite(b.psnr_db) ? nlohmann::ordered_json(b.psnr_db) : nullptr}};
+          // A band without pixels has no error to give: null, not a perfect 0.
+          {"mean_flip", b.pixels > 0 ? nlohmann::ordered_json(b.mean_flip) : nullptr},
+          {"psnr_db",
+           b.pixels > 0 && std::isfinite(b.psnr_db) ? nlohmann::ordered_json(b.psnr_db) : nullptr}};
 }
 
 }  // namespace
@@ -31,8 +33,14 @@ void print_convergence(std::ostream& out, const ConvergenceReport& r) {
       << "    band            pixels   farthest   mean FLIP    PSNR\n";
   const auto row = [&](const BandError& b) {
     out << "    " << std::left << std::setw(14) << b.band << std::right << std::setw(8) << b.pixels
-        << std::setw(11) << std::setprecision(0) << std::fixed << b.max_distance << std::setw(12)
-        << std::setprecision(4) << b.mean_flip << std::setw(8) << std::setprecision(1);
+        << std::setw(11) << std::setprecision(0) << std::fixed << b.max_distance;
+    if (b.pixels == 0) {
+      out << std::setw(12) << "-" << std::setw(8) << "-"
+          << "\n";
+      return;
+    }
+    out << std::setw(12) << std::setprecision(4) << b.mean_flip << std::setw(8)
+        << std::setprecision(1);
     if (std::isfinite(b.psnr_db)) {
       out << b.psnr_db << " dB\n";
     } else {

@@ -104,7 +104,7 @@ CLI::App* add_crosscheck_command(CLI::App& app, CrosscheckOptions& options) {
   command
       ->add_option("--repeat", options.repeat,
                    "Render each backend this many times for the frame times (median)")
-      ->check(integer_in(1, 100));
+      ->transform(integer_in(1, 100));
   add_compare_thresholds(command, options.thresholds);
   command->add_flag("--all-pixels", options.all_pixels,
                     "Judge every pixel, also where the two frames draw another triangle (as "

@@ -33,6 +33,13 @@ namespace relief {
 
 namespace {
 
+// The shortest text that reads back as `value` (a message shows what was given, not 6 digits).
+std::string number_text(double value) {
+  char text[32];
+  const auto [end, error] = std::to_chars(text, text + sizeof text, value);
+  return error == std::errc() ? std::string(text, end) : std::to_string(value);
+}
+
 // The lines of the first levels, where subdivision creases lie (creases.h).
 constexpr int kCreaseLevels = 3;
 
@@ -128,44 +135,50 @@ CLI::App* add_generate_command(CLI::App& app, GenerateOptions& o) {
   cmd->add_option("--size", o.size,
                   "Samples a side, 2^k + 1 from 3 to " + std::to_string(kMaxGeneratedSize) +
                       " (the last row and column repeat the first: the map tiles)")
-      ->check(integer_in(INT_MIN, INT_MAX))
+      ->transform(integer_in(INT_MIN, INT_MAX))
       ->capture_default_str();
   cmd->add_option("--seed", o.seed, "Seed of the random displacements (0 to 2^64 - 1)")
       // In digits and within 64 bits: CLI11 wrapped -1 and 2^64 around without a word.
-      ->check(CLI::Validator(
-          [](const std::string& text) {
+      ->transform(CLI::Validator(
+          [](std::string& text) {
             std::uint64_t value = 0;
             const auto [end, error] =
                 std::from_chars(text.data(), text.data() + text.size(), value);
-            return text.empty() || error != std::errc() || end != text.data() + text.size()
-                       ? "'" + brief_text(text, 40) +
-                             "' is not a whole number from 0 to 18446744073709551615"
-                       : std::string();
+            if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
+              return "'" + brief_text(text, 40) +
+                     "' is not a whole number from 0 to 18446744073709551615";
+            }
+            text = std::to_string(value);  // decimal as read here: CLI11 reads "017" as octal
+            return std::string();
           },
           "SEED"))
       ->capture_default_str();
   cmd->add_option("--roughness", o.roughness,
                   "H, 0 to 2: the displacement at spacing d is amplitude d^H (d in units of the "
                   "map's side); lower is rougher")
+      ->check(kNonEmptyNumber)
       ->capture_default_str();
   cmd->add_option("--amplitude", o.amplitude,
                   "Standard deviation of the coarsest displacement (Perlin: the first octave's "
                   "amplitude), in height units, 0 to 1e7")
+      ->check(kNonEmptyNumber)
       ->capture_default_str();
   cmd->add_option("--smooth", o.smooth, "Smoothing passes of [1 2 1] / 4 along x and z, 0 to 64")
-      ->check(integer_in(INT_MIN, INT_MAX))
+      ->transform(integer_in(INT_MIN, INT_MAX))
       ->capture_default_str();
   cmd->add_option("--cells", o.cells,
                   "perlin: the first octave's cells across the map, a power of two up to "
                   "(size - 1) / 2")
-      ->check(integer_in(INT_MIN, INT_MAX))
+      ->transform(integer_in(INT_MIN, INT_MAX))
       ->capture_default_str();
   o.output_option = cmd->add_option("-o,--output", o.output,
                                     "The map: .png (16-bit grey), .pfm, .exr or .r16 (RAW16)")
                         ->required();
-  cmd->add_option("--creases", o.creases,
-                  "Also write the second differences (Miller's creases) as a heat map PNG");
-  cmd->add_option("--json", o.json, "Also write the figures (range, creasing) as JSON");
+  o.creases_option =
+      cmd->add_option("--creases", o.creases,
+                      "Also write the second differences (Miller's creases) as a heat map PNG");
+  o.json_option =
+      cmd->add_option("--json", o.json, "Also write the figures (range, creasing) as JSON");
   return cmd;
 }
 
@@ -174,6 +187,13 @@ int run_generate_command(const GenerateOptions& o, std::ostream& out, std::ostre
     err << "relief: error: " << message << "\n";
     return kExitBadInput;
   };
+  for (const auto& [option, value] :
+       {std::pair{o.output_option, &o.output}, std::pair{o.creases_option, &o.creases},
+        std::pair{o.json_option, &o.json}}) {
+    if (given_empty(option, *value)) {
+      return refuse(option->get_name() + " is empty; give a file name");
+    }
+  }
   std::optional<Subdivision> method;
   for (const Subdivision m :
        {Subdivision::kTriangleEdge, Subdivision::kDiamondSquare, Subdivision::kSquareSquare}) {
@@ -193,17 +213,16 @@ int run_generate_command(const GenerateOptions& o, std::ostream& out, std::ostre
                   std::to_string(kMaxGeneratedSize) + " (3, 5, 9, 17, ..., 8193, 16385)");
   }
   if (!(o.roughness >= 0.0 && o.roughness <= 2.0)) {
-    return refuse("--roughness " + brief_text(std::to_string(o.roughness)) +
-                  " is out of range; allowed 0 to 2");
+    return refuse("--roughness " + number_text(o.roughness) + " is out of range; allowed 0 to 2");
   }
   if (!(o.amplitude >= 0.0 && o.amplitude <= 1e7)) {
-    return refuse("--amplitude " + brief_text(std::to_string(o.amplitude)) +
-                  " is out of range; allowed 0 to 1e7");
+    return refuse("--amplitude " + number_text(o.amplitude) + " is out of range; allowed 0 to 1e7");
   }
   if (o.smooth < 0 || o.smooth > 64) {
     return refuse("--smooth " + std::to_string(o.smooth) + " is out of range; allowed 0 to 64");
   }
-  if (o.cells < 1 || o.cells > side / 2 || !std::has_single_bit(unsigned(o.cells))) {
+  if (!method &&  // Perlin's alone
+      (o.cells < 1 || o.cells > side / 2 || !std::has_single_bit(unsigned(o.cells)))) {
     return refuse("--cells " + std::to_string(o.cells) +
                   " is out of range; allowed a power of two from 1 to " + std::to_string(side / 2) +
                   " for --size " + std::to_string(o.size));
@@ -226,8 +245,14 @@ int run_generate_command(const GenerateOptions& o, std::ostream& out, std::ostre
   if (const std::optional<std::string> conflict = same_file_conflict(paths)) {
     return refuse(*conflict);
   }
+  for (const CommandPath& path : paths) {  // before the work, not after it
+    if (const std::optional<std::string> problem = output_path_problem(path.path)) {
+      return refuse(path.option + " " + *problem);
+    }
+  }
   // The grid (square-square keeps the level before too), the file's encoding (at most 2 x 4
   // bytes a sample with a float format's buffers), the crease map and its picture.
+  const double amplitude = o.amplitude + 0.0;  // -0 as 0: the figures say 0
   const std::uintmax_t samples = std::uintmax_t(o.size) * std::uintmax_t(o.size);
   MemoryEstimate estimate;
   estimate.add("the height map",
@@ -251,12 +276,19 @@ int run_generate_command(const GenerateOptions& o, std::ostream& out, std::ostre
     }
     if (method) {
       PeriodicGrid coarse(1);  // one control point at height 0
-      g = subdivide(coarse, {*method, levels, o.amplitude, o.roughness, o.seed, random_levels},
+      g = subdivide(coarse, {*method, levels, amplitude, o.roughness, o.seed, random_levels},
                     shown);
     } else {
-      g = perlin_field({side, o.cells, o.amplitude, o.roughness, o.seed, random_levels}, shown);
+      g = perlin_field({side, o.cells, amplitude, o.roughness, o.seed, random_levels}, shown);
     }
-    smooth_height_map(g, o.smooth);
+    if (progress_shown && o.smooth > 0) {
+      progress.finish();
+      TerminalProgress smoothing("relief generate: smoothing", "passes");
+      smooth_height_map(g, o.smooth, [&](int done, int total) { smoothing.update(done, total); });
+      smoothing.finish();
+    } else {
+      smooth_height_map(g, o.smooth);
+    }
     return g;
   };
   const PeriodicGrid grid = make(1 << 30, true);
@@ -272,7 +304,7 @@ int run_generate_command(const GenerateOptions& o, std::ostream& out, std::ostre
                                     {"size", o.size},
                                     {"seed", o.seed},
                                     {"roughness", o.roughness},
-                                    {"amplitude", o.amplitude},
+                                    {"amplitude", amplitude},
                                     {"smooth", o.smooth},
                                     {"low", low},
                                     {"high", high},

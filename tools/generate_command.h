@@ -31,7 +31,9 @@ struct GenerateOptions {
   std::string creases;  // heat map PNG of the second differences (empty: none)
   std::string json;     // the figures (empty: none)
   MemoryBudget budget;
-  const CLI::Option* output_option = nullptr;
+  const CLI::Option* output_option = nullptr;  // to tell an empty name given from none
+  const CLI::Option* creases_option = nullptr;
+  const CLI::Option* json_option = nullptr;
 };
 
 CLI::App* add_generate_command(CLI::App& app, GenerateOptions& options);

@@ -42,7 +42,7 @@ CLI::App* add_path_command(CLI::App& app, PathOptions& options) {
   cmd->add_option("--out", options.out_dir, "Directory for the frames")->required();
   cmd->add_option("--frames", options.frames, "Number of frames (1 to 10000)")
       ->required()
-      ->check(integer_in(1, kMaxFrames));
+      ->transform(integer_in(1, kMaxFrames));
   cmd->add_option("--from-altitude", options.from_altitude,
                   "Altitude of the first frame above terrain.base_height (> 0, <= 1e9)")
       ->required();

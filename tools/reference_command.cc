@@ -84,19 +84,20 @@ CLI::App* add_reference_command(CLI::App& app, ReferenceOptions& options) {
       ->add_option("--supersample", options.settings.supersample,
                    "N: N x N samples per pixel, averaged with a box filter in linear radiance "
                    "(1-16, and the supersampled viewport at most 16384 a side)")
-      ->check(integer_in(INT_MIN, INT_MAX))  // the range: validate_ground_truth
+      ->transform(integer_in(INT_MIN, INT_MAX))  // the range: validate_ground_truth
       ->capture_default_str();
   command
       ->add_option("--grid-scale", options.settings.grid_scale,
                    "Projected-grid vertices per axis: the scene's times this (1-16, and at most "
                    "8192 a side)")
-      ->check(integer_in(INT_MIN, INT_MAX))  // the range: validate_ground_truth
+      ->transform(integer_in(INT_MIN, INT_MAX))  // the range: validate_ground_truth
       ->capture_default_str();
   command
       ->add_option("--octave-epsilon", options.settings.octave_epsilon,
                    "Sum octaves while their amplitude is at least this fraction of a pixel's "
                    "footprint at the vertex's distance (1e-6 to 1); the scene's last_octave caps "
                    "them")
+      ->check(kNonEmptyNumber)
       ->capture_default_str();
   add_shard_option(command, options.shard,
                    "image's rows, in steps of lcm(64, N) / N rows for N x N samples");
@@ -105,7 +106,8 @@ CLI::App* add_reference_command(CLI::App& app, ReferenceOptions& options) {
                     "each way, half the octave epsilon) and report the difference: mean FLIP "
                     "and PSNR over the image and per band of distance (sky, near, middle and far "
                     "thirds of the terrain). Costs about 16 times the render");
-  command->add_option("--json", options.json, "With --converge: the figures as a JSON file");
+  options.json_option =
+      command->add_option("--json", options.json, "With --converge: the figures as a JSON file");
   command->add_flag("--stats", options.stats,
                     "Also print the stage times of the supersampled frame and the float error "
                     "of the heights at the scene's own grid vertices");
@@ -115,7 +117,8 @@ CLI::App* add_reference_command(CLI::App& app, ReferenceOptions& options) {
 int run_reference_command(const Scene& scene, const ReferenceOptions& options, std::ostream& out,
                           std::ostream& err) {
   for (const auto& [option, value] : {std::pair{options.output_option, &options.output},
-                                      std::pair{options.float_option, &options.float_output}}) {
+                                      std::pair{options.float_option, &options.float_output},
+                                      std::pair{options.json_option, &options.json}}) {
     if (given_empty(option, *value)) {
       err << "relief: error: " << option->get_name() << " is empty; give a file name\n";
       return kExitBadInput;
@@ -153,18 +156,25 @@ int run_reference_command(const Scene& scene, const ReferenceOptions& options, s
     err << "relief: error: " << *conflict << "\n";
     return kExitBadInput;
   }
+  for (const CommandPath& path : paths) {  // the outputs, before the slow render
+    if (path.output) {
+      if (const std::optional<std::string> problem = output_path_problem(path.path)) {
+        err << "relief: error: " << path.option << " " << *problem << "\n";
+        return kExitBadInput;
+      }
+    }
+  }
   GroundTruthSettings settings = options.settings;
   settings.distances = options.converge;
   const GroundTruthSettings doubled = doubled_settings(settings);
   try {
-    validate_ground_truth(scene, settings);
     if (options.converge) {
-      validate_ground_truth(scene, doubled);
+      validate_convergence(scene, settings);
+    } else {
+      validate_ground_truth(scene, settings);
     }
   } catch (const GroundTruthError& e) {
-    err << "relief: error: "
-        << (options.converge ? "--converge renders at twice the settings: " : "") << e.what()
-        << "\n";
+    err << "relief: error: " << e.what() << "\n";
     return kExitBadInput;
   }
   // --shard: a band of whole steps of the image's rows (shard.h), its PNG and float file.

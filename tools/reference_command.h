@@ -29,6 +29,7 @@ struct ReferenceOptions {
   std::string scene_arg;  // SCENE as given: a file is an input no output may name
   const CLI::Option* output_option = nullptr;  // to tell -o "" from no -o
   const CLI::Option* float_option = nullptr;
+  const CLI::Option* json_option = nullptr;
 };
 
 // Adds the command and its own options (SCENE, --set, --threads and --max-memory: cli.cc).

@@ -87,9 +87,9 @@ CLI::App* add_stress_command(CLI::App& app, StressOptions& options) {
                    "WIDTH HEIGHT of the base scene (default 640 512; the viewport axis sets its "
                    "own)")
       ->expected(2)
-      ->check(integer_in(1, 16384));
+      ->transform(integer_in(1, 16384));
   command->add_option("--grid", options.grid_side, "Grid side of the base scene (default 256)")
-      ->check(integer_in(6, 8192));
+      ->transform(integer_in(6, 8192));
   std::string names;
   for (std::string_view name : backend_names()) {
     names += (names.empty() ? "" : ", ") + std::string(name);

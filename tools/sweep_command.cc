@@ -143,7 +143,7 @@ CLI::App* add_sweep_command(CLI::App& app, SweepOptions& options) {
   command
       ->add_option("--repeat", options.repeat,
                    "Frames per configuration; the median time is reported (1-1000)")
-      ->check(integer_in(1, 1000))
+      ->transform(integer_in(1, 1000))
       ->capture_default_str();
   command->add_flag("--quick", options.quick,
                     "A small subset of the configurations (for tests and a first look)");

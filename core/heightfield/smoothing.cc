@@ -4,7 +4,7 @@
 
 namespace relief {
 
-void smooth_height_map(PeriodicGrid& g, int passes) {
+void smooth_height_map(PeriodicGrid& g, int passes, const std::function<void(int, int)>& progress) {
   std::vector<float> line(std::size_t(g.side));
   for (int pass = 0; pass < passes; ++pass) {
     for (int axis = 0; axis < 2; ++axis) {
@@ -20,6 +20,9 @@ void smooth_height_map(PeriodicGrid& g, int passes) {
           at(k) = static_cast<float>(0.25 * (left + right) + 0.5 * line[std::size_t(k)]);
         }
       }
+    }
+    if (progress) {
+      progress(pass + 1, passes);
     }
   }
 }

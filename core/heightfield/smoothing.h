@@ -3,10 +3,14 @@
 // wrapping at the edges, in double, rounded to float once per pass and axis.
 #pragma once
 
+#include <functional>
+
 #include "core/heightfield/periodic_grid.h"
 
 namespace relief {
 
-void smooth_height_map(PeriodicGrid& grid, int passes);
+// `progress(pass, passes)` after each pass.
+void smooth_height_map(PeriodicGrid& grid, int passes,
+                       const std::function<void(int, int)>& progress = {});
 
 }  // namespace relief

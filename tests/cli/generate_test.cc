@@ -90,6 +90,29 @@ TEST_CASE("generatedMapsAreTheSameInEveryFormatAndTile", "[cli]") {
   }
 }
 
+// Whole numbers are decimal whatever their leading zeros (CLI11 alone read "011" as octal 9);
+// --cells binds Perlin alone.
+TEST_CASE("generateReadsNumbersInDecimalAndCellsForPerlinAlone", "[cli]") {
+  test::TempDir dir("generate-numbers");
+  const auto figures = [&](std::vector<std::string> args) {
+    const std::string json = (dir.path() / "f.json").string();
+    args.insert(args.begin(), "generate");
+    args.insert(args.end(), {"-o", (dir.path() / "m.pfm").string(), "--json", json});
+    require_ok(run(args));
+    const std::vector<unsigned char> bytes = read_bytes(json);
+    return nlohmann::json::parse(bytes.begin(), bytes.end());
+  };
+  const nlohmann::json f =
+      figures({"perlin", "--size", "017", "--seed", "017", "--smooth", "010", "--cells", "04"});
+  CHECK(f["size"] == 17);
+  CHECK(f["seed"] == 17);
+  CHECK(f["smooth"] == 10);
+  CHECK(f["cells"] == 4);
+  CHECK(figures({"triangle-edge", "--size", "3"})["size"] == 3);  // --cells 4 > 1: not Perlin's
+  CHECK(figures({"square-square", "--size", "5", "--amplitude", "-0"})["amplitude"].dump() ==
+        "0.0");
+}
+
 TEST_CASE("aGeneratedMapRendersAsATerrainSketch", "[cli]") {
   test::TempDir dir("generate-render");
   const std::string map = (dir.path() / "hills.png").string();
@@ -126,6 +149,17 @@ TEST_CASE("generateRefusesBadOptionsWithNothingWritten", "[cli]") {
   refused({"perlin", "--size", "65", "--cells", "64"}, "--cells 64 is out of range");
   refused({"perlin", "-o", (dir.path() / "map.txt").string()}, "give a file name ending in");
   refused({"perlin", "--creases", out}, "same file");
+  // Empty values are refused, not read as 0 or as no output.
+  refused({"square-square", "--amplitude", ""}, "--amplitude");
+  refused({"square-square", "--roughness", ""}, "--roughness");
+  refused({"square-square", "--creases", ""}, "--creases is empty");
+  refused({"square-square", "--json", ""}, "--json is empty");
+  // Outputs that cannot be written are found before the work, and none is written.
+  refused({"square-square", "--json", (dir.path() / "missing" / "f.json").string()},
+          "does not exist");
+  refused({"square-square", "--json", (dir.path() / (std::string(300, 'j') + ".json")).string()},
+          "the file system allows at most 255");
+  refused({"square-square", "-o", dir.path().string() + "/"}, "give a file name ending in");
   refused({"square-square", "--size", "16385", "--max-memory", "64M"}, "Lower --size");
 }
 

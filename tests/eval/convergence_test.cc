@@ -140,9 +140,21 @@ TEST_CASE("referenceConvergeWritesItsFiguresAndRefusesWhatItCannotDouble", "[gro
                         "leave out --shard", file("x.png"));
   test::require_refused(
       with({"--converge", "--supersample", "16", "-o", file("x.png")}),
-      "--converge renders at twice the settings: --supersample 32 is out of range", file("x.png"));
+      "--supersample 16 leaves no room for --converge, which renders at twice it; allowed 1...8",
+      file("x.png"));
   test::require_refused(with({"--converge", "--octave-epsilon", "1.5e-6", "-o", file("x.png")}),
-                        "--octave-epsilon", file("x.png"));
+                        "--octave-epsilon 1.5e-06 leaves no room", file("x.png"));
+  // The user's own value out of range is named as it is, without --converge's doubling.
+  test::require_refused(with({"--converge", "--supersample", "17", "-o", file("x.png")}),
+                        "--supersample 17 is out of range; allowed 1...16", file("x.png"));
+  test::require_refused(with({"--converge", "--json", "", "-o", file("x.png")}), "--json is empty",
+                        file("x.png"));
+  // An output that cannot be written is found before the slow render.
+  test::require_refused(with({"--converge", "-o", file("missing/x.png")}), "does not exist",
+                        file("missing/x.png"));
+  test::require_refused(
+      with({"--converge", "--json", file(std::string(300, 'j') + ".json"), "-o", file("x.png")}),
+      "the file system allows at most 255", file("x.png"));
   test::require_refused(with({"--converge", "--json", file("r.png"), "-o", file("r.png")}),
                         "same file", file("nothing"));
 }
