@@ -85,14 +85,11 @@ std::vector<int> distance_bands(const GroundTruthImage& image) {
   return band;
 }
 
-ConvergenceReport compare_truths(const GroundTruthImage& base, const GroundTruthImage& doubled,
-                                 const GroundTruthSettings& settings, double pixels_per_degree) {
-  ConvergenceReport report;
-  report.settings = settings;
-  report.doubled = doubled_settings(settings);
+BandedError banded_error(std::span<const float> test, std::span<const float> reference,
+                         const GroundTruthImage& banded_by, double pixels_per_degree) {
   const ImageError error =
-      image_error(base.linear, doubled.linear, base.width, base.height, pixels_per_degree);
-  const std::vector<int> bands = distance_bands(base);
+      image_error(test, reference, banded_by.width, banded_by.height, pixels_per_degree);
+  const std::vector<int> bands = distance_bands(banded_by);
   std::vector<double> flip_sum(kDistanceBands, 0.0), squares(kDistanceBands, 0.0);
   std::vector<std::size_t> count(kDistanceBands, 0);
   std::vector<double> farthest(kDistanceBands, 0.0);
@@ -101,14 +98,13 @@ ConvergenceReport compare_truths(const GroundTruthImage& base, const GroundTruth
     const int b = bands[k];
     double sq = 0;
     for (int c = 0; c < 3; ++c) {
-      const double d =
-          display_value(base.linear[3 * k + c]) - display_value(doubled.linear[3 * k + c]);
+      const double d = display_value(test[3 * k + c]) - display_value(reference[3 * k + c]);
       sq += d * d;
     }
     flip_sum[b] += error.flip_map[k];
     squares[b] += sq;
     ++count[b];
-    farthest[b] = std::max(farthest[b], double(base.distance[k]));
+    farthest[b] = std::max(farthest[b], double(banded_by.distance[k]));
     all_flip += error.flip_map[k];
     all_squares += sq;
   }
@@ -117,14 +113,49 @@ ConvergenceReport compare_truths(const GroundTruthImage& base, const GroundTruth
     const double rmse = pixels > 0 ? std::sqrt(sum_sq / (3.0 * double(pixels))) : 0.0;
     return rmse > 0 ? -20.0 * std::log10(rmse) : INFINITY;
   };
+  BandedError out;
   const std::size_t pixels = bands.size();
-  report.all = {"all", pixels, pixels > 0 ? all_flip / double(pixels) : 0.0,
-                psnr(all_squares, pixels), *std::max_element(farthest.begin(), farthest.end())};
+  out.all = {"all", pixels, pixels > 0 ? all_flip / double(pixels) : 0.0, psnr(all_squares, pixels),
+             *std::max_element(farthest.begin(), farthest.end())};
   for (int b = 0; b < kDistanceBands; ++b) {
-    report.bands.push_back({kDistanceBandNames[b], count[b],
-                            count[b] > 0 ? flip_sum[b] / double(count[b]) : 0.0,
-                            psnr(squares[b], count[b]), farthest[b]});
+    out.bands.push_back({kDistanceBandNames[b], count[b],
+                         count[b] > 0 ? flip_sum[b] / double(count[b]) : 0.0,
+                         psnr(squares[b], count[b]), farthest[b]});
   }
+  return out;
+}
+
+std::vector<double> banded_change(std::span<const float> before, std::span<const float> after,
+                                  const GroundTruthImage& banded_by) {
+  const std::vector<int> bands = distance_bands(banded_by);
+  std::vector<double> sum(kDistanceBands + 1, 0.0);
+  std::vector<std::size_t> count(kDistanceBands + 1, 0);
+  for (std::size_t k = 0; k < bands.size(); ++k) {
+    double change = 0;
+    for (int c = 0; c < 3; ++c) {
+      change += std::abs(display_value(after[3 * k + c]) - display_value(before[3 * k + c]));
+    }
+    change *= 255.0 / 3.0;  // sRGB codes, the mean of the three channels
+    sum[std::size_t(bands[k])] += change;
+    ++count[std::size_t(bands[k])];
+    sum[kDistanceBands] += change;
+    ++count[kDistanceBands];
+  }
+  std::vector<double> out(kDistanceBands + 1, 0.0);
+  for (std::size_t b = 0; b < out.size(); ++b) {
+    out[b] = count[b] > 0 ? sum[b] / double(count[b]) : 0.0;  // the division's domain
+  }
+  return out;
+}
+
+ConvergenceReport compare_truths(const GroundTruthImage& base, const GroundTruthImage& doubled,
+                                 const GroundTruthSettings& settings, double pixels_per_degree) {
+  ConvergenceReport report;
+  report.settings = settings;
+  report.doubled = doubled_settings(settings);
+  BandedError error = banded_error(base.linear, doubled.linear, base, pixels_per_degree);
+  report.all = std::move(error.all);
+  report.bands = std::move(error.bands);
   return report;
 }
 

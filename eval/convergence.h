@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,23 @@ struct ConvergenceReport {
   BandError all;
   std::vector<BandError> bands;  // kDistanceBandNames's order
 };
+
+// The error of `test` against `reference` (linear RGB of the same size as `banded_by`), over
+// the image and per band of `banded_by`'s distances (kDistanceBandNames's order).
+struct BandedError {
+  BandError all;
+  std::vector<BandError> bands;
+};
+BandedError banded_error(std::span<const float> test, std::span<const float> reference,
+                         const GroundTruthImage& banded_by,
+                         double pixels_per_degree = kDefaultPixelsPerDegree);
+
+// How much the picture changes from `before` to `after` (linear RGB, the size of `banded_by`):
+// per band of `banded_by`'s distances and then over the image (kDistanceBands + 1 values), the
+// mean over pixels of the mean over channels of |after - before| in sRGB codes (0 to 255) of
+// the display values; 0 for a band without pixels.
+std::vector<double> banded_change(std::span<const float> before, std::span<const float> after,
+                                  const GroundTruthImage& banded_by);
 
 // The difference of `base` (rendered with distances) and `doubled` (the same scene at
 // doubled_settings), per band of `base`'s distances. Precondition: the two are the same size.

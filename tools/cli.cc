@@ -22,6 +22,7 @@
 #include "tools/atomic_file.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
+#include "tools/flicker_command.h"
 #include "tools/generate_command.h"
 #include "tools/image_library.h"
 #include "tools/path_command.h"
@@ -146,6 +147,11 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   add_scene_args(reference_cmd, scene_args);
   add_threads(reference_cmd, threads);
   add_max_memory(reference_cmd, max_memory);
+  FlickerOptions flicker;  // a camera move in real time and as truth (flicker_command.h)
+  CLI::App* flicker_cmd = add_flicker_command(app, flicker);
+  add_scene_args(flicker_cmd, scene_args);
+  add_threads(flicker_cmd, threads);
+  add_max_memory(flicker_cmd, max_memory);
   ErrorOptions error_options;
   CLI::App* error_cmd = add_error_command(app, error_options);
   add_max_memory(error_cmd, max_memory);
@@ -246,8 +252,8 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   }
   const MemoryBudget budget = memory_budget(parse_memory_size(max_memory), max_memory);
   stages.budget = render.budget = raster_options.budget = crosscheck.budget = budget;
-  reference.budget = error_options.budget = sweep.budget = path.budget = stitch.budget =
-      generate.budget = budget;
+  reference.budget = flicker.budget = error_options.budget = sweep.budget = path.budget =
+      stitch.budget = generate.budget = budget;
   reference.scene_arg = crosscheck.scene_arg = scene_args.scene;
   if (error_cmd->parsed()) {
     return run_error_command(error_options, out, err);
@@ -340,6 +346,9 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     }
     if (reference_cmd->parsed()) {
       return run_reference_command(scene, reference, out, err);
+    }
+    if (flicker_cmd->parsed()) {
+      return run_flicker_command(scene, flicker, out, err);
     }
     if (sweep_cmd->parsed()) {
       return run_sweep_command(scene, sweep, out, err);
