@@ -39,8 +39,18 @@ void validate_convergence(const Scene& scene, const GroundTruthSettings& s) {
     throw GroundTruthError(option + " " + value + " leaves no room for --converge, which renders " +
                            "at twice it; allowed " + allowed + " with --converge");
   };
+  // side, grid >= 1: the scene's validation bounds the viewport and grid below.
   const int side = std::max(scene.viewport.width, scene.viewport.height);
   const int max_supersample = std::min(kMaxSupersample, limits::kMaxViewportSide / side);
+  if (max_supersample < 2) {
+    throw GroundTruthError("--converge renders at twice --supersample, and this " +
+                           std::to_string(scene.viewport.width) + "x" +
+                           std::to_string(scene.viewport.height) +
+                           " viewport leaves no room: its side times 2 exceeds " +
+                           std::to_string(limits::kMaxViewportSide) +
+                           "; lower viewport.width and viewport.height to " +
+                           std::to_string(limits::kMaxViewportSide / 2) + " or less");
+  }
   if (2 * s.supersample > max_supersample) {
     refuse("--supersample", std::to_string(s.supersample),
            "1..." + std::to_string(max_supersample / 2) + " for this " +
@@ -49,6 +59,14 @@ void validate_convergence(const Scene& scene, const GroundTruthSettings& s) {
   }
   const int grid = std::max(scene.grid.width, scene.grid.height);
   const int max_scale = std::min(kMaxGridScale, limits::kMaxGridSide / grid);
+  if (max_scale < 2) {
+    throw GroundTruthError(
+        "--converge renders at twice --grid-scale, and this " + std::to_string(scene.grid.width) +
+        "x" + std::to_string(scene.grid.height) +
+        " grid leaves no room: its side times 2 exceeds " + std::to_string(limits::kMaxGridSide) +
+        "; lower grid.width and grid.height to " + std::to_string(limits::kMaxGridSide / 2) +
+        " or less");
+  }
   if (2 * s.grid_scale > max_scale) {
     refuse("--grid-scale", std::to_string(s.grid_scale),
            "1..." + std::to_string(max_scale / 2) + " for this " +
@@ -58,7 +76,9 @@ void validate_convergence(const Scene& scene, const GroundTruthSettings& s) {
   if (0.5 * s.octave_epsilon < kMinOctaveEpsilon) {
     std::ostringstream value;
     value << std::setprecision(17) << s.octave_epsilon;
-    refuse("--octave-epsilon", value.str(), "2e-06...1");
+    std::ostringstream allowed;
+    allowed << 2 * kMinOctaveEpsilon << "..." << kMaxOctaveEpsilon;
+    refuse("--octave-epsilon", value.str(), allowed.str());
   }
   validate_ground_truth(scene, doubled_settings(s));  // what is left: none, by the above
 }

@@ -28,28 +28,32 @@ FlickerReport summarise_flicker(std::vector<FlickerFrame> frames) {
   report.realtime_change.assign(values, 0.0);
   report.truth_change.assign(values, 0.0);
   report.mean_flip.assign(values, 0.0);
-  std::vector<std::size_t> flip_frames(values, 0);
-  std::size_t moves = 0;
+  report.change_frames.assign(values, 0);
+  report.flip_frames.assign(values, 0);
   for (const FlickerFrame& f : frames) {
     for (std::size_t b = 0; b < values; ++b) {
+      // The band's pixels in this frame (its bands and its change's: the same truth's).
       const BandError& e = b < kDistanceBands ? f.error.bands[b] : f.error.all;
-      if (e.pixels > 0) {
-        report.mean_flip[b] += e.mean_flip;
-        ++flip_frames[b];
+      if (e.pixels == 0) {
+        continue;
       }
-    }
-    if (!f.realtime.empty()) {
-      ++moves;
-      for (std::size_t b = 0; b < values; ++b) {
+      report.mean_flip[b] += e.mean_flip;
+      ++report.flip_frames[b];
+      if (!f.realtime.empty()) {
         report.realtime_change[b] += f.realtime[b];
         report.truth_change[b] += f.truth[b];
+        ++report.change_frames[b];
       }
     }
   }
   for (std::size_t b = 0; b < values; ++b) {  // the divisions' domain: counts > 0
-    report.mean_flip[b] = flip_frames[b] > 0 ? report.mean_flip[b] / double(flip_frames[b]) : 0.0;
-    report.realtime_change[b] = moves > 0 ? report.realtime_change[b] / double(moves) : 0.0;
-    report.truth_change[b] = moves > 0 ? report.truth_change[b] / double(moves) : 0.0;
+    if (report.flip_frames[b] > 0) {
+      report.mean_flip[b] /= double(report.flip_frames[b]);
+    }
+    if (report.change_frames[b] > 0) {
+      report.realtime_change[b] /= double(report.change_frames[b]);
+      report.truth_change[b] /= double(report.change_frames[b]);
+    }
   }
   report.frames = std::move(frames);
   return report;

@@ -30,8 +30,10 @@ struct FlickerFrame {
 struct FlickerReport {
   std::vector<FlickerFrame> frames;
   // Means over frames 1 ... F - 1 (per band, then all: kDistanceBands + 1 values), and the mean
-  // FLIP of every frame against its truth per band.
+  // FLIP of every frame against its truth per band, each over the frames where the band has
+  // pixels; `*_frames` count them (0: the band was empty throughout, and its means say nothing).
   std::vector<double> realtime_change, truth_change, mean_flip;
+  std::vector<std::size_t> change_frames, flip_frames;
 };
 
 // The means of `frames` (each with its changes but frame 0).

@@ -127,7 +127,7 @@ GroundTruthLod ground_truth_lod(const Scene& scene, const SceneResources& resour
 }
 
 int ground_truth_shard_unit(int supersample) {
-  return band_granule(supersample) / supersample;
+  return band_granule(supersample) / supersample;  // supersample >= 1, and divides the lcm
 }
 
 MemoryEstimate ground_truth_memory(const Scene& scene, const GroundTruthSettings& settings,

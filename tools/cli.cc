@@ -254,7 +254,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   stages.budget = render.budget = raster_options.budget = crosscheck.budget = budget;
   reference.budget = flicker.budget = error_options.budget = sweep.budget = path.budget =
       stitch.budget = generate.budget = budget;
-  reference.scene_arg = crosscheck.scene_arg = scene_args.scene;
+  reference.scene_arg = crosscheck.scene_arg = flicker.scene_arg = scene_args.scene;
   if (error_cmd->parsed()) {
     return run_error_command(error_options, out, err);
   }

@@ -1,5 +1,6 @@
 #include "tools/flicker_command.h"
 
+#include <charconv>
 #include <cmath>
 #include <iomanip>
 #include <optional>
@@ -13,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/scene/json_input.h"
+#include "core/scene/scene_json.h"
 #include "eval/flicker.h"
 #include "eval/image_error.h"
 #include "pipeline/frame.h"
@@ -36,13 +38,23 @@ namespace {
 constexpr double kMaxForwardStep = 1e4;
 constexpr double kMaxTurnStep = 45.0;
 
-nlohmann::ordered_json bands_json(const std::vector<double>& values) {
+// Per band, then "all"; null where `counts` says the band had no pixels (no figure, not a
+// perfect one).
+nlohmann::ordered_json bands_json(const std::vector<double>& values,
+                                  const std::vector<std::size_t>& counts) {
   nlohmann::ordered_json out = nlohmann::ordered_json::object();
-  for (int b = 0; b < kDistanceBands; ++b) {
-    out[kDistanceBandNames[b]] = values[std::size_t(b)];
+  for (std::size_t b = 0; b <= kDistanceBands; ++b) {
+    out[b < kDistanceBands ? kDistanceBandNames[b] : "all"] =
+        counts[b] > 0 ? nlohmann::ordered_json(values[b]) : nullptr;
   }
-  out["all"] = values[kDistanceBands];
   return out;
+}
+
+// The shortest text that reads back as `value`.
+std::string number_text(double value) {
+  char text[32];
+  const auto [end, error] = std::to_chars(text, text + sizeof text, value);
+  return error == std::errc() ? std::string(text, end) : std::to_string(value);
 }
 
 }  // namespace
@@ -90,11 +102,10 @@ int run_flicker_command(const Scene& scene, const FlickerOptions& o, std::ostrea
   const CameraMove move = o.move == "forward" ? CameraMove::kForward : CameraMove::kTurn;
   const double limit = move == CameraMove::kForward ? kMaxForwardStep : kMaxTurnStep;
   if (!(std::abs(o.step) <= limit)) {  // NaN fails
-    std::ostringstream text;
-    text << "--step " << o.step << " is out of range; allowed -" << limit << " to " << limit
-         << (move == CameraMove::kForward ? " world units" : " degrees") << " for --move "
-         << o.move;
-    return refuse(text.str());
+    return refuse("--step " + number_text(o.step) + " is out of range; allowed -" +
+                  number_text(limit) + " to " + number_text(limit) +
+                  (move == CameraMove::kForward ? " world units" : " degrees") + " for --move " +
+                  o.move);
   }
   if (o.frames < 2 || o.frames > kMaxFlickerFrames) {
     return refuse("--frames " + std::to_string(o.frames) + " is out of range; allowed 2 to " +
@@ -107,6 +118,19 @@ int run_flicker_command(const Scene& scene, const FlickerOptions& o, std::ostrea
     if (const std::optional<std::string> problem = output_path_problem(o.json)) {
       return refuse("--json " + *problem);
     }
+    std::vector<CommandPath> paths = scene_input_paths(o.scene_arg, scene);
+    paths.push_back({"--json", o.json});
+    if (const std::optional<std::string> conflict = same_file_conflict(paths)) {
+      return refuse(*conflict);
+    }
+  }
+  // The camera of the last frame must be one a scene may hold (the move is checked whole
+  // before any frame is rendered): its position and yaw within the scene's limits.
+  try {
+    validate_scene(moved_scene(scene, move, o.step, o.frames - 1));
+  } catch (const SceneError& e) {
+    return refuse("--step " + number_text(o.step) + " over --frames " + std::to_string(o.frames) +
+                  " moves the camera out of the scene's range: " + e.what());
   }
   GroundTruthSettings settings = o.settings;
   settings.distances = true;
@@ -158,18 +182,24 @@ int run_flicker_command(const Scene& scene, const FlickerOptions& o, std::ostrea
     for (const FlickerFrame& f : report.frames) {
       nlohmann::ordered_json entry = {{"mean_flip", f.error.all.mean_flip}};
       if (!f.realtime.empty()) {
-        entry["realtime_change"] = bands_json(f.realtime);
-        entry["truth_change"] = bands_json(f.truth);
+        std::vector<std::size_t> band_pixels;
+        for (const BandError& b : f.error.bands) {
+          band_pixels.push_back(b.pixels);
+        }
+        band_pixels.push_back(f.error.all.pixels);
+        entry["realtime_change"] = bands_json(f.realtime, band_pixels);
+        entry["truth_change"] = bands_json(f.truth, band_pixels);
       }
       frames_json.push_back(entry);
     }
-    const nlohmann::ordered_json json = {{"move", o.move},
-                                         {"step", o.step},
-                                         {"frames", o.frames},
-                                         {"mean_flip", bands_json(report.mean_flip)},
-                                         {"realtime_change", bands_json(report.realtime_change)},
-                                         {"truth_change", bands_json(report.truth_change)},
-                                         {"per_frame", frames_json}};
+    const nlohmann::ordered_json json = {
+        {"move", o.move},
+        {"step", o.step},
+        {"frames", o.frames},
+        {"mean_flip", bands_json(report.mean_flip, report.flip_frames)},
+        {"realtime_change", bands_json(report.realtime_change, report.change_frames)},
+        {"truth_change", bands_json(report.truth_change, report.change_frames)},
+        {"per_frame", frames_json}};
     const std::string text = json.dump(2) + "\n";
     write_file_atomically(
         o.json, std::span<const unsigned char>(reinterpret_cast<const unsigned char*>(text.data()),
@@ -183,9 +213,14 @@ int run_flicker_command(const Scene& scene, const FlickerOptions& o, std::ostrea
       << "    band            mean FLIP   change a frame (sRGB codes): real time    truth\n";
   for (std::size_t b = 0; b <= kDistanceBands; ++b) {
     out << "    " << std::left << std::setw(14)
-        << (b < kDistanceBands ? kDistanceBandNames[b] : "all") << std::right << std::setw(11)
-        << report.mean_flip[b] << std::setw(38) << report.realtime_change[b] << std::setw(9)
-        << report.truth_change[b] << "\n";
+        << (b < kDistanceBands ? kDistanceBandNames[b] : "all") << std::right;
+    if (report.flip_frames[b] == 0) {  // an empty band: no figure
+      out << std::setw(11) << "-" << std::setw(38) << "-" << std::setw(9) << "-"
+          << "\n";
+      continue;
+    }
+    out << std::setw(11) << report.mean_flip[b] << std::setw(38) << report.realtime_change[b]
+        << std::setw(9) << report.truth_change[b] << "\n";
   }
   if (!o.json.empty()) {
     out << "wrote " << o.json << "\n";

@@ -27,6 +27,7 @@ struct FlickerOptions {
   GroundTruthSettings settings;
   std::string json;
   MemoryBudget budget;
+  std::string scene_arg;  // SCENE as given: a file is an input --json may not name
   const CLI::Option* json_option = nullptr;
 };
 

@@ -9,6 +9,7 @@
 #include <optional>
 #include <ostream>
 #include <span>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,13 @@ std::string number_text(double value) {
   char text[32];
   const auto [end, error] = std::to_chars(text, text + sizeof text, value);
   return error == std::errc() ? std::string(text, end) : std::to_string(value);
+}
+
+// A figure to read: six significant digits.
+std::string six_digits(double value) {
+  std::ostringstream text;
+  text << std::setprecision(6) << value;
+  return text.str();
 }
 
 // The lines of the first levels, where subdivision creases lie (creases.h).
@@ -266,7 +274,7 @@ int run_generate_command(const GenerateOptions& o, std::ostream& out, std::ostre
   TerminalProgress progress("relief generate", method ? "levels" : "octaves");
   const auto report = [&](int done, int total) { progress.update(done, total); };
   const int levels = std::countr_zero(unsigned(side));
-  // The map, and its interpolant: the same first kCreaseLevels random levels (octaves), then
+  // The map, and its interpolant: the same first kCreaseLevels random levels, then
   // subdivision alone, whose creases are the method's own (Miller's test).
   const auto make = [&](int random_levels, bool progress_shown) {
     PeriodicGrid g;
@@ -293,34 +301,43 @@ int run_generate_command(const GenerateOptions& o, std::ostream& out, std::ostre
   };
   const PeriodicGrid grid = make(1 << 30, true);
   progress.finish();
-  const PeriodicGrid interpolant = make(kCreaseLevels, false);
+  // Subdivision alone has an interpolant to judge (Perlin's octaves are not subdivision).
+  const PeriodicGrid interpolant = method ? make(kCreaseLevels, false) : PeriodicGrid();
 
   const auto [low_it, high_it] = std::minmax_element(grid.heights.begin(), grid.heights.end());
   const double low = *low_it, high = *high_it;
   const double ratio = crease_ratio(grid, kCreaseLevels);
   const double largest = largest_second_difference(grid);
-  const double interpolant_ratio = crease_ratio(interpolant, kCreaseLevels);
-  nlohmann::ordered_json figures = {{"method", o.method},
-                                    {"size", o.size},
-                                    {"seed", o.seed},
-                                    {"roughness", o.roughness},
-                                    {"amplitude", amplitude},
-                                    {"smooth", o.smooth},
-                                    {"low", low},
-                                    {"high", high},
-                                    {"crease_ratio", ratio},
-                                    {"largest_second_difference", largest},
-                                    {"interpolant_crease_ratio", interpolant_ratio}};
+  const double interpolant_ratio = method ? crease_ratio(interpolant, kCreaseLevels) : 0.0;
+  nlohmann::ordered_json figures = {
+      {"method", o.method},
+      {"size", o.size},
+      {"seed", o.seed},
+      {"roughness", o.roughness},
+      {"amplitude", amplitude},
+      {"smooth", o.smooth},
+      {"low", low},
+      {"high", high},
+      {"crease_ratio", ratio},
+      {"largest_second_difference", largest},
+      {"interpolant_crease_ratio", method ? nlohmann::ordered_json(interpolant_ratio) : nullptr}};
   if (!method) {
     figures["cells"] = o.cells;
   }
   // The PNG and RAW16 hold levels: the text says which heights 0 and 65535 stand for (the
   // numbers for terrain.sketch.height).
   const std::vector<ImageText> text = {{"relief:heights", figures.dump()}};
+  // An encoder returns nothing only when it ran out of memory: no empty file written for it.
+  const auto encoded = [](const std::string& file, std::vector<unsigned char> bytes) {
+    if (bytes.empty()) {
+      throw OutputError(file + ": the file could not be encoded (out of memory)");
+    }
+    return bytes;
+  };
   OutputSet files;
-  files.add(o.output, encode_heights(*format, grid, low, high, text));
+  files.add(o.output, encoded(o.output, encode_heights(*format, grid, low, high, text)));
   if (!o.creases.empty()) {
-    files.add(o.creases, crease_picture(interpolant));
+    files.add(o.creases, encoded(o.creases, crease_picture(method ? interpolant : grid)));
   }
   std::string json_text;
   if (!o.json.empty()) {
@@ -337,9 +354,13 @@ int run_generate_command(const GenerateOptions& o, std::ostream& out, std::ostre
       << "  creasing: mean second difference across the first " << kCreaseLevels
       << " levels' lines " << ratio << " x the mean everywhere; largest second difference "
       << largest << "\n"
-      << "  the interpolant of the first " << kCreaseLevels << " random "
-      << (method ? "levels" : "octaves") << ": " << interpolant_ratio << " x"
-      << (o.creases.empty() ? "" : " (its second differences: " + o.creases + ")") << "\n"
+      << (method ? "  the interpolant of the first " + std::to_string(kCreaseLevels) +
+                       " random levels: " + six_digits(interpolant_ratio) + " x"
+                 : std::string("  (Perlin noise is not subdivision: no interpolant)"))
+      << (o.creases.empty() ? ""
+                            : std::string(" (") + (method ? "its" : "the map's") +
+                                  " second differences: " + o.creases + ")")
+      << "\n"
       << "wrote " << o.output << (o.creases.empty() ? "" : " and " + o.creases) << "\n";
   return kExitOk;
 }

@@ -14,7 +14,7 @@
 //     not pass through its control points.
 // The displacement at spacing d (in units of the coarse grid's spacing) has standard deviation
 // amplitude * d^H (Miller's S = k 2^(-iH)): H the roughness. Its values are Gaussian to
-// four moments: the sum of four uniforms from one counter hash (docs/noise-lattice.md, stream
+// three moments: the sum of four uniforms from one counter hash (docs/noise-lattice.md, stream
 // 2), centred and scaled to variance 1 (Irwin-Hall), exact in double. So a map is a pure
 // function of its control points, method, levels, amplitude, H and seed: the same bits on every
 // machine, in any order.

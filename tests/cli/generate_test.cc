@@ -58,11 +58,28 @@ TEST_CASE("generatedMapsAreTheSameInEveryFormatAndTile", "[cli]") {
     const double low = figures["low"], high = figures["high"];
     CHECK(low == *std::min_element(heights.begin(), heights.end()));
     CHECK(high == *std::max_element(heights.begin(), heights.end()));
-    // Tiles: the last row and column repeat the first (rows bottom to top in the PFM).
+    // The file repeats its first row and column last (rows bottom to top in the PFM).
+    const auto h = [&](int x, int z) {
+      return double(heights[std::size_t(z) * n + std::size_t(x)]);
+    };
     for (int k = 0; k < n; ++k) {
-      CHECK(heights[std::size_t(k)] == heights[std::size_t(n - 1) * n + std::size_t(k)]);
-      CHECK(heights[std::size_t(k) * n] == heights[std::size_t(k) * n + std::size_t(n - 1)]);
+      CHECK(h(k, 0) == h(k, n - 1));
+      CHECK(h(0, k) == h(n - 1, k));
     }
+    // And the map tiles without a seam: across the wrap (the first column's neighbours the
+    // second and the second to last) the second differences are like those inside. A map made
+    // without wrapping would break its slope there, far above the inside's mean.
+    double seam = 0, inside = 0;
+    for (int k = 0; k < n - 1; ++k) {
+      seam += std::abs(h(n - 2, k) - 2 * h(0, k) + h(1, k)) +
+              std::abs(h(k, n - 2) - 2 * h(k, 0) + h(k, 1));
+      for (int x = 1; x < n - 1; ++x) {
+        inside += std::abs(h(x - 1, k) - 2 * h(x, k) + h(x + 1, k));
+      }
+    }
+    const double ratio = (seam / (2.0 * (n - 1))) / (inside / (double(n - 1) * (n - 2)));
+    CHECK(ratio > 0.3);
+    CHECK(ratio < 3.0);
     // The PNG: 16-bit levels round((h - low) / (high - low) * 65535), top row = z0, and its
     // text records the range.
     const std::vector<unsigned char> png = read_bytes(file(method + ".png"));
@@ -72,8 +89,8 @@ TEST_CASE("generatedMapsAreTheSameInEveryFormatAndTile", "[cli]") {
     REQUIRE(raw.size() == 2 * std::size_t(n) * std::size_t(n));
     for (int z = 0; z < n; ++z) {
       for (int x = 0; x < n; ++x) {
-        const double h = heights[std::size_t(n - 1 - z) * n + std::size_t(x)];
-        const long expected = std::lround((h - low) / (high - low) * 65535.0);
+        const double height = heights[std::size_t(n - 1 - z) * n + std::size_t(x)];
+        const long expected = std::lround((height - low) / (high - low) * 65535.0);
         const std::size_t k = std::size_t(z) * n + std::size_t(x);
         CHECK(std::abs(long(levels.levels[k]) - expected) <= 1);
         CHECK(raw[2 * k] + 256 * raw[2 * k + 1] == levels.levels[k]);

@@ -144,6 +144,10 @@ TEST_CASE("referenceConvergeWritesItsFiguresAndRefusesWhatItCannotDouble", "[gro
       file("x.png"));
   test::require_refused(with({"--converge", "--octave-epsilon", "1.5e-6", "-o", file("x.png")}),
                         "--octave-epsilon 1.5e-06 leaves no room", file("x.png"));
+  // A viewport too wide to double at all is named as the problem, not "allowed 1...0".
+  test::require_refused(with({"--converge", "--supersample", "1", "--set", "viewport.width=9000",
+                              "--set", "viewport.height=9000", "-o", file("x.png")}),
+                        "viewport leaves no room", file("x.png"));
   // The user's own value out of range is named as it is, without --converge's doubling.
   test::require_refused(with({"--converge", "--supersample", "17", "-o", file("x.png")}),
                         "--supersample 17 is out of range; allowed 1...16", file("x.png"));

@@ -53,8 +53,9 @@ TEST_CASE("bandedChangeIsTheMeanDisplayChangeInSrgbCodes", "[ground-truth]") {
 
 TEST_CASE("flickerOfAStillCameraIsZeroAndOfAMovingOnePositive", "[ground-truth]") {
   test::TempDir dir("flicker");
-  const auto flicker = [&](const std::string& step, const std::string& move) {
-    const std::string json = (dir.path() / ("f" + step + move + ".json")).string();
+  const auto flicker = [&](const std::string& step, const std::string& move,
+                           const std::string& pitch = "-8") {
+    const std::string json = (dir.path() / ("f" + step + move + pitch + ".json")).string();
     const test::CliResult r = test::run({"flicker",       "badlands",
                                          "--set",         "viewport.width=64",
                                          "--set",         "viewport.height=48",
@@ -65,6 +66,7 @@ TEST_CASE("flickerOfAStillCameraIsZeroAndOfAMovingOnePositive", "[ground-truth]"
                                          "--frames",      "3",
                                          "--step",        step,
                                          "--move",        move,
+                                         "--set",         "camera.pitch_deg=" + pitch,
                                          "--json",        json});
     INFO(r.err);
     REQUIRE(r.code == 0);
@@ -81,6 +83,12 @@ TEST_CASE("flickerOfAStillCameraIsZeroAndOfAMovingOnePositive", "[ground-truth]"
   CHECK(moving["truth_change"]["all"].get<double>() > 0.0);
   const nlohmann::json turning = flicker("2", "turn");
   CHECK(turning["realtime_change"]["all"].get<double>() > 0.0);
+  // Looking up at the sky alone: the terrain's bands have no pixels and no figures (null, not
+  // a perfect 0).
+  const nlohmann::json sky = flicker("2", "turn", "60");
+  CHECK(sky["mean_flip"]["far third"].is_null());
+  CHECK(sky["realtime_change"]["near third"].is_null());
+  CHECK(sky["realtime_change"]["sky"].is_number());
 }
 
 TEST_CASE("flickerRefusesBadOptions", "[ground-truth]") {
