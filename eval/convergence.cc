@@ -2,25 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
 #include <numeric>
-#include <sstream>
 #include <string>
 
 #include "core/limits.h"
+#include "core/scene/json_fields.h"
 #include "core/srgb.h"
 #include "eval/image_error.h"
 
 namespace relief {
-
-namespace {
-
-// As image_error: the display value of a linear channel, clamped to [0, 1] (NaN as 0).
-double display_value(float linear) {
-  return srgb_encode(linear > 0.0f ? std::min(double(linear), 1.0) : 0.0);
-}
-
-}  // namespace
 
 GroundTruthSettings doubled_settings(const GroundTruthSettings& settings) {
   GroundTruthSettings out = settings;
@@ -74,11 +64,8 @@ void validate_convergence(const Scene& scene, const GroundTruthSettings& s) {
                " grid");
   }
   if (0.5 * s.octave_epsilon < kMinOctaveEpsilon) {
-    std::ostringstream value;
-    value << std::setprecision(17) << s.octave_epsilon;
-    std::ostringstream allowed;
-    allowed << 2 * kMinOctaveEpsilon << "..." << kMaxOctaveEpsilon;
-    refuse("--octave-epsilon", value.str(), allowed.str());
+    refuse("--octave-epsilon", format_number(s.octave_epsilon),
+           format_number(2 * kMinOctaveEpsilon) + "..." + format_number(kMaxOctaveEpsilon));
   }
   validate_ground_truth(scene, doubled_settings(s));  // what is left: none, by the above
 }

@@ -1,7 +1,6 @@
 #include "eval/ground_truth.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <numbers>
 #include <numeric>
@@ -11,6 +10,7 @@
 
 #include "core/frame_plan.h"
 #include "core/limits.h"
+#include "core/scene/json_fields.h"
 #include "core/srgb.h"
 #include "eval/distance_lod.h"
 #include "pipeline/job_memory.h"
@@ -22,11 +22,8 @@ namespace {
 
 [[noreturn]] void refuse(const std::string& option, double value, const std::string& allowed) {
   // The shortest text that reads back as the value: 1.0000000000000002 is not "1".
-  char number[32];
-  const auto [end, error] = std::to_chars(number, number + sizeof number, value);
-  throw GroundTruthError(option + " " +
-                         (error == std::errc() ? std::string(number, end) : std::to_string(value)) +
-                         " is out of range; allowed " + allowed);
+  throw GroundTruthError(option + " " + format_number(value) + " is out of range; allowed " +
+                         allowed);
 }
 
 // Bands hold whole tiles (render_frame_bands) and whole output pixels.
@@ -156,9 +153,7 @@ GroundTruthImage render_ground_truth(const Scene& scene, const SceneResources& r
   const Scene big = supersampled_scene(scene, settings);
   const int height = scene.viewport.height;
   const int unit = ground_truth_shard_unit(n);
-  if (output_rows.begin < 0 || output_rows.begin % unit != 0 || output_rows.begin >= height ||
-      output_rows.end <= output_rows.begin ||
-      (output_rows.end < height && output_rows.end % unit != 0)) {
+  if (!whole_steps(output_rows, height, unit)) {
     throw std::invalid_argument(
         "render_ground_truth: output rows [" + std::to_string(output_rows.begin) + ", " +
         std::to_string(output_rows.end) + ") are not whole steps of " + std::to_string(unit) +

@@ -8,13 +8,9 @@
 
 namespace relief {
 
-namespace {
-
 double display_value(float linear) {
   return srgb_encode(linear > 0.0f ? std::min(double(linear), 1.0) : 0.0);  // NaN -> 0
 }
-
-}  // namespace
 
 ImageError image_error(std::span<const float> test, std::span<const float> reference, int width,
                        int height, double pixels_per_degree) {

@@ -16,6 +16,9 @@
 
 namespace relief {
 
+// A linear channel's display value: clamped to [0, 1] (NaN as 0), sRGB-encoded.
+double display_value(float linear);
+
 struct ImageError {
   double rmse = 0;
   double psnr_db = 0;  // +infinity when rmse == 0

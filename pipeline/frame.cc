@@ -154,6 +154,11 @@ FrameStats render_bands_with(const Scene& scene, const SceneResources& resources
 
 }  // namespace
 
+bool whole_steps(FrameRows rows, int height, int step) {
+  return rows.begin >= 0 && rows.begin % step == 0 && rows.begin < height &&
+         rows.end > rows.begin && (rows.end >= height || rows.end % step == 0);
+}
+
 FrameStats render_frame_bands(const Scene& scene, const SceneResources& resources,
                               const FrameRequest& request, int band_rows,
                               const std::function<void(const FrameImage&, int)>& consume,
@@ -166,8 +171,7 @@ FrameStats render_frame_bands(const Scene& scene, const SceneResources& resource
                                 std::to_string(raster::kTileSize));
   }
   const int height = scene.viewport.height;
-  if (rows.begin < 0 || rows.begin % raster::kTileSize != 0 || rows.begin >= height ||
-      rows.end <= rows.begin || (rows.end < height && rows.end % raster::kTileSize != 0)) {
+  if (!whole_steps(rows, height, raster::kTileSize)) {
     throw std::invalid_argument("render_frame_bands: rows [" + std::to_string(rows.begin) + ", " +
                                 std::to_string(rows.end) + ") of " + std::to_string(height) +
                                 " do not start at a multiple of " +
@@ -212,8 +216,8 @@ FrameImage image_rows(const FrameImage& image, int first_row, int rows) {
 Frame render_frame_rows(const Scene& scene, const SceneResources& resources,
                         const FrameRequest& request, int first_row, int rows) {
   const int height = scene.viewport.height;
-  if (first_row < 0 || first_row % raster::kTileSize != 0 || rows <= 0 ||
-      first_row + rows > height || (rows % raster::kTileSize != 0 && first_row + rows != height)) {
+  if (!whole_steps({first_row, first_row + rows}, height, raster::kTileSize) ||
+      first_row + rows > height) {
     throw std::invalid_argument("render_frame_rows: rows [" + std::to_string(first_row) + ", " +
                                 std::to_string(first_row + rows) + ") of " +
                                 std::to_string(height) + " do not start at a multiple of " +

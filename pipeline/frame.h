@@ -141,6 +141,10 @@ struct FrameRows {
   int begin = 0;
   int end = INT_MAX;
 };
+// Whether `rows` are whole steps of `step` rows of an image `height` rows high: begin a multiple
+// of step below the top, end above begin and a multiple of step or at or past the top.
+bool whole_steps(FrameRows rows, int height, int step);
+
 FrameStats render_frame_bands(const Scene& scene, const SceneResources& resources,
                               const FrameRequest& request, int band_rows,
                               const std::function<void(const FrameImage&, int)>& consume,

@@ -13,6 +13,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "core/scene/json_fields.h"
 #include "core/scene/json_input.h"
 #include "core/scene/scene_json.h"
 #include "eval/flicker.h"
@@ -48,13 +49,6 @@ nlohmann::ordered_json bands_json(const std::vector<double>& values,
         counts[b] > 0 ? nlohmann::ordered_json(values[b]) : nullptr;
   }
   return out;
-}
-
-// The shortest text that reads back as `value`.
-std::string number_text(double value) {
-  char text[32];
-  const auto [end, error] = std::to_chars(text, text + sizeof text, value);
-  return error == std::errc() ? std::string(text, end) : std::to_string(value);
 }
 
 }  // namespace
@@ -102,8 +96,8 @@ int run_flicker_command(const Scene& scene, const FlickerOptions& o, std::ostrea
   const CameraMove move = o.move == "forward" ? CameraMove::kForward : CameraMove::kTurn;
   const double limit = move == CameraMove::kForward ? kMaxForwardStep : kMaxTurnStep;
   if (!(std::abs(o.step) <= limit)) {  // NaN fails
-    return refuse("--step " + number_text(o.step) + " is out of range; allowed -" +
-                  number_text(limit) + " to " + number_text(limit) +
+    return refuse("--step " + format_number(o.step) + " is out of range; allowed -" +
+                  format_number(limit) + " to " + format_number(limit) +
                   (move == CameraMove::kForward ? " world units" : " degrees") + " for --move " +
                   o.move);
   }
@@ -129,7 +123,7 @@ int run_flicker_command(const Scene& scene, const FlickerOptions& o, std::ostrea
   try {
     validate_scene(moved_scene(scene, move, o.step, o.frames - 1));
   } catch (const SceneError& e) {
-    return refuse("--step " + number_text(o.step) + " over --frames " + std::to_string(o.frames) +
+    return refuse("--step " + format_number(o.step) + " over --frames " + std::to_string(o.frames) +
                   " moves the camera out of the scene's range: " + e.what());
   }
   GroundTruthSettings settings = o.settings;
@@ -192,7 +186,7 @@ int run_flicker_command(const Scene& scene, const FlickerOptions& o, std::ostrea
       }
       frames_json.push_back(entry);
     }
-    const nlohmann::ordered_json json = {
+    const nlohmann::ordered_json summary = {
         {"move", o.move},
         {"step", o.step},
         {"frames", o.frames},
@@ -200,7 +194,7 @@ int run_flicker_command(const Scene& scene, const FlickerOptions& o, std::ostrea
         {"realtime_change", bands_json(report.realtime_change, report.change_frames)},
         {"truth_change", bands_json(report.truth_change, report.change_frames)},
         {"per_frame", frames_json}};
-    const std::string text = json.dump(2) + "\n";
+    const std::string text = summary.dump(2) + "\n";
     write_file_atomically(
         o.json, std::span<const unsigned char>(reinterpret_cast<const unsigned char*>(text.data()),
                                                text.size()));

@@ -20,6 +20,7 @@
 #include "core/heightfield/perlin_field.h"
 #include "core/heightfield/smoothing.h"
 #include "core/heightfield/subdivision.h"
+#include "core/scene/json_fields.h"
 #include "core/scene/json_input.h"
 #include "image/image_io.h"
 #include "tools/atomic_file.h"
@@ -33,13 +34,6 @@
 namespace relief {
 
 namespace {
-
-// The shortest text that reads back as `value` (a message shows what was given, not 6 digits).
-std::string number_text(double value) {
-  char text[32];
-  const auto [end, error] = std::to_chars(text, text + sizeof text, value);
-  return error == std::errc() ? std::string(text, end) : std::to_string(value);
-}
 
 // A figure to read: six significant digits.
 std::string six_digits(double value) {
@@ -221,10 +215,11 @@ int run_generate_command(const GenerateOptions& o, std::ostream& out, std::ostre
                   std::to_string(kMaxGeneratedSize) + " (3, 5, 9, 17, ..., 8193, 16385)");
   }
   if (!(o.roughness >= 0.0 && o.roughness <= 2.0)) {
-    return refuse("--roughness " + number_text(o.roughness) + " is out of range; allowed 0 to 2");
+    return refuse("--roughness " + format_number(o.roughness) + " is out of range; allowed 0 to 2");
   }
   if (!(o.amplitude >= 0.0 && o.amplitude <= 1e7)) {
-    return refuse("--amplitude " + number_text(o.amplitude) + " is out of range; allowed 0 to 1e7");
+    return refuse("--amplitude " + format_number(o.amplitude) +
+                  " is out of range; allowed 0 to 1e7");
   }
   if (o.smooth < 0 || o.smooth > 64) {
     return refuse("--smooth " + std::to_string(o.smooth) + " is out of range; allowed 0 to 64");
