@@ -75,22 +75,26 @@ Vec3<Real> layer_albedo(const ShadeParams<Real>& p, const LayerParams<Real>& l,
   return sum * (Real(1) / used);  // domain: used >= 1/3 - 2% for a unit normal
 }
 
-// Sun (Lambert, Phong), hemispherical sky light and ambient.
+// Sun (Lambert, Phong) times the share of its disc the terrain leaves visible (`sun_share`,
+// sun_visibility.h; 1 without cast shadows, which leaves every bit as it was), hemispherical
+// sky light and ambient.
 template <class Real>
 Vec3<Real> light(const ShadeParams<Real>& p, const Vec3<Real>& albedo, const Vec3<Real>& n,
-                 const Vec3<Real>& view, Real specular, ShadeWork& work) {
+                 const Vec3<Real>& view, Real specular, Real sun_share, ShadeWork& work) {
   const Vec3<Real>& to_sun = p.sun_direction;
   const Vec3<Real>& sun = p.sun;
   const Real ndl = std::max(Real(0), dot(n, to_sun));
+  const Real sunlit = ndl * sun_share;
   const Vec3<Real> hemisphere = mix(p.ground_light, p.sky_light, Real(0.5) + Real(0.5) * n.y);
   const Real ambient = p.ambient;
-  Vec3<Real> radiance = albedo * (sun * ndl + hemisphere + Vec3<Real>{ambient, ambient, ambient});
-  if ((specular > Real(0) || p.always_specular) && ndl > Real(0)) {
+  Vec3<Real> radiance =
+      albedo * (sun * sunlit + hemisphere + Vec3<Real>{ambient, ambient, ambient});
+  if ((specular > Real(0) || p.always_specular) && sunlit > Real(0)) {
     ++work.specular_pixels;
     const Vec3<Real> reflected = n * (Real(2) * ndl) - to_sun;
     const Real rv = -dot(reflected, view);
     if (rv > Real(0)) {  // log's domain
-      radiance = radiance + sun * (specular * exp2_det(p.shininess * log2_det(rv)));
+      radiance = radiance + sun * ((specular * sun_share) * exp2_det(p.shininess * log2_det(rv)));
     }
   }
   return radiance;
@@ -202,7 +206,8 @@ Vec3<Real> terrain_radiance(const ShadeParams<Real>& p, const ShadeResources& r,
   }
   // Domain: the largest weight is >= 1/8 > kMinLayerWeight, so used > 0.
   albedo = albedo * (Real(1) / used);
-  Vec3<Real> radiance = light(p, albedo, facing_normal(n, view, work), view, specular / used, work);
+  Vec3<Real> radiance =
+      light(p, albedo, facing_normal(n, view, work), view, specular / used, a.sun, work);
 
   Real fog_distance = distance;
   if (p.water_enabled && p.terrain_water && relative_y < p.water_level && view.y < Real(0)) {

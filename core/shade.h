@@ -38,6 +38,7 @@ struct PixelAttributes {
   Real slope;                                                   // |grad h|
   Real water_depth;                                             // §4.3, interpolated
   Real drop;  // a planet's curvature drop below the height (planet_bend.h); 0 on the plane
+  Real sun;   // the sun disc's visible share (sun_visibility.h); 1 without cast shadows
 };
 
 // The work stage 8 did, counted per pixel (docs/stages.md, "Skipped work").
@@ -94,14 +95,26 @@ struct ShadingInputs {
   std::span<const float> slope;
   std::span<const float> water_depth;  // interpolated per-vertex depth (§4.3)
   std::span<const float> drop = {};    // a planet's curvature drop; empty: 0 (the plane)
+  std::span<const float> sun = {};     // the sun disc's visible share; empty: 1 (no shadows)
 
   template <class Real>
   PixelAttributes<Real> at(std::size_t k) const {
-    return {Real(dx[k]),     Real(dz[k]),          Real(height[k]),
-            Real(dx_ddx[k]), Real(dx_ddy[k]),      Real(dz_ddx[k]),
-            Real(dz_ddy[k]), Real(height_ddx[k]),  Real(height_ddy[k]),
-            Real(nx[k]),     Real(ny[k]),          Real(nz[k]),
-            Real(slope[k]),  Real(water_depth[k]), drop.empty() ? Real(0) : Real(drop[k])};
+    return {Real(dx[k]),
+            Real(dz[k]),
+            Real(height[k]),
+            Real(dx_ddx[k]),
+            Real(dx_ddy[k]),
+            Real(dz_ddx[k]),
+            Real(dz_ddy[k]),
+            Real(height_ddx[k]),
+            Real(height_ddy[k]),
+            Real(nx[k]),
+            Real(ny[k]),
+            Real(nz[k]),
+            Real(slope[k]),
+            Real(water_depth[k]),
+            drop.empty() ? Real(0) : Real(drop[k]),
+            sun.empty() ? Real(1) : Real(sun[k])};
   }
 };
 

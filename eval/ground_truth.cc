@@ -74,6 +74,11 @@ Scene supersampled_scene(const Scene& scene, const GroundTruthSettings& settings
   out.viewport.height *= settings.supersample;
   out.grid.width *= settings.grid_scale;
   out.grid.height *= settings.grid_scale;
+  // Cast shadows' horizon cache as many times finer as the grid, at most its limit
+  // (docs/ground-truth.md, "Cast shadows").
+  out.lighting.shadow_resolution = int(
+      std::min<std::int64_t>(std::int64_t(scene.lighting.shadow_resolution) * settings.grid_scale,
+                             limits::kMaxShadowResolution));
   return out;
 }
 

@@ -46,7 +46,11 @@ CpuBackend<Real>::CpuBackend(const Scene& scene, const NoiseLattice& lattice,
       need_(plan_.layout.size()),
       scene_octaves_(params_.fbm.count),
       state_(frame_raster_state(scene)),
-      tiles_(raster::make_tile_grid(state_)) {}
+      tiles_(raster::make_tile_grid(state_)),
+      shadow_plan_(make_shadow_plan(scene, plan_)),
+      shadow_(make_shadow_params<Real>(shadow_plan_)) {
+  shadow_.skip_lit = request.skips.lit_shadows ? 1 : 0;
+}
 
 template <class Real>
 std::size_t CpuBackend<Real>::units(StageId id) const {
@@ -70,6 +74,9 @@ std::size_t CpuBackend<Real>::units(StageId id) const {
     case StageId::kTriangleSetup:
     case StageId::kBinning:
       return raster::setup_chunk_count(triangles().count());
+    case StageId::kShadowHeights:
+    case StageId::kSunHorizons:
+      return shadow_rows();
     case StageId::kTiles:
       return static_cast<std::size_t>(band_tile_rows()) * tiles_.columns;
   }
@@ -165,6 +172,12 @@ void CpuBackend<Real>::run(StageId id, std::size_t begin, std::size_t end) {
       }
       return;
     }
+    case StageId::kShadowHeights:
+      run_shadow_heights(begin, end);
+      return;
+    case StageId::kSunHorizons:
+      run_sun_horizons(begin, end);
+      return;
     case StageId::kVertexTransform: {
       const ClipSpans<Real> clip{clip_x_, clip_y_, clip_z_, clip_w_};
       // On a planet the bent positions (planet_bend.h), through the same kernels.
@@ -220,6 +233,13 @@ void CpuBackend<Real>::prepare(StageId id) {
     case StageId::kFractal:
       if (planet()) {
         grid_.allocate_bent();
+      }
+      return;
+    case StageId::kShadowHeights:
+      if (shadow_rows() > 0) {
+        shadow_fbm_ = make_fbm_params<Real>(plan_.terrain);
+        choose_coordinate_forms(plan_.terrain, shadow_octave_reach(shadow_plan_), shadow_fbm_);
+        horizons_.allocate(shadow_plan_.resolution, shadow_plan_.levels);
       }
       return;
     case StageId::kVertexTransform: {
@@ -282,12 +302,70 @@ void CpuBackend<Real>::prepare(StageId id) {
           bent ? std::span<const Real>(grid_.bent_drop) : std::span<const Real>{}};
       tile_pass_ = std::make_unique<TilePass<Real>>(
           state_, triangles(), streams, shade_, ShadeResources{&lattice_, textures_}, o,
-          plan_.camera.position.y, image_, kernels_.tiles, band_rows_ < 0 ? 0 : band_first_row_);
+          plan_.camera.position.y, image_, kernels_.tiles, band_rows_ < 0 ? 0 : band_first_row_,
+          shadow_.enabled != 0 ? TileShadows<Real>{&shadow_, &horizons_} : TileShadows<Real>{});
       return;
     }
     default:
       return;
   }
+}
+
+template <class Real>
+std::size_t CpuBackend<Real>::shadow_rows() const {
+  if (shadow_.enabled == 0 || shadow_.sun_set != 0) {
+    return 0;
+  }
+  return std::size_t(shadow_plan_.levels) * std::size_t(shadow_plan_.resolution);
+}
+
+template <class Real>
+void CpuBackend<Real>::run_shadow_heights(std::size_t begin, std::size_t end) {
+  // Stage 3 through the frame's own kernels, one cache row at a time (sun_horizons.h).
+  const int n = shadow_plan_.resolution;
+  thread_local AlignedVector<Real> dx, dz, nu;
+  dx.resize(n);
+  dz.resize(n);
+  nu.resize(n);
+  FbmWork work;
+  for (std::size_t unit = begin; unit < end; ++unit) {
+    const int level = int(unit / n), row = int(unit % n);
+    shadow_row_positions<Real>(shadow_, level, row, dx, dz, nu);
+    const std::span<Real> heights(horizons_.height.data() + horizons_.index(level, row, 0),
+                                  std::size_t(n));
+    const FbmWork row_work = kernels_.fractal(
+        shadow_fbm_, terrain_values_, IndexRange{0, std::size_t(n)}, dx, dz, nu, {}, heights);
+    work.points += row_work.points;
+    work.octaves += row_work.octaves;
+    if (params_.sketch.enabled != 0 && plan_.terrain.sketch != nullptr) {  // §3's base
+      kernels_.sketch(params_.sketch, plan_.terrain.sketch->heights, IndexRange{0, std::size_t(n)},
+                      dx, dz, {}, heights);
+    }
+  }
+  const std::lock_guard<std::mutex> lock(work_mutex_);
+  shadow_fbm_work_.points += work.points;
+  shadow_fbm_work_.octaves += work.octaves;
+}
+
+template <class Real>
+void CpuBackend<Real>::run_sun_horizons(std::size_t begin, std::size_t end) {
+  // Units never span two levels' rows in one call of the sweep.
+  HorizonWork work;
+  const int n = shadow_plan_.resolution;
+  for (std::size_t unit = begin; unit < end;) {
+    const int level = int(unit / n), row = int(unit % n);
+    const int rows_here = int(std::min<std::size_t>(end - unit, std::size_t(n - row)));
+    const HorizonWork part =
+        sweep_sun_horizons<Real>(shadow_, level, RowRange{row, row + rows_here}, horizons_);
+    work.samples += part.samples;
+    work.continuation += part.continuation;
+    work.popped += part.popped;
+    unit += std::size_t(rows_here);
+  }
+  const std::lock_guard<std::mutex> lock(work_mutex_);
+  horizon_work_.samples += work.samples;
+  horizon_work_.continuation += work.continuation;
+  horizon_work_.popped += work.popped;
 }
 
 template <class Real>
@@ -336,7 +414,8 @@ void CpuBackend<Real>::finish(Frame& frame) {
   };
   frame.stats.tile_parts = {
       part("raster (CPU)", times_.raster_ns), part("resolve (CPU)", times_.resolve_ns),
-      part("shade (CPU)", times_.shade_ns), part("encode (CPU)", times_.encode_ns)};
+      part("shadow (CPU)", times_.shadow_ns), part("shade (CPU)", times_.shade_ns),
+      part("encode (CPU)", times_.encode_ns)};
 }
 
 template class CpuBackend<float>;

@@ -23,6 +23,7 @@
 #include "core/octave_coordinates.h"
 #include "core/shading_plan.h"
 #include "core/stage_params.h"
+#include "core/sun_horizons.h"
 #include "core/vertex_culling.h"
 #include "pipeline/cpu_kernels.h"
 #include "pipeline/frame_backend.h"
@@ -70,6 +71,10 @@ class CpuBackend final : public FrameBackend {
   // beyond what the frame's estimate left of the budget.
   void tally_setup();
   bool water_in_view() const;
+  // Cast shadows: the cache's rows to build (levels x N), none without shadows or after sunset.
+  std::size_t shadow_rows() const;
+  void run_shadow_heights(std::size_t begin, std::size_t end);
+  void run_sun_horizons(std::size_t begin, std::size_t end);
 
   const Scene& scene_;
   const NoiseLattice& lattice_;         // the shading's noise (dithering, waves)
@@ -104,6 +109,14 @@ class CpuBackend final : public FrameBackend {
   raster::TileGrid tiles_;
   std::vector<raster::SetupChunk> chunks_;
   raster::RasterStats raster_stats_;
+  // Cast shadows (core/sun_horizons.h): the plan, its parameters, stage 3's parameters for the
+  // cache (its own coordinate forms, every octave the levels sum), the cache and its work.
+  ShadowPlan shadow_plan_;
+  ShadowParams<Real> shadow_;
+  FbmParams<Real> shadow_fbm_;
+  SunHorizonCache<Real> horizons_;
+  FbmWork shadow_fbm_work_;
+  HorizonWork horizon_work_;
   ShadingPlan shading_plan_;
   ShadeParams<Real> shade_;
   FrameImage image_;

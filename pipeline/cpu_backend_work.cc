@@ -111,6 +111,16 @@ void CpuBackend<Real>::describe(StageId id, StageTime& time) const {
       count("normals computed", draws_.valid_draw);
       count("water depths computed", params_.surface.water_enabled ? draws_.valid_draw : 0);
       return;
+    case StageId::kShadowHeights:
+      count("cache levels", std::uint64_t(shadow_plan_.levels));
+      count("cache samples evaluated", shadow_fbm_work_.points);
+      count("cache point-octaves summed", shadow_fbm_work_.octaves);
+      return;
+    case StageId::kSunHorizons:
+      count("samples swept", horizon_work_.samples);
+      count("coarser samples read past a row's end", horizon_work_.continuation);
+      count("hull points skipped for good", horizon_work_.popped);
+      return;
     case StageId::kVertexTransform:
       count("vertices transformed", transformed_);
       return;
@@ -142,6 +152,14 @@ void CpuBackend<Real>::describe(StageId id, StageTime& time) const {
       count("normals turned to face the eye", shade.facing_normals);
       count("water pixels", shade.water_pixels);
       count("fogged pixels", shade.fogged_pixels);
+      if (shadow_.enabled != 0) {
+        const ShadowWork& shadow = w.shadow;
+        count("shadow lookups", shadow.pixels);
+        count("pixels proven lit by four comparisons", shadow.lit);
+        count("pixels with the sun disc's share evaluated", shadow.evaluated);
+        count("pixels in full shadow", shadow.dark);
+        count("pixels beyond the shadow cache", shadow.outside);
+      }
       return;
     }
     default:

@@ -29,6 +29,12 @@ constexpr const char* kPlanetResolveReason =
 constexpr const char* kPlanetShadeReason =
     "the Highway shade has neither the curvature drop nor the planet's sky, water and datum "
     "spheres (core/planet_shading.h)";
+constexpr const char* kHullSweepReason =
+    "a stack per row whose pushes and pops depend on the heights "
+    "(core/sun_horizons.h)";
+constexpr const char* kSunShareReason =
+    "per pixel the four samples of its level of the cache and branches on their horizons "
+    "(core/sun_visibility.h)";
 
 }  // namespace
 
@@ -56,6 +62,10 @@ CpuKernels<float> highway_kernels(bool planet) {
       c.reason = kSetupReason;
     } else if (name == "binning") {
       c.reason = kBinningReason;
+    } else if (name == "hull sweep") {
+      c.reason = kHullSweepReason;
+    } else if (name == "sun's share") {
+      c.reason = kSunShareReason;
     } else if (planet && name == "tile resolve") {
       c.reason = kPlanetResolveReason;
     } else if (planet && name == "tile shade") {

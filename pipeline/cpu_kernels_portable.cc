@@ -1,6 +1,7 @@
 // The portable half of the kernel table (cpu_kernels.h): the loops of core/ and raster/ in the
 // backend's precision. It is the whole table of the reference backends and the fallback of
 // each simd entry that has no Highway kernel.
+#include <string_view>
 #include <type_traits>
 
 #include "core/height_sketch.h"
@@ -29,16 +30,25 @@ CpuKernels<Real> portable_kernels(bool planet) {
       {StageId::kFractal, "sketch", p, ""},
       {StageId::kDrawOutcodes, "vertex outcodes", p, ""},
       {StageId::kSurface, "surface", p, ""},
+      {StageId::kShadowHeights, "fBm", p, ""},
+      {StageId::kShadowHeights, "sketch", p, ""},
+      {StageId::kSunHorizons, "hull sweep", p, ""},
       {StageId::kVertexTransform, "vertex transform", p, ""},
       {StageId::kTriangleSetup, "vertex snap", p, ""},
       {StageId::kTriangleSetup, "clip and edge set-up", p, ""},
       {StageId::kBinning, "binning", p, ""},
       {StageId::kTiles, "tile raster", p, ""},
       {StageId::kTiles, "tile resolve", p, ""},
+      {StageId::kTiles, "sun's share", p, ""},
       {StageId::kTiles, "tile shade", p, ""},
       {StageId::kTiles, "tile encode", p, ""},
   };
   if (planet) {  // docs/planet.md: the bend after stage 3, the normals' rotation after stage 4
+    // No cast shadows on a planet (the scene refuses them): their entries go.
+    std::erase_if(k.choices, [](const KernelChoice& c) {
+      return c.stage == StageId::kShadowHeights || c.stage == StageId::kSunHorizons ||
+             std::string_view(c.kernel) == "sun's share";
+    });
     k.choices.insert(k.choices.begin() + 4, {StageId::kFractal, "planet bend", p, ""});
     k.choices.insert(k.choices.begin() + 7, {StageId::kSurface, "planet normals", p, ""});
   }

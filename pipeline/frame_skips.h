@@ -18,6 +18,7 @@ struct FrameSkips {
   bool dither = true;            // no dithering noise when its amount is 0
   bool specular = true;          // no specular term where its weight is 0
   bool zero_weights = true;      // no texture fetch for a layer or projection of zero weight
+  bool lit_shadows = true;       // no share of the sun disc evaluated where four samples prove it
 };
 
 // Stage 8's share of the skips: the plan's parameters have them all on (make_shade_params);

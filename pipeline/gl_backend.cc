@@ -99,6 +99,13 @@ class GlBackend final : public FrameBackend {
         request_(request),
         plan_(make_frame_plan(scene, resources.terrain_values(), resources.sketch_or_null())),
         params_(make_terrain_params<float>(plan_)) {
+    // Cast shadows have no GLSL twin yet (stage_table.h, kGlHasNoShadows): refused rather than
+    // drawn without them, which a cross-check would report as the GL side's error.
+    if (scene.lighting.shadows) {
+      throw GlBackendError(
+          "lighting.shadows = true: the GL backend has no cast shadows yet; allowed false with "
+          "--backend gl (or render with --backend simd, reference or reference-double)");
+    }
     with_context(session(), "set-up", [&] {
       terrain_ = std::make_unique<gpu::GlTerrain>(plan_.layout, resources_.terrain_values(),
                                                   resources_.sketch_or_null());

@@ -10,6 +10,7 @@
 #include "core/grid_buffers.h"
 #include "core/input_file.h"
 #include "core/limits.h"
+#include "core/sun_horizons.h"
 #include "image/png_header.h"
 #include "pipeline/basis_resources.h"
 #include "pipeline/png_checks.h"
@@ -141,6 +142,16 @@ MemoryEstimate estimate_render_memory(const Scene& scene, Backend backend,
   // 173,349 of 33.5 million), so their worst case refused jobs that fit; the backend counts
   // them with the bins once set up, against what this estimate leaves of the budget.
   estimate.add("grid " + size_text(scene.grid.width, scene.grid.height), vertices * vertex_bytes);
+  // Cast shadows' horizon cache (core/sun_horizons.h): at most kMaxShadowLevels levels of N^2
+  // samples, three values each in the backend's precision (the GL backend refuses shadows).
+  if (scene.lighting.shadows && backend != Backend::kGl) {
+    const std::uintmax_t n = std::uintmax_t(scene.lighting.shadow_resolution);
+    const std::uintmax_t value =
+        backend != Backend::kReferenceDouble ? sizeof(float) : sizeof(double);
+    estimate.add(
+        "shadow cache " + size_text(int(n), int(n)) + " x " + std::to_string(kMaxShadowLevels),
+        n * n * std::uintmax_t(kMaxShadowLevels) * 3 * value);
+  }
   // Set-up's per-thread scratch (raster::PreparedVertices, kept between frames): every vertex
   // one chunk of kSetupChunk triangles spans, padded rows included, 34 bytes each. A narrow
   // grid's chunk spans many rows: on a 2 x 8192 grid 2,049 rows of 16, 1.1 MiB a thread.

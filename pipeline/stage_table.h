@@ -20,6 +20,8 @@ enum class StageId {
   kDrawOutcodes,     // the same from each vertex's own height
   kDrawNeeds,        // which vertices a possibly visible triangle draws
   kSurface,          // stage 4
+  kShadowHeights,    // cast shadows: stage 3's heights on the horizon cache's levels
+  kSunHorizons,      // cast shadows: each cache sample's horizon toward the sun
   kVertexTransform,  // stage 5
   kTriangleSetup,    // stage 6, first half: clip, snap, cull, edge functions
   kBinning,          // stage 6: triangles into screen tiles
@@ -31,6 +33,7 @@ enum class WorkUnit {
   kVertices,        // grid vertices, flat
   kTriangleChunks,  // fixed chunks of kSetupChunk triangles
   kScreenTiles,     // 64 x 64 tiles of the image
+  kCacheRows,       // rows of the shadows' horizon cache, level after level
 };
 
 // Where a stage is implemented, tested and documented. Each implementation is a repository
@@ -64,6 +67,10 @@ struct StageInfo {
 // triangle of valid vertices, and the GPU's clipper drops what lies outside the frustum.
 inline constexpr const char* kGlDrawsEveryTriangle =
     "none: the GL backend draws every valid triangle and the GPU's clipper drops the unseen";
+
+// Cast shadows are not built on the GL side yet: the GL backend refuses lighting.shadows.
+inline constexpr const char* kGlHasNoShadows =
+    "none: not built yet; the GL backend refuses a scene with lighting.shadows";
 
 inline constexpr StageInfo kFrameStages[] = {
     {StageId::kProjectedDomain,
@@ -129,6 +136,24 @@ inline constexpr StageInfo kFrameStages[] = {
      4,
      {"core/surface.cc", "simd/surface-inl.h", "gpu/shaders/surface.comp",
       "tests/core/surface_test.cc", "docs/architecture.md#The frame, stage by stage"}},
+    {StageId::kShadowHeights,
+     "shadow heights",
+     "3 (shadows)",
+     "shadow plan; lattice, sketch texels",
+     "cache heights",
+     WorkUnit::kCacheRows,
+     4,
+     {"core/sun_horizons.cc", "simd/fbm-inl.h", kGlHasNoShadows, "tests/core/sun_horizons_test.cc",
+      "docs/stages.md#Cast shadows"}},
+    {StageId::kSunHorizons,
+     "sun horizons",
+     "4 (shadows)",
+     "cache heights",
+     "cache horizon slopes, runs",
+     WorkUnit::kCacheRows,
+     8,
+     {"core/sun_horizons.cc", "none: a stack per row whose pushes and pops depend on the heights",
+      kGlHasNoShadows, "tests/core/sun_horizons_test.cc", "docs/stages.md#Cast shadows"}},
     {StageId::kVertexTransform,
      "vertex transform",
      "5",

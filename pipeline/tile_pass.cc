@@ -97,7 +97,8 @@ template <class Real>
 TilePass<Real>::TilePass(const raster::RasterState& state, const raster::GridTriangles& triangles,
                          VertexStreams<Real> streams, const ShadeParams<Real>& shade,
                          const ShadeResources& resources, const FrameOutputs& outputs,
-                         double camera_y, FrameImage& image, TileKernels kernels, int first_row)
+                         double camera_y, FrameImage& image, TileKernels kernels, int first_row,
+                         TileShadows<Real> shadows)
     : state_(state),
       triangles_(triangles),
       streams_(streams),
@@ -108,6 +109,7 @@ TilePass<Real>::TilePass(const raster::RasterState& state, const raster::GridTri
       image_(image),
       kernels_(std::is_same_v<Real, float> ? kernels : TileKernels{}),
       first_row_(first_row),
+      shadows_(shadows),
       scale_x_(state.viewport.width * 0.5),
       scale_y_(state.viewport.height * 0.5),
       translate_x_(state.viewport.x + state.viewport.width * 0.5),
@@ -264,6 +266,26 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
   }
   const Clock::time_point resolved = Clock::now();
 
+  // Cast shadows: each covered pixel's share of the sun disc (sun_visibility.h); without them
+  // the whole disc (the Highway shading reads no share at all then).
+  TileAttributes<Real>& resolved_attributes = scratch->attributes;
+  const bool shadows = shadows_.params != nullptr;
+  if (!shadows) {
+    std::fill(resolved_attributes.sun, resolved_attributes.sun + TileAttributes<Real>::kPixels,
+              Real(1));
+  }
+  for (int py = vis.y0; drawn && shadows && py < vis.y0 + vis.height; ++py) {
+    for (int px = vis.x0; px < vis.x0 + vis.width; ++px) {
+      const std::size_t k = vis.index(px, py);
+      if (vis.primitive[k] != raster::kNoPrimitive) {
+        resolved_attributes.sun[k] = sun_visibility<Real>(
+            *shadows_.params, *shadows_.cache, resolved_attributes.dx[k],
+            resolved_attributes.height[k], resolved_attributes.dz[k], work.shadow);
+      }
+    }
+  }
+  const Clock::time_point shadowed = Clock::now();
+
   // Stage 8: every pixel of the tile, radiance times the exposure; pixels no triangle covers
   // get the background and no terrain shading.
   bool shaded_simd = false;
@@ -271,10 +293,23 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
     if (kernels_.shade == KernelKind::kHighway) {
       const TileAttributes<float>& a = scratch->attributes;
       constexpr std::size_t n = TileAttributes<float>::kPixels;
-      const ShadingInputs in{
-          {vis.primitive, n}, {a.dx, n},     {a.dz, n},     {a.height, n},     {a.dx_ddx, n},
-          {a.dx_ddy, n},      {a.dz_ddx, n}, {a.dz_ddy, n}, {a.height_ddx, n}, {a.height_ddy, n},
-          {a.nx, n},          {a.ny, n},     {a.nz, n},     {a.slope, n},      {a.water_depth, n}};
+      const ShadingInputs in{{vis.primitive, n},
+                             {a.dx, n},
+                             {a.dz, n},
+                             {a.height, n},
+                             {a.dx_ddx, n},
+                             {a.dx_ddy, n},
+                             {a.dz_ddx, n},
+                             {a.dz_ddy, n},
+                             {a.height_ddx, n},
+                             {a.height_ddy, n},
+                             {a.nx, n},
+                             {a.ny, n},
+                             {a.nz, n},
+                             {a.slope, n},
+                             {a.water_depth, n},
+                             {},
+                             shadows ? std::span<const float>(a.sun, n) : std::span<const float>{}};
       simd::shade_rect(shade_, resources_, in, vis.x0, vis.y0, vis.width, vis.height,
                        raster::kTileSize, std::span<float>(scratch->rgb), work.shade);
       shaded_simd = true;
@@ -353,7 +388,8 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
   const Clock::time_point encoded = Clock::now();
   times.raster_ns += nanoseconds_between(start, rasterised);
   times.resolve_ns += nanoseconds_between(rasterised, resolved);
-  times.shade_ns += nanoseconds_between(resolved, shaded);
+  times.shadow_ns += nanoseconds_between(resolved, shadowed);
+  times.shade_ns += nanoseconds_between(shadowed, shaded);
   times.encode_ns += nanoseconds_between(shaded, encoded);
   times.add(work);
 }

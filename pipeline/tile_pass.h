@@ -18,6 +18,7 @@
 
 #include "core/shade.h"
 #include "core/stage_params.h"
+#include "core/sun_visibility.h"
 #include "pipeline/frame.h"
 #include "pipeline/kernel_kind.h"
 #include "raster/bins.h"
@@ -48,11 +49,12 @@ struct TileAttributes {
   Real nx[kPixels], ny[kPixels], nz[kPixels];
   Real slope[kPixels], water_depth[kPixels], nu[kPixels];
   Real drop[kPixels];  // a planet's (resolve() only); 0 on the plane
+  Real sun[kPixels];   // the sun disc's visible share (sun_visibility.h); 1 without shadows
 
   PixelAttributes<Real> at(std::size_t k) const {
-    return {dx[k],     dz[k],     height[k],     dx_ddx[k],      dx_ddy[k],
-            dz_ddx[k], dz_ddy[k], height_ddx[k], height_ddy[k],  nx[k],
-            ny[k],     nz[k],     slope[k],      water_depth[k], drop[k]};
+    return {dx[k],     dz[k],          height[k],     dx_ddx[k], dx_ddy[k], dz_ddx[k],
+            dz_ddy[k], height_ddx[k],  height_ddy[k], nx[k],     ny[k],     nz[k],
+            slope[k],  water_depth[k], drop[k],       sun[k]};
   }
 };
 
@@ -62,12 +64,14 @@ struct TileWork {
   std::uint64_t tile_triangles = 0;  // (triangle, tile) pairs rasterised
   std::uint64_t covered_pixels = 0;  // pixels a triangle covers: attributes resolved
   ShadeWork shade;
+  ShadowWork shadow;  // cast shadows' lookups (sun_visibility.h)
 
   TileWork& operator+=(const TileWork& o) {
     tiles_drawn += o.tiles_drawn;
     tile_triangles += o.tile_triangles;
     covered_pixels += o.covered_pixels;
     shade += o.shade;
+    shadow += o.shadow;
     return *this;
   }
 };
@@ -75,7 +79,7 @@ struct TileWork {
 // CPU time spent in each part of the fused stage, summed over all threads, and the work done
 // (sums of integers: the same whichever threads ran which tiles).
 struct TileTimes {
-  std::atomic<std::int64_t> raster_ns{0}, resolve_ns{0}, shade_ns{0}, encode_ns{0};
+  std::atomic<std::int64_t> raster_ns{0}, resolve_ns{0}, shadow_ns{0}, shade_ns{0}, encode_ns{0};
   std::mutex mutex;
   TileWork work;  // guarded by mutex
 
@@ -90,6 +94,14 @@ struct TileTimes {
 void rasterize_tile_simd(std::span<const raster::SetupChunk> chunks, const raster::TileGrid& tiles,
                          int tile, const raster::RasterState& state, raster::TileVisibility& out);
 
+// Cast shadows for the tiles: the frame's parameters and its swept horizon cache
+// (sun_horizons.h); null params: no shadows, every pixel sees the whole sun.
+template <class Real>
+struct TileShadows {
+  const ShadowParams<Real>* params = nullptr;
+  const SunHorizonCache<Real>* cache = nullptr;
+};
+
 template <class Real>
 class TilePass {
  public:
@@ -100,7 +112,8 @@ class TilePass {
   TilePass(const raster::RasterState& state, const raster::GridTriangles& triangles,
            VertexStreams<Real> streams, const ShadeParams<Real>& shade,
            const ShadeResources& resources, const FrameOutputs& outputs, double camera_y,
-           FrameImage& image, TileKernels kernels = {}, int first_row = 0);
+           FrameImage& image, TileKernels kernels = {}, int first_row = 0,
+           TileShadows<Real> shadows = {});
 
   // Renders tile `tile`; tiles may run concurrently (each writes only its own pixels). With
   // `skip_empty`, a tile no triangle is binned to is not rasterised or resolved.
@@ -124,6 +137,7 @@ class TilePass {
   FrameImage& image_;
   TileKernels kernels_;
   int first_row_;
+  TileShadows<Real> shadows_;
   double scale_x_, scale_y_, translate_x_, translate_y_;  // viewport, as VertexPositions
 };
 

@@ -39,6 +39,11 @@ namespace hn = hwy::HWY_NAMESPACE;
 constexpr double kShadeMinProjectionWeight = 0.01;
 constexpr double kShadeMinLayerWeight = 1e-3;
 
+// The per-pixel fields ShadeRect reads, in AttributeVectors' order.
+constexpr int kShadeFields = 15;
+constexpr int kDepthField = 13;
+constexpr int kSunField = 14;
+
 // What the kernel reads besides the pixels: the parameters and the resources' views.
 struct ShadeContext {
   const ShadeParams<float>* p = nullptr;
@@ -53,6 +58,7 @@ struct AttributeVectors {
   V dx_ddx, dx_ddy, dz_ddx, dz_ddy, height_ddx, height_ddy;
   V nx, ny, nz;
   V slope, water_depth;
+  V sun;  // the sun disc's visible share (1 without cast shadows)
 };
 
 // sample (shade.cc): texture_lod at level 0's size (nearest_mip_lod's level where the frame
@@ -132,19 +138,20 @@ HWY_INLINE V3<V> FacingNormal(D d, const V3<V>& n, const V3<V>& view, M covered,
 // light (shade.cc) for the lanes of `covered`.
 template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
 HWY_INLINE V3<V> Light(D d, const ShadeParams<float>& p, const V3<V>& albedo, const V3<V>& n,
-                       const V3<V>& view, V specular, M covered, ShadeWork& work) {
+                       const V3<V>& view, V specular, V sun_share, M covered, ShadeWork& work) {
   const V zero = hn::Zero(d);
   const V3<V> to_sun = Set3(d, p.sun_direction);
   const V3<V> sun = Set3(d, p.sun);
   const V ndl = StdMax(zero, Dot3(n, to_sun));
+  const V sunlit = hn::Mul(ndl, sun_share);
   const V half = hn::Set(d, 0.5f);
   const V3<V> hemisphere =
       Mix3(Set3(d, p.ground_light), Set3(d, p.sky_light), hn::Add(half, hn::Mul(half, n.y)));
   const V ambient = hn::Set(d, p.ambient);
   V3<V> radiance =
-      Mul3(albedo, Add3(Add3(Scale3(sun, ndl), hemisphere), V3<V>{ambient, ambient, ambient}));
+      Mul3(albedo, Add3(Add3(Scale3(sun, sunlit), hemisphere), V3<V>{ambient, ambient, ambient}));
   const M wanted = p.always_specular ? covered : hn::And(covered, hn::Gt(specular, zero));
-  const M specular_lanes = hn::And(wanted, hn::Gt(ndl, zero));
+  const M specular_lanes = hn::And(wanted, hn::Gt(sunlit, zero));
   const std::size_t count = hn::CountTrue(d, specular_lanes);
   work.specular_pixels += count;
   if (count == 0) {
@@ -156,7 +163,8 @@ HWY_INLINE V3<V> Light(D d, const ShadeParams<float>& p, const V3<V>& albedo, co
   if (hn::AllFalse(d, lit)) {
     return radiance;
   }
-  const V term = hn::Mul(specular, Exp2Det(d, hn::Mul(hn::Set(d, p.shininess), Log2Det(d, rv))));
+  const V term = hn::Mul(hn::Mul(specular, sun_share),
+                         Exp2Det(d, hn::Mul(hn::Set(d, p.shininess), Log2Det(d, rv))));
   return Select3(lit, Add3(radiance, Scale3(sun, term)), radiance);
 }
 
@@ -222,7 +230,7 @@ HWY_INLINE V3<V> TerrainRadiance(D d, const ShadeContext& ctx, const AttributeVe
   }
   albedo = Scale3(albedo, hn::Div(one, used));
   V3<V> radiance = Light(d, p, albedo, FacingNormal(d, n, view, covered, work), view,
-                         hn::Div(specular, used), covered, work);
+                         hn::Div(specular, used), a.sun, covered, work);
 
   V fog_distance = distance;
   if (p.water_enabled && p.terrain_water) {
@@ -299,8 +307,9 @@ HWY_INLINE V3<V> ShadeVector(D d, const ShadeContext& ctx, const std::uint32_t* 
     const auto load = [&](int field) {
       return hn::IfThenElseZero(covered, hn::LoadU(d, fields[field]));
     };
-    const AttributeVectors<V> a{load(0), load(1), load(2), load(3),  load(4),  load(5),  load(6),
-                                load(7), load(8), load(9), load(10), load(11), load(12), load(13)};
+    const AttributeVectors<V> a{load(0),  load(1),  load(2),  load(3),  load(4),
+                                load(5),  load(6),  load(7),  load(8),  load(9),
+                                load(10), load(11), load(12), load(13), load(14)};
     radiance = TerrainRadiance(d, ctx, a, covered, work);
   }
   if (!hn::AllFalse(d, background)) {
@@ -323,13 +332,24 @@ void ShadeRect(const ShadeParams<float>& p, const ShadeResources& r, const Shadi
   for (int layer = 0; layer < p.layer_count; ++layer) {
     ctx.textures[layer] = texture_view_of(r.textures[layer]);
   }
-  const std::span<const float> spans[14] = {
-      in.dx,         in.dz,         in.height, in.dx_ddx, in.dx_ddy, in.dz_ddx, in.dz_ddy,
-      in.height_ddx, in.height_ddy, in.nx,     in.ny,     in.nz,     in.slope,  in.water_depth};
+  const std::span<const float> spans[kShadeFields] = {
+      in.dx,     in.dz,     in.height,     in.dx_ddx,      in.dx_ddy,
+      in.dz_ddx, in.dz_ddy, in.height_ddx, in.height_ddy,  in.nx,
+      in.ny,     in.nz,     in.slope,      in.water_depth, in.sun};
   // The water depth is not resolved (and may be absent) where no terrain lies under water.
   const bool reads_depth = p.water_enabled && p.terrain_water;
+  // Fields read from the constant tail instead: the water depth where it is not read, the sun's
+  // share where the frame has no cast shadows.
+  const auto absent = [&](int f) {
+    return (f == kDepthField && (!reads_depth || spans[f].empty())) ||
+           (f == kSunField && spans[f].empty());
+  };
   constexpr int kMaxLanes = HWY_MAX_BYTES / sizeof(float);
-  HWY_ALIGN float tail[14][kMaxLanes] = {};
+  HWY_ALIGN float tail[kShadeFields][kMaxLanes] = {};
+  // Without cast shadows every pixel sees the whole sun disc (ShadingInputs::sun empty).
+  for (float& share : tail[kSunField]) {
+    share = 1.0f;
+  }
   HWY_ALIGN std::uint32_t tail_primitive[kMaxLanes] = {};
   HWY_ALIGN float out[3 * kMaxLanes];
   ShadeWork work;
@@ -338,19 +358,18 @@ void ShadeRect(const ShadeParams<float>& p, const ShadeResources& r, const Shadi
     for (int i = 0; i < width; i += lanes) {
       const std::size_t k = static_cast<std::size_t>(j) * stride + i;
       const int count = width - i < lanes ? width - i : lanes;
-      const float* fields[14];
+      const float* fields[kShadeFields];
       const std::uint32_t* primitive;
       if (count == lanes) {
-        for (int f = 0; f < 14; ++f) {
-          fields[f] =
-              (f == 13 && (!reads_depth || spans[13].empty())) ? tail[13] : spans[f].data() + k;
+        for (int f = 0; f < kShadeFields; ++f) {
+          fields[f] = absent(f) ? tail[f] : spans[f].data() + k;
         }
         primitive = in.primitive.data() + k;
       } else {
         // The last pixels of the row: copies, the lanes past the rectangle not valid.
-        for (int f = 0; f < 14; ++f) {
-          if (f == 13 && (!reads_depth || spans[13].empty())) {
-            fields[f] = tail[13];
+        for (int f = 0; f < kShadeFields; ++f) {
+          if (absent(f)) {
+            fields[f] = tail[f];
             continue;
           }
           for (int t = 0; t < count; ++t) {

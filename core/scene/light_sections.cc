@@ -35,6 +35,11 @@ const Schema<LightingSettings>& lighting_schema() {
                    {"", "Phong exponent of the layers' specular term"}),
       number_field("exposure", &S::exposure, Range{limits::kMinExposure, limits::kMaxExposure},
                    {"", "linear radiance scale before sRGB encoding"}),
+      boolean_field("shadows", &S::shadows,
+                    {"", "cast shadows: the terrain's horizon toward the sun (not on planets)"}),
+      power_of_two_field("shadow_resolution", &S::shadow_resolution, limits::kMinShadowResolution,
+                         limits::kMaxShadowResolution,
+                         {"samples", "per side of each level of the shadows' horizon cache"}),
   });
   return schema;
 }

@@ -98,6 +98,14 @@ void validate_planet(const Scene& scene) {
     return;
   }
   const double radius = t.planet->radius;
+  // The horizon cache's rows are straight lines along the sun's azimuth on the plane; on a
+  // sphere the sun's direction turns from point to point (docs/stages.md, "Cast shadows").
+  if (scene.lighting.shadows) {
+    throw SceneError("lighting.shadows",
+                     "scene: lighting.shadows = true on a planet (terrain.planet.radius = " +
+                         format_number(radius) +
+                         "): cast shadows are built for the plane only; allowed false here");
+  }
   // The water sphere's radius R + (water level - base height) must be positive: at or below
   // the centre there is no sphere (its equation would draw one of radius |R + w| instead).
   if (t.water_level && !(radius + (*t.water_level - t.base_height) > 0.0)) {

@@ -189,6 +189,10 @@ struct LightingSettings {
   double ambient = 0.03;
   double shininess = 48.0;  // Phong exponent of the layers' specular term
   double exposure = 0.75;   // linear radiance scale before sRGB encoding
+  // Cast shadows: the terrain's horizon toward the sun (core/sun_horizons.h); off: the paper's
+  // image, no shadow pass at all.
+  bool shadows = false;
+  int shadow_resolution = 256;  // samples per side of each level of the horizon cache
 };
 
 // §4.3 water; the level is terrain.water_level.

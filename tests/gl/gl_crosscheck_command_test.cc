@@ -11,6 +11,7 @@
 
 #include "core/frame_plan.h"
 #include "core/scene/scene_json.h"
+#include "tests/gl/gl_presets.h"
 #include "core/stage_params.h"
 #include "gpu/gl_checks.h"
 #include "gpu/gl_terrain.h"
@@ -28,7 +29,7 @@ using test::run;
 
 TEST_CASE("crosscheckOfEveryPresetOnLlvmpipeIsWithinTheDocumentedBounds", "[gl]") {
   test::TempDir dir("crosscheck");
-  for (const std::string& preset : preset_names()) {
+  for (const std::string& preset : test::gl_preset_names()) {
     const std::filesystem::path out = dir.path() / preset;
     const CliResult r =
         run({"crosscheck", preset, "--out", out.string(), "--set", "viewport.width=240", "--set",

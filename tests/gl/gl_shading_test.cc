@@ -14,6 +14,7 @@
 #include <catch2/catch.hpp>
 
 #include "core/scene/scene_json.h"
+#include "tests/gl/gl_presets.h"
 #include "core/shading_plan.h"
 #include "core/stage_params.h"
 #include "core/vertex_culling.h"
@@ -215,7 +216,7 @@ void check_preset(const std::string& preset, const std::vector<std::string>& siz
 }
 
 TEST_CASE("glFramesOfEveryPresetMatchTheCpuFrameWithinTheDocumentedBounds", "[gl]") {
-  for (const std::string& preset : preset_names()) {
+  for (const std::string& preset : test::gl_preset_names()) {
     check_preset(preset, kSize);
   }
   // The nearest mip level (GL_LINEAR_MIPMAP_NEAREST) on both sides.
@@ -293,7 +294,7 @@ TEST_CASE("glDrawRefusesInputsThatDoNotFit", "[gl]") {
 // The figures of docs/gl-shading.md at the README's image size (hidden, [gl-figures]: run it by
 // name).
 TEST_CASE("glFramesAtTheReadmeSize", "[.][gl-figures]") {
-  for (const std::string& preset : preset_names()) {
+  for (const std::string& preset : test::gl_preset_names()) {
     check_preset(preset, {"viewport.width=480", "viewport.height=384"});
   }
 }

@@ -3,10 +3,15 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "core/fbm.h"
+#include "core/height_sketch.h"
 #include "core/input_file.h"
+#include "core/octave_coordinates.h"
 #include "core/shading_plan.h"
 #include "core/srgb.h"
 #include "core/stage_params.h"
+#include "core/sun_horizons.h"
+#include "core/sun_visibility.h"
 #include "core/vertex_transform.h"
 #include "pipeline/cpu_backend.h"
 #include "pipeline/memory_budget.h"
@@ -98,6 +103,70 @@ ShadingInputs shading_inputs(const TerrainFrame& frame, const raster::ResolvedFr
       r.value.size() > 8 ? std::span<const float>(r.value[8]) : std::span<const float>{}};
 }
 
+template <class Real>
+SunHorizonCache<Real> build_horizon_cache(const ShadowPlan& plan, const FramePlan& frame,
+                                          const SceneResources& resources) {
+  SunHorizonCache<Real> cache;
+  if (!plan.enabled || plan.sun_set) {
+    return cache;
+  }
+  const ShadowParams<Real> params = make_shadow_params<Real>(plan);
+  cache.allocate(plan.resolution, plan.levels);
+  FbmParams<Real> fbm = make_fbm_params<Real>(frame.terrain);
+  choose_coordinate_forms(frame.terrain, shadow_octave_reach(plan), fbm);
+  const SketchParams<Real> sketch =
+      make_sketch_params<Real>(frame.terrain.sketch_plan, resources.sketch_or_null());
+  const int n = plan.resolution;
+  std::vector<Real> dx(n), dz(n), nu(n);
+  for (int level = 0; level < plan.levels; ++level) {
+    for (int row = 0; row < n; ++row) {
+      shadow_row_positions<Real>(params, level, row, dx, dz, nu);
+      const std::span<Real> heights(cache.height.data() + cache.index(level, row, 0),
+                                    std::size_t(n));
+      evaluate_fbm<Real>(fbm, resources.terrain_values(), IndexRange{0, std::size_t(n)}, dx, dz, nu,
+                         {}, heights);
+      if (sketch.enabled != 0) {
+        add_sketch<Real>(sketch, resources.sketch_or_null()->heights, IndexRange{0, std::size_t(n)},
+                         dx, dz, {}, heights);
+      }
+    }
+  }
+  for (int level = 0; level < plan.levels; ++level) {
+    sweep_sun_horizons<Real>(params, level, RowRange{0, n}, cache);
+  }
+  return cache;
+}
+
+template SunHorizonCache<float> build_horizon_cache<float>(const ShadowPlan&, const FramePlan&,
+                                                           const SceneResources&);
+template SunHorizonCache<double> build_horizon_cache<double>(const ShadowPlan&, const FramePlan&,
+                                                             const SceneResources&);
+
+namespace {
+
+// Each covered pixel's share of the sun disc from the cache of build_horizon_cache; empty
+// where the scene has no shadows.
+std::vector<float> sun_shares(const Scene& scene, const SceneResources& resources,
+                              const TerrainFrame& frame, const ShadingInputs& inputs) {
+  const ShadowPlan plan = make_shadow_plan(scene, frame.plan);
+  if (!plan.enabled) {
+    return {};
+  }
+  const ShadowParams<float> params = make_shadow_params<float>(plan);
+  const SunHorizonCache<float> cache = build_horizon_cache<float>(plan, frame.plan, resources);
+  std::vector<float> shares(inputs.primitive.size(), 1.0f);
+  ShadowWork work;
+  for (std::size_t k = 0; k < shares.size(); ++k) {
+    if (inputs.primitive[k] != raster::kNoPrimitive) {
+      shares[k] =
+          sun_visibility<float>(params, cache, inputs.dx[k], inputs.height[k], inputs.dz[k], work);
+    }
+  }
+  return shares;
+}
+
+}  // namespace
+
 FrameImage render_whole_frame(const Scene& scene, const SceneResources& resources) {
   const TerrainFrame frame = rasterize_terrain(scene, resources);
   const raster::ResolvedFrame resolved = resolve_for_shading(frame);
@@ -105,7 +174,9 @@ FrameImage render_whole_frame(const Scene& scene, const SceneResources& resource
   ShadeParams<float> params = make_shade_params<float>(plan);
   add_planet_shading(frame.plan, scene.terrain.base_height, params);
   const ShadeResources shade_resources{&resources.lattice, resources.textures};
-  const ShadingInputs inputs = shading_inputs(frame, resolved);
+  ShadingInputs inputs = shading_inputs(frame, resolved);
+  const std::vector<float> shares = sun_shares(scene, resources, frame, inputs);
+  inputs.sun = shares;
   FrameImage image;
   image.width = frame.state.width;
   image.height = frame.state.height;

@@ -11,6 +11,7 @@
 #include "core/grid_buffers.h"
 #include "core/scene/scene.h"
 #include "core/shade.h"
+#include "core/sun_horizons.h"
 #include "pipeline/frame.h"
 #include "pipeline/scene_resources.h"
 #include "raster/rasterize.h"
@@ -49,5 +50,12 @@ ShadingInputs shading_inputs(const TerrainFrame& frame, const raster::ResolvedFr
 
 // The whole frame: sRGB image and linear radiance (FrameImage's srgb and linear).
 FrameImage render_whole_frame(const Scene& scene, const SceneResources& resources);
+
+// Cast shadows' horizon cache composed from core's functions (core/sun_horizons.h): every
+// level's heights by stage 3's portable fBm and sketch, then every row swept. Empty where the
+// plan is disabled or the sun has set.
+template <class Real>
+SunHorizonCache<Real> build_horizon_cache(const ShadowPlan& plan, const FramePlan& frame,
+                                          const SceneResources& resources);
 
 }  // namespace relief

@@ -121,7 +121,7 @@ TEST_CASE("theDoubleBackendRendersTheSameFrameToFloatPrecision", "[frame]") {
 }
 
 TEST_CASE("theStageTableListsEveryStageOnceInFrameOrder", "[frame]") {
-  static_assert(kFrameStageCount == 11);
+  static_assert(kFrameStageCount == 13);
   for (std::size_t k = 0; k < kFrameStageCount; ++k) {
     CHECK(static_cast<std::size_t>(kFrameStages[k].id) == k);
     CHECK(kFrameStages[k].grain > 0);
@@ -133,7 +133,7 @@ TEST_CASE("theStageTableListsEveryStageOnceInFrameOrder", "[frame]") {
   for (std::size_t k = 0; k < kFrameStageCount; ++k) {
     CHECK(frame.stats.stages[k + 1].name == kFrameStages[k].name);
   }
-  CHECK(frame.stats.tile_parts.size() == 4);
+  CHECK(frame.stats.tile_parts.size() == 5);
   CHECK(frame.stats.raster.setup > 0);
 }
 

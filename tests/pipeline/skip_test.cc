@@ -76,7 +76,8 @@ const SkipField kSkips[] = {{"invalid_vertices", &FrameSkips::invalid_vertices},
                             {"fog", &FrameSkips::fog},
                             {"dither", &FrameSkips::dither},
                             {"specular", &FrameSkips::specular},
-                            {"zero_weights", &FrameSkips::zero_weights}};
+                            {"zero_weights", &FrameSkips::zero_weights},
+                            {"lit_shadows", &FrameSkips::lit_shadows}};
 
 FrameSkips nothing_skipped() {
   FrameSkips none;
@@ -153,6 +154,11 @@ TEST_CASE("everySkipLowersTheCountersOfTheWorkItSaves", "[skip]") {
       {"dither", &FrameSkips::dither, "plain", {}, {"dither samples"}},
       {"specular", &FrameSkips::specular, "plain", {}, {"specular terms"}},
       {"zero_weights", &FrameSkips::zero_weights, "alpine", {}, {"texture fetches"}},
+      {"lit_shadows",
+       &FrameSkips::lit_shadows,
+       "sunset",
+       {},
+       {"pixels with the sun disc's share evaluated"}},
   };
   for (const SkipCase& c : cases) {
     const Scene scene = resolve_scene(c.preset, small(c.overrides));
@@ -199,9 +205,15 @@ TEST_CASE("theCountersOfAFrameAddUp", "[skip]") {
     CHECK(counter(frame, "triangles submitted") <= counter(frame, "triangles in the grid"));
     CHECK(counter(frame, "tiles rasterised") <= counter(frame, "tiles"));
     // The stages that ran, by name, in the order of the table (a planet frame evaluates every
-    // valid vertex: no outcodes of the height bounds, docs/planet.md).
+    // valid vertex: no outcodes of the height bounds, docs/planet.md; cast shadows' stages run
+    // where the scene has them).
     for (const StageTime& stage : frame.stats.stages) {
       INFO(stage.name);
+      const bool shadow_stage = stage.name == "shadow heights" || stage.name == "sun horizons";
+      if (shadow_stage) {
+        CHECK(stage.ran == scene.lighting.shadows);
+        continue;
+      }
       CHECK(
           (stage.ran || (scene.terrain.planet && stage.name == "vertex outcodes (height bounds)")));
     }
@@ -217,11 +229,13 @@ TEST_CASE("aStageWithNothingToDoIsReportedSkipped", "[skip]") {
   int skipped = 0;
   for (const StageTime& stage : frame.stats.stages) {
     INFO(stage.name);
-    const bool outcodes = stage.name.rfind("vertex outcodes", 0) == 0;
-    CHECK(stage.ran != outcodes);
-    skipped += outcodes;
+    // The default scene has no cast shadows: their two stages have nothing to do either.
+    const bool idle = stage.name.rfind("vertex outcodes", 0) == 0 ||
+                      stage.name == "shadow heights" || stage.name == "sun horizons";
+    CHECK(stage.ran != idle);
+    skipped += idle;
   }
-  CHECK(skipped == 2);
+  CHECK(skipped == 4);
 }
 
 TEST_CASE("theCountersAreTheSameForEveryThreadCount", "[skip]") {

@@ -53,7 +53,7 @@ void require_same_frames(const Frame& a, const Frame& b) {
 TEST_CASE("everyPresetRendersBitIdenticallyWithTheSimdBackendOnEveryTarget", "[simd]") {
   const EachTarget targets;
   for (const char* preset : {"default", "alpine", "badlands", "craters", "dunes", "island", "lake",
-                             "lava", "plain", "planet"}) {
+                             "lava", "plain", "planet", "sunset"}) {
     const Scene scene = resolve_scene(
         preset, {"viewport.width=203", "viewport.height=131", "grid.width=90", "grid.height=77"});
     const SceneResources resources = load_scene_resources(scene);
@@ -98,16 +98,20 @@ TEST_CASE("simdFramesMatchTheReferenceWithEverySkipOffAndAtOddSizes", "[simd]") 
 }
 
 TEST_CASE("simdFramesAreBitIdenticalForOneTwoAndEightThreads", "[simd]") {
-  const Scene scene = resolve_scene(
-      "lava", {"viewport.width=256", "viewport.height=192", "grid.width=128", "grid.height=128"});
-  const SceneResources resources = load_scene_resources(scene);
-  std::vector<Frame> frames;
-  for (const std::size_t threads : {1, 2, 8}) {
-    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    frames.push_back(render_frame(scene, resources, all_outputs(Backend::kSimd)));
+  // lava, and with cast shadows (their cache's rows are split among the threads too).
+  for (const char* shadows : {"lighting.shadows=false", "lighting.shadows=true"}) {
+    const Scene scene = resolve_scene("lava", {"viewport.width=256", "viewport.height=192",
+                                               "grid.width=128", "grid.height=128", shadows});
+    const SceneResources resources = load_scene_resources(scene);
+    std::vector<Frame> frames;
+    for (const std::size_t threads : {1, 2, 8}) {
+      const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+      frames.push_back(render_frame(scene, resources, all_outputs(Backend::kSimd)));
+    }
+    INFO(shadows);
+    require_same_frames(frames[1], frames[0]);
+    require_same_frames(frames[2], frames[0]);
   }
-  require_same_frames(frames[1], frames[0]);
-  require_same_frames(frames[2], frames[0]);
 }
 
 }  // namespace

@@ -1,0 +1,280 @@
+#include "core/sun_horizons.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/limits.h"
+
+namespace relief {
+
+namespace {
+
+constexpr double kDegree = 3.14159265358979323846 / 180.0;
+// tan of an angle at or past +-90 degrees: +-1e30, past any slope a cache holds.
+constexpr double kHugeTangent = 1e30;
+// The horizon of a sample with no terrain ahead of it within the sweep: far below any sun.
+constexpr double kNoHorizonTangent = -1e6;
+
+double clamped_tangent(double angle_deg) {
+  if (angle_deg >= 90.0) {
+    return kHugeTangent;
+  }
+  if (angle_deg <= -90.0) {
+    return -kHugeTangent;
+  }
+  return std::tan(angle_deg * kDegree);
+}
+
+// The octave count stage 2's rule gives a vertex spacing of `spacing` (frame_plan.h, LodPlan):
+// the cache's heights are what the frame's grid would carry at its spacing.
+double level_octaves(const LodPlan& lod, double spacing) {
+  double nu = lod.c0 - lod.c1 * std::log2(spacing * spacing);  // spacing > 0
+  nu = std::clamp(nu, 1.0, lod.nu_max);
+  return lod.whole_octaves ? std::ceil(nu) : nu;
+}
+
+}  // namespace
+
+ShadowPlan make_shadow_plan(const Scene& scene, const FramePlan& frame) {
+  ShadowPlan plan;
+  const LightingSettings& light = scene.lighting;
+  if (!light.shadows || frame.planet.enabled) {
+    return plan;
+  }
+  plan.enabled = true;
+  const double elevation = light.sun_elevation_deg, radius = scene.sky.sun_disc_deg;
+  const double azimuth = light.sun_azimuth_deg * kDegree;
+  plan.axis_x = std::sin(azimuth);
+  plan.axis_z = -std::cos(azimuth);
+  plan.sin_elevation = std::sin(elevation * kDegree);
+  plan.cos_elevation = std::cos(elevation * kDegree);
+  plan.sin_radius = std::sin(radius * kDegree);
+  plan.lit_tangent = clamped_tangent(elevation - radius);
+  plan.dark_tangent = clamped_tangent(elevation + radius);
+  if (elevation + radius <= 0.0) {
+    plan.sun_set = true;
+    return plan;
+  }
+
+  // The farthest a drawn pixel lies from the camera horizontally: the far plane's corner.
+  const CameraFrame& camera = frame.camera;
+  const double corner = std::sqrt(1.0 + camera.tan_half_fov_x * camera.tan_half_fov_x +
+                                  camera.tan_half_fov_y * camera.tan_half_fov_y);
+  const double pixels = camera.far * corner;
+  // An occluder lies where the disc's lower edge still meets terrain: the whole height range
+  // climbed at tan(elevation - radius) (> 0), or the pixels' own reach where the sun is that low.
+  const double span = std::max(0.0, frame.bounds.world_max - frame.bounds.world_min);
+  plan.reach = plan.lit_tangent > 0.0 ? std::min(span / plan.lit_tangent, pixels) : pixels;
+  const double half_extent = pixels + plan.reach;
+
+  // Level 0's spacing: a few pixels' footprint at the camera's height above the highest
+  // terrain (at least the near plane), a power of two so that it changes rarely as the camera
+  // moves; as many levels as cover the extent, at most kMaxShadowLevels (then level 0 grows).
+  const int n = light.shadow_resolution;
+  plan.resolution = n;
+  const double inner = double(n / 2 - 2);  // samples from the centre to a level's usable edge
+  const double clearance = std::max(camera.position.y - frame.bounds.world_max, camera.near);
+  const double pixel_angle = 2.0 * camera.tan_half_fov_y / scene.viewport.height;
+  double spacing =
+      std::exp2(std::floor(std::log2(std::max(4.0 * pixel_angle * clearance, half_extent * 1e-9))));
+  int levels = 1;
+  while (levels < kMaxShadowLevels && inner * spacing * std::exp2(levels - 1) < half_extent) {
+    ++levels;
+  }
+  while (inner * spacing * std::exp2(levels - 1) < half_extent) {
+    spacing *= 2.0;
+  }
+  plan.levels = levels;
+  const double cam_u = camera.position.x * plan.axis_x + camera.position.z * plan.axis_z;
+  const double cam_v = camera.position.z * plan.axis_x - camera.position.x * plan.axis_z;
+  for (int level = 0; level < levels; ++level) {
+    const double s = spacing * std::exp2(level);
+    plan.spacing[level] = s;
+    // Anchored to the world lattice of spacing s: sample 0 at a whole multiple of s.
+    plan.origin_u[level] = (std::floor(cam_u / s) - n / 2) * s - cam_u;
+    plan.origin_v[level] = (std::floor(cam_v / s) - n / 2) * s - cam_v;
+    plan.nu[level] = level_octaves(frame.lod, s);
+  }
+  return plan;
+}
+
+OctaveReach shadow_octave_reach(const ShadowPlan& plan) {
+  OctaveReach by_finest;
+  for (int level = 0; level < plan.levels; ++level) {
+    // The finest octave the level sums (fbm.h sums octave n where n < nu; nu >= 1).
+    const int n = std::clamp(int(std::ceil(plan.nu[level])) - 1, 0, limits::kMaxOctaves - 1);
+    const double last = double(plan.resolution - 1) * plan.spacing[level];
+    double extent = 0;
+    for (const double u : {plan.origin_u[level], plan.origin_u[level] + last}) {
+      for (const double v : {plan.origin_v[level], plan.origin_v[level] + last}) {
+        // A linear function's largest magnitude over a rectangle is at a corner.
+        extent = std::max({extent, std::abs(u * plan.axis_x - v * plan.axis_z),
+                           std::abs(u * plan.axis_z + v * plan.axis_x)});
+      }
+    }
+    by_finest.extent[n] = std::max(by_finest.extent[n], extent * (1.0 + 1e-6));
+  }
+  // A sample summing octave n sums every coarser one.
+  OctaveReach reach;
+  double farthest = 0.0;
+  for (int n = limits::kMaxOctaves - 1; n >= 0; --n) {
+    farthest = std::max(farthest, by_finest.extent[n]);
+    reach.extent[n] = farthest;
+  }
+  return reach;
+}
+
+template <class Real>
+ShadowParams<Real> make_shadow_params(const ShadowPlan& plan) {
+  ShadowParams<Real> p;
+  p.enabled = plan.enabled ? 1 : 0;
+  p.sun_set = plan.sun_set ? 1 : 0;
+  p.resolution = plan.resolution;
+  p.levels = plan.levels;
+  p.axis_x = Real(plan.axis_x);
+  p.axis_z = Real(plan.axis_z);
+  for (int level = 0; level < plan.levels; ++level) {
+    p.spacing[level] = Real(plan.spacing[level]);
+    p.inv_spacing[level] = Real(1.0 / plan.spacing[level]);  // spacing > 0
+    p.origin_u[level] = Real(plan.origin_u[level]);
+    p.origin_v[level] = Real(plan.origin_v[level]);
+    p.nu[level] = Real(plan.nu[level]);
+  }
+  p.reach = Real(plan.reach);
+  p.sin_elevation = Real(plan.sin_elevation);
+  p.cos_elevation = Real(plan.cos_elevation);
+  p.sin_radius = Real(plan.sin_radius);
+  p.lit_tangent = Real(plan.lit_tangent);
+  p.dark_tangent = Real(plan.dark_tangent);
+  return p;
+}
+
+template <class Real>
+void SunHorizonCache<Real>::allocate(int n, int level_count) {
+  resolution = n;
+  levels = level_count;
+  const std::size_t samples = std::size_t(n) * n * level_count;
+  height.resize(samples);
+  tangent.resize(samples);
+  distance.resize(samples);
+}
+
+template <class Real>
+void shadow_row_positions(const ShadowParams<Real>& p, int level, int row, std::span<Real> dx,
+                          std::span<Real> dz, std::span<Real> nu) {
+  const Real s = p.spacing[level];
+  const Real v = p.origin_v[level] + Real(row) * s;
+  for (int i = 0; i < p.resolution; ++i) {
+    const Real u = p.origin_u[level] + Real(i) * s;
+    dx[i] = u * p.axis_x - v * p.axis_z;
+    dz[i] = u * p.axis_z + v * p.axis_x;
+    nu[i] = p.nu[level];
+  }
+}
+
+namespace {
+
+template <class Real>
+struct HullPoint {
+  Real u, h;
+};
+
+// Drops the hull points that the new point (u, h) hides (each at most once over a sweep) and
+// returns the stack's top: the point that sets (u, h)'s horizon, or null when none lies ahead.
+// The hull is upper-convex from the sun's end; the point nearest the new one is on top. For
+// the new point, the leftmost point of the upper hull of itself and the stack, the largest
+// slope to any point ahead is the slope to its hull neighbour.
+template <class Real>
+const HullPoint<Real>* hull_neighbour(std::vector<HullPoint<Real>>& hull, Real u, Real h,
+                                      std::uint64_t& popped) {
+  while (hull.size() >= 2) {
+    const HullPoint<Real>& a = hull[hull.size() - 1];
+    const HullPoint<Real>& b = hull[hull.size() - 2];
+    // slope(p, a) <= slope(p, b), both runs positive (b lies beyond a, a beyond p).
+    if ((a.h - h) * (b.u - u) > (b.h - h) * (a.u - u)) {
+      break;
+    }
+    hull.pop_back();
+    ++popped;
+  }
+  return hull.empty() ? nullptr : &hull.back();
+}
+
+}  // namespace
+
+template <class Real>
+HorizonWork sweep_sun_horizons(const ShadowParams<Real>& p, int level, RowRange rows,
+                               SunHorizonCache<Real>& cache) {
+  HorizonWork work;
+  const int n = p.resolution;
+  thread_local std::vector<HullPoint<Real>> hull;
+  const Real last_u = p.origin_u[level] + Real(n - 1) * p.spacing[level];
+  const Real farthest = last_u + p.reach;
+  for (int row = rows.begin; row < rows.end; ++row) {
+    hull.clear();
+    const Real v = p.origin_v[level] + Real(row) * p.spacing[level];
+    // The coarser levels past this one's end, from the farthest needed back toward it: each
+    // level's samples beyond the previous level's last, its height interpolated between the
+    // two rows around v (levels nest: v lies inside every coarser level).
+    int top = level;
+    Real covered = last_u;
+    while (top + 1 < p.levels && covered < farthest) {
+      ++top;
+      covered = p.origin_u[top] + Real(n - 1) * p.spacing[top];
+    }
+    for (int m = top; m > level; --m) {
+      const Real s = p.spacing[m];
+      const Real end_before = p.origin_u[m - 1] + Real(n - 1) * p.spacing[m - 1];
+      const Real fj = (v - p.origin_v[m]) * p.inv_spacing[m];
+      const int j0 = std::clamp(int(std::floor(fj)), 0, n - 2);
+      const Real g = std::clamp(fj - Real(j0), Real(0), Real(1));
+      for (int i = n - 1; i >= 0; --i) {
+        const Real u = p.origin_u[m] + Real(i) * s;
+        if (u <= end_before) {
+          break;
+        }
+        if (m == top && u > farthest + s) {
+          continue;  // past the reach (one sample beyond it is kept)
+        }
+        const Real h0 = cache.height[cache.index(m, j0, i)];
+        const Real h1 = cache.height[cache.index(m, j0 + 1, i)];
+        const Real h = h0 + (h1 - h0) * g;
+        hull_neighbour(hull, u, h, work.popped);
+        hull.push_back({u, h});
+        ++work.continuation;
+      }
+    }
+    for (int i = n - 1; i >= 0; --i) {
+      const std::size_t k = cache.index(level, row, i);
+      const Real u = p.origin_u[level] + Real(i) * p.spacing[level];
+      const Real h = cache.height[k];
+      const HullPoint<Real>* ahead = hull_neighbour(hull, u, h, work.popped);
+      if (ahead != nullptr) {
+        const Real run = ahead->u - u;  // > 0: every point ahead lies farther along u
+        cache.distance[k] = run;
+        cache.tangent[k] = (ahead->h - h) / run;
+      } else {
+        cache.distance[k] = p.spacing[level];
+        cache.tangent[k] = Real(kNoHorizonTangent);
+      }
+      hull.push_back({u, h});
+      ++work.samples;
+    }
+  }
+  return work;
+}
+
+template ShadowParams<float> make_shadow_params<float>(const ShadowPlan&);
+template ShadowParams<double> make_shadow_params<double>(const ShadowPlan&);
+template struct SunHorizonCache<float>;
+template struct SunHorizonCache<double>;
+template void shadow_row_positions<float>(const ShadowParams<float>&, int, int, std::span<float>,
+                                          std::span<float>, std::span<float>);
+template void shadow_row_positions<double>(const ShadowParams<double>&, int, int, std::span<double>,
+                                           std::span<double>, std::span<double>);
+template HorizonWork sweep_sun_horizons<float>(const ShadowParams<float>&, int, RowRange,
+                                               SunHorizonCache<float>&);
+template HorizonWork sweep_sun_horizons<double>(const ShadowParams<double>&, int, RowRange,
+                                                SunHorizonCache<double>&);
+
+}  // namespace relief

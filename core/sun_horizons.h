@@ -1,0 +1,123 @@
+// Cast shadows (docs/stages.md, "Cast shadows"): the terrain's horizon toward the sun, per frame,
+// on a clipmap of height samples, and each pixel's share of the sun disc above it.
+//
+// A ray from a ground point toward the sun leaves the terrain's shadow when it passes above
+// every height between the point and the sun; in the vertical plane through the sun's azimuth
+// that is when the sun's elevation exceeds the horizon's: the largest elevation, seen from the
+// point, of the terrain toward the sun. Along a line of samples in that plane the largest
+// elevation of the samples beyond each one is the slope to its neighbour on the upper convex
+// hull of those samples, and one sweep from the sun's end of the line keeps that hull (each
+// sample pushed and popped once): the exact horizon of every sample of the line in time linear
+// in its length (the 1D horizon sweep behind Timonen & Westermann 2010's horizon maps; the
+// castledragmire seed's max-height skip is the hull's pop: a sample below the hull is never
+// looked at again).
+//
+// The samples: `levels` square grids of N x N heights (a clipmap), rows along the sun's
+// horizontal direction, level L spaced 2^L times level 0 and centred on the camera, each
+// anchored to a world-space lattice of its spacing (so a moving camera reuses the same ground
+// points: no swimming). A level's heights are stage 3's fractal and sketch at the level's octave
+// count (the frame's LOD rule at the level's spacing) through the frame's own kernels. A row's
+// sweep continues past its level's edge into the coarser levels (their samples beyond it,
+// interpolated between their rows), up to the farthest an occluder can be: the terrain's whole
+// height range climbed at the sun's slope, capped at the cache's reach.
+//
+// Per sample the sweep stores the horizon's slope `tangent` (rise over run toward the sun) and
+// the run `distance` to the sample that sets it. A pixel (sun_visibility.h) reads its level's
+// four samples around it.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/frame_plan.h"
+#include "core/grid_buffers.h"
+#include "core/octave_coordinates.h"
+#include "core/scene/scene.h"
+
+namespace relief {
+
+inline constexpr int kMaxShadowLevels = 12;
+
+// Derived once per frame in double (docs/stages.md, "Cast shadows").
+struct ShadowPlan {
+  bool enabled = false;
+  // The sun is below the horizon by more than its radius: every pixel is in the shadow of the
+  // ground ahead (no cache is built).
+  bool sun_set = false;
+  int resolution = 0;  // N: samples per side of each level
+  int levels = 0;
+  double axis_x = 1, axis_z = 0;  // unit horizontal direction toward the sun
+  double spacing[kMaxShadowLevels]{};
+  // Camera-relative (u, v) of sample (0, 0) of each level: u along the axis, v = its left.
+  double origin_u[kMaxShadowLevels]{}, origin_v[kMaxShadowLevels]{};
+  double nu[kMaxShadowLevels]{};  // octaves summed at each level (stage 3's count)
+  double reach = 0;               // the horizontal distance an occluder can lie from a pixel
+  double sin_elevation = 0, cos_elevation = 1;
+  double sin_radius = 0;  // of the sun disc's angular radius (sky.sun_disc_deg)
+  // tan(elevation - radius) and tan(elevation + radius): a horizon below the first lights the
+  // whole disc, one above the second hides it (each clamped to +-1e30 at +-90 degrees).
+  double lit_tangent = 0, dark_tangent = 0;
+};
+
+// From the scene's lighting and the frame: the sun, the cache's extent (camera.far plus the
+// occluder reach) and its levels. Disabled where lighting.shadows is off.
+ShadowPlan make_shadow_plan(const Scene& scene, const FramePlan& frame);
+
+// How far from the camera the cache's samples that sum each octave lie (octave_coordinates.h):
+// each level's square at its corners, widened by 1e-6 for the positions' rounding, so that the
+// cache's stage 3 picks coordinate forms from its own extent, not the frame's grid.
+OctaveReach shadow_octave_reach(const ShadowPlan& plan);
+
+// The plan rounded once to the precision the stages run in.
+template <class Real>
+struct ShadowParams {
+  std::int32_t enabled = 0, sun_set = 0;
+  std::int32_t skip_lit = 1;  // FrameSkips::lit_shadows (sun_visibility.h)
+  std::int32_t resolution = 0, levels = 0;
+  Real axis_x = 1, axis_z = 0;
+  Real spacing[kMaxShadowLevels]{}, inv_spacing[kMaxShadowLevels]{};
+  Real origin_u[kMaxShadowLevels]{}, origin_v[kMaxShadowLevels]{};
+  Real nu[kMaxShadowLevels]{};
+  Real reach = 0;
+  Real sin_elevation = 0, cos_elevation = 1, sin_radius = 0;
+  Real lit_tangent = 0, dark_tangent = 0;
+};
+
+template <class Real>
+ShadowParams<Real> make_shadow_params(const ShadowPlan& plan);
+
+// The cache: per level N rows of N samples, row-major, level after level.
+template <class Real>
+struct SunHorizonCache {
+  int resolution = 0, levels = 0;
+  AlignedVector<Real> height;    // camera-relative (stage 3's)
+  AlignedVector<Real> tangent;   // of the horizon toward the sun
+  AlignedVector<Real> distance;  // horizontal run to the sample that sets it (> 0)
+
+  void allocate(int n, int level_count);
+  std::size_t index(int level, int row, int column) const {
+    return (std::size_t(level) * resolution + row) * resolution + column;
+  }
+};
+
+// The camera-relative positions of row `row` of level `level` (N values each), for stage 3's
+// kernels, and their octave count.
+template <class Real>
+void shadow_row_positions(const ShadowParams<Real>& params, int level, int row, std::span<Real> dx,
+                          std::span<Real> dz, std::span<Real> nu);
+
+// The work of the sweep (docs/stages.md, "Skipped work").
+struct HorizonWork {
+  std::uint64_t samples = 0;       // samples of the levels swept
+  std::uint64_t continuation = 0;  // samples of coarser levels read past a row's end
+  std::uint64_t popped = 0;        // hull points dropped: never looked at again
+};
+
+// The horizons of rows [rows.begin, rows.end) of level `level`, from the heights of that level
+// and of the coarser ones (all written before).
+template <class Real>
+HorizonWork sweep_sun_horizons(const ShadowParams<Real>& params, int level, RowRange rows,
+                               SunHorizonCache<Real>& cache);
+
+}  // namespace relief

@@ -1,0 +1,257 @@
+// Cast shadows (core/sun_horizons.h, core/sun_visibility.h): the sweep against a brute-force
+// search of every sample's horizon, the per-pixel share against exact ray casting in double
+// over the whole terrain function, and frame properties that need no oracle at all: shadows
+// only darken, a flat terrain or a sun at the zenith casts none, a set sun lights nothing.
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "core/fbm.h"
+#include "core/scene/scene_json.h"
+#include "core/sun_horizons.h"
+#include "core/sun_visibility.h"
+#include "pipeline/frame.h"
+#include "pipeline/scene_resources.h"
+#include "tests/oracles/whole_frame.h"
+
+namespace relief {
+namespace {
+
+// Two levels of 32 samples, level 1 twice as coarse, both centred on the camera, rows along +x.
+ShadowParams<double> two_levels() {
+  ShadowPlan plan;
+  plan.enabled = true;
+  plan.resolution = 32;
+  plan.levels = 2;
+  plan.axis_x = 1.0;
+  plan.axis_z = 0.0;
+  for (int level = 0; level < 2; ++level) {
+    plan.spacing[level] = std::exp2(level);
+    plan.origin_u[level] = -16.0 * plan.spacing[level];
+    plan.origin_v[level] = -16.0 * plan.spacing[level] + 0.25;  // rows between level 1's
+    plan.nu[level] = 1;
+  }
+  plan.reach = 1e9;  // every coarser sample past the end is an occluder candidate
+  plan.sin_elevation = std::sin(0.3);
+  plan.cos_elevation = std::cos(0.3);
+  plan.sin_radius = std::sin(0.01);
+  plan.lit_tangent = std::tan(0.29);
+  plan.dark_tangent = std::tan(0.31);
+  return make_shadow_params<double>(plan);
+}
+
+TEST_CASE("theSweepFindsEverySamplesHorizonAsABruteForceSearchDoes", "[shadows]") {
+  const ShadowParams<double> p = two_levels();
+  SunHorizonCache<double> cache;
+  cache.allocate(32, 2);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> height(-50.0, 50.0);
+  for (double& h : cache.height) {
+    h = height(random);
+  }
+  for (int level = 0; level < 2; ++level) {
+    sweep_sun_horizons<double>(p, level, RowRange{0, 32}, cache);
+  }
+  for (int level = 0; level < 2; ++level) {
+    for (int row = 0; row < 32; ++row) {
+      // The candidates: the row's own samples, then (level 0) level 1's past the row's end,
+      // their heights interpolated between level 1's two rows around the row's v.
+      std::vector<std::pair<double, double>> line;
+      for (int i = 0; i < 32; ++i) {
+        line.push_back(
+            {p.origin_u[level] + i * p.spacing[level], cache.height[cache.index(level, row, i)]});
+      }
+      if (level == 0) {
+        const double v = p.origin_v[0] + row * p.spacing[0];
+        const double fj = (v - p.origin_v[1]) / p.spacing[1];
+        const int j0 = int(std::floor(fj));
+        const double g = fj - j0;
+        for (int i = 0; i < 32; ++i) {
+          const double u = p.origin_u[1] + i * p.spacing[1];
+          if (u > line[31].first) {
+            const double h0 = cache.height[cache.index(1, j0, i)];
+            const double h1 = cache.height[cache.index(1, j0 + 1, i)];
+            line.push_back({u, h0 + (h1 - h0) * g});
+          }
+        }
+      }
+      for (int i = 0; i < 32; ++i) {
+        double best = -HUGE_VAL;
+        for (std::size_t k = 0; k < line.size(); ++k) {
+          if (line[k].first > line[i].first) {
+            best =
+                std::max(best, (line[k].second - line[i].second) / (line[k].first - line[i].first));
+          }
+        }
+        INFO("level " << level << " row " << row << " sample " << i);
+        const std::size_t at = cache.index(level, row, i);
+        if (best == -HUGE_VAL) {  // the last sample of the last level: nothing ahead
+          CHECK(cache.tangent[at] < -1e5);
+          continue;
+        }
+        CHECK(cache.tangent[at] == Approx(best).epsilon(1e-12).margin(1e-12));
+        // The run reaches the sample that sets the horizon.
+        const double hit_u = line[i].first + cache.distance[at];
+        const auto it = std::find_if(line.begin(), line.end(), [&](const auto& point) {
+          return std::abs(point.first - hit_u) < 1e-9;
+        });
+        REQUIRE(it != line.end());
+        CHECK((it->second - line[i].second) / cache.distance[at] == Approx(best).epsilon(1e-12));
+      }
+    }
+  }
+}
+
+// The exact share of the disc above a horizon of slope t, in double, from the angles
+// themselves (atan2), not from the sine identity the stage uses.
+double exact_share(double elevation, double radius, double t) {
+  const double x = std::clamp((elevation - std::atan(t)) / radius, -1.0, 1.0);
+  // smoothstep of the angle difference: the stage's definition (sun_visibility.h), in angles.
+  const double s = 0.5 + 0.5 * std::sin(x * radius) / std::sin(radius);
+  return s * s * (3.0 - 2.0 * s);
+}
+
+// The level sun_visibility reads at camera-relative (dx, dz): the finest whose samples
+// surround the point.
+int level_at(const ShadowParams<double>& p, double dx, double dz) {
+  const double u = dx * p.axis_x + dz * p.axis_z, v = dz * p.axis_x - dx * p.axis_z;
+  for (int level = 0; level < p.levels; ++level) {
+    const double fi = (u - p.origin_u[level]) / p.spacing[level];
+    const double fj = (v - p.origin_v[level]) / p.spacing[level];
+    if (fi >= 0 && fi < p.resolution - 1 && fj >= 0 && fj < p.resolution - 1) {
+      return level;
+    }
+  }
+  return -1;
+}
+
+TEST_CASE("theCachedShareOfTheSunIsCloseToExactRayCastingInDouble", "[shadows]") {
+  // Ground points around the camera of the default scene, the sun 10 degrees up. The oracle:
+  // the horizon by a march toward the sun over the terrain function the point's level carries
+  // (stage 3 in double at the level's octave count), a step of a quarter of the level's
+  // spacing out to the cache's reach, and the disc's share above it from the angles
+  // themselves. The cache differs by its sampling (the horizon of the four samples around the
+  // point), and past its level's edge by the coarser levels' fewer octaves.
+  const Scene scene =
+      resolve_scene("default", {"lighting.shadows=true", "lighting.sun_elevation_deg=10",
+                                "viewport.width=320", "viewport.height=256"});
+  const SceneResources resources = load_scene_resources(scene);
+  const FramePlan frame = make_frame_plan(scene, resources.terrain_values());
+  const ShadowPlan plan = make_shadow_plan(scene, frame);
+  REQUIRE(plan.enabled);
+  const ShadowParams<double> params = make_shadow_params<double>(plan);
+  const SunHorizonCache<double> cache = build_horizon_cache<double>(plan, frame, resources);
+  const double elevation = 10.0 * M_PI / 180.0, radius = scene.sky.sun_disc_deg * M_PI / 180.0;
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> offset(-3000.0, 3000.0);
+  double error_sum = 0.0, worst = 0.0;
+  int points = 0, wrong = 0;
+  ShadowWork work;
+  for (int k = 0; k < 60; ++k) {
+    const double dx = offset(random), dz = offset(random);
+    const int level = level_at(params, dx, dz);
+    REQUIRE(level >= 0);
+    const double nu = plan.nu[level], step = plan.spacing[level] / 4;
+    const double h = fbm_height<double>(frame.terrain, dx, dz, nu);
+    double horizon = -HUGE_VAL;
+    for (double t = step; t <= plan.reach; t += step) {
+      const double x = dx + t * plan.axis_x, z = dz + t * plan.axis_z;
+      horizon = std::max(horizon, (fbm_height<double>(frame.terrain, x, z, nu) - h) / t);
+    }
+    const double exact = exact_share(elevation, radius, horizon);
+    const double cached = sun_visibility<double>(params, cache, dx, h, dz, work);
+    const double error = std::abs(exact - cached);
+    error_sum += error;
+    worst = std::max(worst, error);
+    wrong += error > 0.5;
+    ++points;
+  }
+  const double mean = error_sum / points;
+  INFO("mean |share error| " << mean << ", worst " << worst << ", " << wrong << " of " << points
+                             << " points on the wrong side of half");
+  CHECK(mean < 0.1);
+  CHECK(wrong <= points / 10);
+}
+
+std::vector<std::string> small(std::vector<std::string> more) {
+  more.insert(more.end(), {"viewport.width=200", "viewport.height=150", "grid.width=128",
+                           "grid.height=128", "lighting.shadow_resolution=64"});
+  return more;
+}
+
+Frame render_linear(const Scene& scene) {
+  FrameRequest request;
+  request.backend = Backend::kReference;
+  request.outputs.linear = true;
+  request.outputs.primitive = true;
+  return render_frame(scene, load_scene_resources(scene), request);
+}
+
+TEST_CASE("castShadowsOnlyDarkenAndALowSunCastsMany", "[shadows]") {
+  const Scene off = resolve_scene("default", small({"lighting.sun_elevation_deg=8"}));
+  Scene on = off;
+  on.lighting.shadows = true;
+  const Frame a = render_linear(off), b = render_linear(on);
+  REQUIRE(a.image.linear.size() == b.image.linear.size());
+  std::size_t darker = 0;
+  for (std::size_t k = 0; k < a.image.linear.size(); ++k) {
+    REQUIRE(b.image.linear[k] <= a.image.linear[k]);
+    darker += b.image.linear[k] < a.image.linear[k];
+  }
+  CHECK(darker > a.image.linear.size() / 20);
+}
+
+TEST_CASE("aFlatTerrainAndASunAtTheZenithCastNoShadow", "[shadows]") {
+  for (const std::vector<std::string>& overrides :
+       {small({"terrain.amplitude=1e-3", "terrain.water_level=null"}),
+        small({"lighting.sun_elevation_deg=90"})}) {
+    const Scene off = resolve_scene("default", overrides);
+    Scene on = off;
+    on.lighting.shadows = true;
+    INFO(overrides[0]);
+    const Frame a = render_linear(off), b = render_linear(on);
+    CHECK(a.image.linear == b.image.linear);
+    CHECK(a.image.srgb == b.image.srgb);
+  }
+}
+
+TEST_CASE("aSetSunLightsNoTerrainPixel", "[shadows]") {
+  // Below the horizon by more than its radius the sun lights nothing: every terrain pixel as
+  // with no sun at all (no water: its glint is not shadowed; no fog: its colour has the sun's).
+  const Scene set =
+      resolve_scene("default", small({"lighting.shadows=true", "lighting.sun_elevation_deg=-2",
+                                      "terrain.water_level=null", "sky.fog_density=0"}));
+  Scene dark = set;
+  dark.lighting.shadows = false;
+  dark.lighting.sun_intensity = 0.0;
+  const Frame a = render_linear(set), b = render_linear(dark);
+  std::size_t terrain = 0;
+  for (std::size_t k = 0; k < a.image.primitive.size(); ++k) {
+    if (a.image.primitive[k] == 0xffffffffu) {
+      continue;
+    }
+    ++terrain;
+    for (int c = 0; c < 3; ++c) {
+      REQUIRE(a.image.linear[3 * k + c] == b.image.linear[3 * k + c]);
+    }
+  }
+  CHECK(terrain > a.image.primitive.size() / 4);
+}
+
+TEST_CASE("shadowsAreRefusedOnAPlanetAndTheirResolutionIsChecked", "[shadows]") {
+  CHECK_THROWS_WITH(resolve_scene("planet", {"lighting.shadows=true"}),
+                    Catch::Contains("lighting.shadows") && Catch::Contains("planet"));
+  CHECK_THROWS_WITH(
+      resolve_scene("default", {"lighting.shadow_resolution=100"}),
+      Catch::Contains("lighting.shadow_resolution") && Catch::Contains("not a power of two"));
+  CHECK_THROWS_WITH(resolve_scene("default", {"lighting.shadow_resolution=2048"}),
+                    Catch::Contains("lighting.shadow_resolution"));
+  CHECK_THROWS_WITH(resolve_scene("default", {"lighting.shadows=1"}),
+                    Catch::Contains("lighting.shadows"));
+}
+
+}  // namespace
+}  // namespace relief
