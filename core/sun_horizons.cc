@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/limits.h"
+#include "core/vertex_culling.h"
 
 namespace relief {
 
@@ -141,6 +142,11 @@ ShadowParams<Real> make_shadow_params(const ShadowPlan& plan) {
     p.nu[level] = Real(plan.nu[level]);
   }
   p.reach = Real(plan.reach);
+  if (plan.levels > 0) {  // N >= 32: N / 2 - 2 > 0, N / 16 >= 2
+    p.inv_reach0 = Real(1.0 / (double(plan.resolution / 2 - 2) * plan.spacing[0]));
+    p.blend_samples = Real(plan.resolution / 16);
+    p.inv_blend_samples = Real(1.0 / double(plan.resolution / 16));
+  }
   p.sin_elevation = Real(plan.sin_elevation);
   p.cos_elevation = Real(plan.cos_elevation);
   p.sin_radius = Real(plan.sin_radius);
@@ -157,6 +163,62 @@ void SunHorizonCache<Real>::allocate(int n, int level_count) {
   height.resize(samples);
   tangent.resize(samples);
   distance.resize(samples);
+}
+
+template <class Real>
+double nearest_drawn_distance(const ShadowPlan& plan, const GridLayout& layout, RowRange rows,
+                              std::span<const Real> dx, std::span<const Real> dz,
+                              std::span<const std::uint8_t> valid,
+                              std::span<const std::uint8_t> need) {
+  const auto frame = [&](std::size_t k, double& u, double& v) {
+    u = double(dx[k]) * plan.axis_x + double(dz[k]) * plan.axis_z;
+    v = double(dz[k]) * plan.axis_x - double(dx[k]) * plan.axis_z;
+  };
+  constexpr int kNeighbours[6][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {-1, -1}};
+  double nearest = HUGE_VAL;
+  for (int j = rows.begin; j < rows.end; ++j) {
+    for (int i = 0; i < layout.width; ++i) {
+      const std::size_t k = layout.index(i, j);
+      if (!valid[k] || (need[k] & kDraw) == 0) {
+        continue;
+      }
+      double u, v;
+      frame(k, u, v);
+      const double own = std::max(std::abs(u), std::abs(v));
+      double edge = 0.0;
+      for (const auto& step : kNeighbours) {
+        const int ni = i + step[0], nj = j + step[1];
+        if (ni < 0 || nj < 0 || ni >= layout.width || nj >= layout.height) {
+          continue;
+        }
+        const std::size_t m = layout.index(ni, nj);
+        if (!valid[m]) {
+          continue;
+        }
+        double mu, mv;
+        frame(m, mu, mv);
+        edge = std::max({edge, std::abs(mu - u), std::abs(mv - v)});
+      }
+      nearest = std::min(nearest, own - edge - 1e-4 * own);
+    }
+  }
+  return nearest;
+}
+
+int shadow_first_level(const ShadowPlan& plan, double nearest) {
+  if (!(nearest < HUGE_VAL)) {
+    return plan.levels;
+  }
+  for (int level = 0; level < plan.levels; ++level) {
+    const double last = double(plan.resolution - 1) * plan.spacing[level];
+    const double reach =
+        std::max({std::abs(plan.origin_u[level]), std::abs(plan.origin_u[level] + last),
+                  std::abs(plan.origin_v[level]), std::abs(plan.origin_v[level] + last)});
+    if (reach * (1.0 + 1e-4) >= nearest) {
+      return level;
+    }
+  }
+  return plan.levels - 1;
 }
 
 template <class Real>
@@ -268,6 +330,14 @@ template ShadowParams<float> make_shadow_params<float>(const ShadowPlan&);
 template ShadowParams<double> make_shadow_params<double>(const ShadowPlan&);
 template struct SunHorizonCache<float>;
 template struct SunHorizonCache<double>;
+template double nearest_drawn_distance<float>(const ShadowPlan&, const GridLayout&, RowRange,
+                                              std::span<const float>, std::span<const float>,
+                                              std::span<const std::uint8_t>,
+                                              std::span<const std::uint8_t>);
+template double nearest_drawn_distance<double>(const ShadowPlan&, const GridLayout&, RowRange,
+                                               std::span<const double>, std::span<const double>,
+                                               std::span<const std::uint8_t>,
+                                               std::span<const std::uint8_t>);
 template void shadow_row_positions<float>(const ShadowParams<float>&, int, int, std::span<float>,
                                           std::span<float>, std::span<float>);
 template void shadow_row_positions<double>(const ShadowParams<double>&, int, int, std::span<double>,

@@ -74,9 +74,15 @@ template <class Real>
 struct ShadowParams {
   std::int32_t enabled = 0, sun_set = 0;
   std::int32_t skip_lit = 1;  // FrameSkips::lit_shadows (sun_visibility.h)
+  // The finest level any pixel can read (shadow_first_level); the finer ones are neither
+  // built nor read.
+  std::int32_t first_level = 0;
   std::int32_t resolution = 0, levels = 0;
   Real axis_x = 1, axis_z = 0;
   Real spacing[kMaxShadowLevels]{}, inv_spacing[kMaxShadowLevels]{};
+  Real inv_reach0 = 1;  // 1 / ((N / 2 - 2) spacing[0]): a Chebyshev distance in level-0 squares
+  // The band along a level's edge where its share fades into the next level's: N / 16 samples.
+  Real blend_samples = 1, inv_blend_samples = 1;
   Real origin_u[kMaxShadowLevels]{}, origin_v[kMaxShadowLevels]{};
   Real nu[kMaxShadowLevels]{};
   Real reach = 0;
@@ -100,6 +106,24 @@ struct SunHorizonCache {
     return (std::size_t(level) * resolution + row) * resolution + column;
   }
 };
+
+// A lower bound of the Chebyshev distance max(|u|, |v|), in the sun's frame about the camera,
+// of every point of every triangle one of whose vertices in rows [rows.begin, rows.end) is
+// drawn (kDraw in `need`, vertex_culling.h) and valid: per such vertex its own distance less the
+// largest Chebyshev distance to a grid neighbour it shares a triangle with ((i +- 1, j), (i, j +-
+// 1), (i + 1, j + 1), (i - 1, j - 1)), less 1e-4 of it for the pixels' interpolation in float. +inf
+// where there is none.
+template <class Real>
+double nearest_drawn_distance(const ShadowPlan& plan, const GridLayout& layout, RowRange rows,
+                              std::span<const Real> dx, std::span<const Real> dz,
+                              std::span<const std::uint8_t> valid,
+                              std::span<const std::uint8_t> need);
+
+// The finest level whose square reaches `nearest` (its farthest sample's Chebyshev distance
+// from the camera, widened by 1e-4 for the float test of a pixel against a square, is at least
+// that): every finer square lies nearer than any pixel, which therefore reads none of them.
+// plan.levels where nearest is +inf (no pixel at all).
+int shadow_first_level(const ShadowPlan& plan, double nearest);
 
 // The camera-relative positions of row `row` of level `level` (N values each), for stage 3's
 // kernels, and their octave count.

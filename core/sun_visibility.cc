@@ -33,6 +33,34 @@ Real disc_share(const ShadowParams<Real>& p, Real tangent) {
   return t * t * (Real(3) - Real(2) * t);
 }
 
+// The disc's share at level `level`, the point at sample coordinates (fi, fj) inside it
+// (0 <= fi, fj < N - 1); `proven_lit` whether four comparisons settled it.
+template <class Real>
+Real level_share(const ShadowParams<Real>& p, const SunHorizonCache<Real>& c, int level, Real fi,
+                 Real fj, Real height, bool& proven_lit) {
+  const int i = int(fi), j = int(fj);  // floor: both >= 0
+  const Real f = fi - Real(i), g = fj - Real(j);
+  const std::size_t k[4] = {c.index(level, j, i), c.index(level, j, i + 1),
+                            c.index(level, j + 1, i), c.index(level, j + 1, i + 1)};
+  // The lift only lowers a horizon: four below the disc's lower edge light it whatever the
+  // lift (the evaluation below gives exactly 1 there too: FrameSkips::lit_shadows).
+  proven_lit = p.skip_lit != 0 && c.tangent[k[0]] <= p.lit_tangent &&
+               c.tangent[k[1]] <= p.lit_tangent && c.tangent[k[2]] <= p.lit_tangent &&
+               c.tangent[k[3]] <= p.lit_tangent;
+  if (proven_lit) {
+    return Real(1);
+  }
+  const Real surface =
+      lerp(lerp(c.height[k[0]], c.height[k[1]], f), lerp(c.height[k[2]], c.height[k[3]], f), g);
+  const Real lift = std::max(Real(0), height - surface);
+  Real share[4];
+  for (int corner = 0; corner < 4; ++corner) {
+    // distance >= the level's spacing > 0 (sun_horizons.cc).
+    share[corner] = disc_share(p, c.tangent[k[corner]] - lift / c.distance[k[corner]]);
+  }
+  return lerp(lerp(share[0], share[1], f), lerp(share[2], share[3], f), g);
+}
+
 }  // namespace
 
 template <class Real>
@@ -46,40 +74,53 @@ Real sun_visibility(const ShadowParams<Real>& p, const SunHorizonCache<Real>& c,
   const Real u = dx * p.axis_x + dz * p.axis_z;
   const Real v = dz * p.axis_x - dx * p.axis_z;
   const Real last = Real(p.resolution - 1);
-  for (int level = 0; level < p.levels; ++level) {
-    const Real fi = (u - p.origin_u[level]) * p.inv_spacing[level];
-    const Real fj = (v - p.origin_v[level]) * p.inv_spacing[level];
-    if (!(fi >= Real(0) && fi < last && fj >= Real(0) && fj < last)) {
-      continue;
+  Real fi = 0, fj = 0;
+  const auto inside = [&](int level) {
+    fi = (u - p.origin_u[level]) * p.inv_spacing[level];
+    fj = (v - p.origin_v[level]) * p.inv_spacing[level];
+    return fi >= Real(0) && fi < last && fj >= Real(0) && fj < last;
+  };
+  // The finest level from `first_level` whose square holds the point. The squares nest (each
+  // holds the finer one with half a square to spare), so the levels holding it are all those
+  // from the finest on: start at the level its Chebyshev distance suggests (frexp: exact),
+  // step toward the finest. The same level as a search from first_level, in two or three tests.
+  int exponent = 0;
+  std::frexp(std::max(std::abs(u), std::abs(v)) * p.inv_reach0, &exponent);
+  int level = std::clamp(exponent, int(p.first_level), int(p.levels) - 1);
+  if (inside(level)) {
+    while (level > p.first_level && inside(level - 1)) {
+      --level;
     }
-    const int i = int(fi), j = int(fj);  // floor: both >= 0
-    const Real f = fi - Real(i), g = fj - Real(j);
-    const std::size_t k[4] = {c.index(level, j, i), c.index(level, j, i + 1),
-                              c.index(level, j + 1, i), c.index(level, j + 1, i + 1)};
-    // The lift only lowers a horizon: four below the disc's lower edge light it whatever the
-    // lift (the evaluation below gives exactly 1 there too: FrameSkips::lit_shadows).
-    if (p.skip_lit != 0 && c.tangent[k[0]] <= p.lit_tangent && c.tangent[k[1]] <= p.lit_tangent &&
-        c.tangent[k[2]] <= p.lit_tangent && c.tangent[k[3]] <= p.lit_tangent) {
-      ++work.lit;
-      return Real(1);
-    }
-    const Real surface =
-        lerp(lerp(c.height[k[0]], c.height[k[1]], f), lerp(c.height[k[2]], c.height[k[3]], f), g);
-    const Real lift = std::max(Real(0), height - surface);
-    Real share[4];
-    bool dark = true;
-    for (int corner = 0; corner < 4; ++corner) {
-      // distance >= the level's spacing > 0 (sun_horizons.cc).
-      const Real tangent = c.tangent[k[corner]] - lift / c.distance[k[corner]];
-      share[corner] = disc_share(p, tangent);
-      dark = dark && tangent >= p.dark_tangent;
-    }
-    ++work.evaluated;
-    work.dark += dark;
-    return lerp(lerp(share[0], share[1], f), lerp(share[2], share[3], f), g);
+    inside(level);  // fi, fj of the level found
+  } else {
+    do {
+      ++level;
+    } while (level < p.levels && !inside(level));
   }
-  ++work.outside;
-  return Real(1);
+  if (level >= p.levels) {  // NaN coordinates, or beyond the coarsest level: lit
+    ++work.outside;
+    return Real(1);
+  }
+  bool proven_lit = false;
+  Real share = level_share(p, c, level, fi, fj, height, proven_lit);
+  // Within the band of `blend_samples` along its square's edge a level's share fades into the
+  // next coarser level's, which holds the point too (the squares nest): continuous where a
+  // pixel passes from one level to the next, so that the squares' steps with the camera
+  // (a spacing at a time) move no shadow edge at once.
+  const Real edge = std::min(std::min(fi, fj), std::min(last - fi, last - fj));
+  if (edge < p.blend_samples && level + 1 < p.levels && inside(level + 1)) {
+    bool coarse_lit = false;
+    const Real coarse = level_share(p, c, level + 1, fi, fj, height, coarse_lit);
+    share = lerp(coarse, share, edge * p.inv_blend_samples);
+    proven_lit = proven_lit && coarse_lit;
+  }
+  if (proven_lit) {
+    ++work.lit;
+  } else {
+    ++work.evaluated;
+  }
+  work.dark += share == Real(0);
+  return share;
 }
 
 template float sun_visibility<float>(const ShadowParams<float>&, const SunHorizonCache<float>&,

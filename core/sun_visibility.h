@@ -9,7 +9,11 @@
 // The disc's visible share at a horizon of elevation e_h, for the sun at e_s with angular radius
 // r, is smoothstep(-1, 1, sin(e_s - e_h) / sin r): 1 where e_h <= e_s - r, 0 where
 // e_h >= e_s + r, in between a smooth step of the angle (a disc cut by a horizontal line
-// within 1.5% of its covered area). The four shares are interpolated bilinearly.
+// within 1.5% of its covered area). The four shares are interpolated bilinearly. Within N / 16
+// samples of its level's edge the share fades linearly into the next coarser level's (the
+// squares nest: that level holds the point too), so a pixel passing from one level to the next
+// sees no step, and the levels' squares, which follow the camera a spacing at a time, move no
+// shadow edge at once.
 //
 // A sample whose horizon lies below tan(e_s - r) lights the disc whatever the lift; a pixel
 // whose four samples do so is lit without any arithmetic beyond four comparisons, one whose
@@ -24,9 +28,9 @@ namespace relief {
 
 struct ShadowWork {
   std::uint64_t pixels = 0;     // covered pixels looked up
-  std::uint64_t lit = 0;        // of those, proven lit by four comparisons (params.skip_lit)
-  std::uint64_t evaluated = 0;  // the disc's share evaluated at the four samples
-  std::uint64_t dark = 0;       // of any, in full shadow (or the sun has set)
+  std::uint64_t lit = 0;        // of those, proven lit by four comparisons a level (skip_lit)
+  std::uint64_t evaluated = 0;  // the disc's share evaluated at four samples of some level
+  std::uint64_t dark = 0;       // of any, in full shadow (share 0, or the sun has set)
   std::uint64_t outside = 0;    // beyond the cache: lit
 
   ShadowWork& operator+=(const ShadowWork& o) {

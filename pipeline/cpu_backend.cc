@@ -316,7 +316,9 @@ std::size_t CpuBackend<Real>::shadow_rows() const {
   if (shadow_.enabled == 0 || shadow_.sun_set != 0) {
     return 0;
   }
-  return std::size_t(shadow_plan_.levels) * std::size_t(shadow_plan_.resolution);
+  // Levels [first_level, levels): the finer ones lie nearer than any pixel.
+  return std::size_t(shadow_plan_.levels - shadow_.first_level) *
+         std::size_t(shadow_plan_.resolution);
 }
 
 template <class Real>
@@ -328,7 +330,8 @@ void CpuBackend<Real>::run_shadow_heights(std::size_t begin, std::size_t end) {
   dz.resize(n);
   nu.resize(n);
   FbmWork work;
-  for (std::size_t unit = begin; unit < end; ++unit) {
+  const std::size_t first = std::size_t(shadow_.first_level) * std::size_t(n);
+  for (std::size_t unit = first + begin; unit < first + end; ++unit) {
     const int level = int(unit / n), row = int(unit % n);
     shadow_row_positions<Real>(shadow_, level, row, dx, dz, nu);
     const std::span<Real> heights(horizons_.height.data() + horizons_.index(level, row, 0),
@@ -352,7 +355,9 @@ void CpuBackend<Real>::run_sun_horizons(std::size_t begin, std::size_t end) {
   // Units never span two levels' rows in one call of the sweep.
   HorizonWork work;
   const int n = shadow_plan_.resolution;
-  for (std::size_t unit = begin; unit < end;) {
+  const std::size_t first = std::size_t(shadow_.first_level) * std::size_t(n);
+  end += first;
+  for (std::size_t unit = first + begin; unit < end;) {
     const int level = int(unit / n), row = int(unit % n);
     const int rows_here = int(std::min<std::size_t>(end - unit, std::size_t(n - row)));
     const HorizonWork part =
@@ -394,6 +399,9 @@ void CpuBackend<Real>::after(StageId id) {
       return;
     case StageId::kDrawNeeds:
       params_.surface.water_enabled = water_in_view() ? 1 : 0;
+      if (shadow_rows() > 0 && request_.skips.near_shadow_levels) {
+        shadow_.first_level = shadow_first_level(shadow_plan_, nearest_drawn_);
+      }
       return;
     case StageId::kTriangleSetup:
       tally_setup();

@@ -116,6 +116,7 @@ class CpuBackend final : public FrameBackend {
   FbmParams<Real> shadow_fbm_;
   SunHorizonCache<Real> horizons_;
   FbmWork shadow_fbm_work_;
+  double nearest_drawn_ = HUGE_VAL;  // nearest_drawn_distance over the drawn vertices
   HorizonWork horizon_work_;
   ShadingPlan shading_plan_;
   ShadeParams<Real> shade_;

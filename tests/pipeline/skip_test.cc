@@ -77,7 +77,8 @@ const SkipField kSkips[] = {{"invalid_vertices", &FrameSkips::invalid_vertices},
                             {"dither", &FrameSkips::dither},
                             {"specular", &FrameSkips::specular},
                             {"zero_weights", &FrameSkips::zero_weights},
-                            {"lit_shadows", &FrameSkips::lit_shadows}};
+                            {"lit_shadows", &FrameSkips::lit_shadows},
+                            {"near_shadow_levels", &FrameSkips::near_shadow_levels}};
 
 FrameSkips nothing_skipped() {
   FrameSkips none;
@@ -159,6 +160,11 @@ TEST_CASE("everySkipLowersTheCountersOfTheWorkItSaves", "[skip]") {
        "sunset",
        {},
        {"pixels with the sun disc's share evaluated"}},
+      {"near_shadow_levels",
+       &FrameSkips::near_shadow_levels,
+       "sunset",
+       {},
+       {"cache samples evaluated", "samples swept"}},
   };
   for (const SkipCase& c : cases) {
     const Scene scene = resolve_scene(c.preset, small(c.overrides));
