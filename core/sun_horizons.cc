@@ -36,6 +36,42 @@ double level_octaves(const LodPlan& lod, double spacing) {
 
 }  // namespace
 
+ShadowGeometry shadow_geometry(const CameraFrame& camera, int viewport_height, int resolution) {
+  // Pixels lie within the far plane's corner, or a little past it (depth has no far plane,
+  // and the grid's margin cells reach beyond it): the levels are laid out to four times that;
+  // a frame builds those its pixels and their occluders reach (shadow_level_range).
+  const double corner = std::sqrt(1.0 + camera.tan_half_fov_x * camera.tan_half_fov_x +
+                                  camera.tan_half_fov_y * camera.tan_half_fov_y);
+  ShadowGeometry g;
+  g.extent = 4.0 * camera.far * corner;
+  // Level 0's spacing: four pixels' footprint at the near plane, rounded down to a power of
+  // two; as many levels as cover the extent, at most kMaxShadowLevels (level 0 grows then).
+  // Neither depends on where the camera is, so its moves never change the levels' lattices.
+  const double inner = double(resolution / 2 - 2);  // centre to a level's usable edge, samples
+  const double pixel_angle = 2.0 * camera.tan_half_fov_y / viewport_height;
+  g.spacing = std::exp2(std::floor(
+      std::log2(std::max(4.0 * pixel_angle * camera.near, g.extent / (inner * 0x1p+30)))));  // > 0
+  g.levels = 1;
+  while (g.levels < kMaxShadowLevels && inner * g.spacing * std::exp2(g.levels - 1) < g.extent) {
+    ++g.levels;
+  }
+  while (inner * g.spacing * std::exp2(g.levels - 1) < g.extent) {
+    g.spacing *= 2.0;
+  }
+  return g;
+}
+
+int shadow_cache_levels(const Scene& scene) {
+  const bool planet = scene.terrain.planet && scene.terrain.planet->radius != 0.0;
+  if (!scene.lighting.shadows || planet ||
+      scene.lighting.sun_elevation_deg + scene.sky.sun_disc_deg <= 0.0) {
+    return 0;
+  }
+  return shadow_geometry(make_camera_frame(scene.camera, scene.viewport), scene.viewport.height,
+                         scene.lighting.shadow_resolution)
+      .levels;
+}
+
 ShadowPlan make_shadow_plan(const Scene& scene, const FramePlan& frame) {
   ShadowPlan plan;
   const LightingSettings& light = scene.lighting;
@@ -57,34 +93,18 @@ ShadowPlan make_shadow_plan(const Scene& scene, const FramePlan& frame) {
     return plan;
   }
 
-  // The farthest a drawn pixel lies from the camera horizontally: the far plane's corner.
   const CameraFrame& camera = frame.camera;
-  const double corner = std::sqrt(1.0 + camera.tan_half_fov_x * camera.tan_half_fov_x +
-                                  camera.tan_half_fov_y * camera.tan_half_fov_y);
-  const double pixels = camera.far * corner;
+  const ShadowGeometry geometry =
+      shadow_geometry(camera, scene.viewport.height, light.shadow_resolution);
   // An occluder lies where the disc's lower edge still meets terrain: the whole height range
   // climbed at tan(elevation - radius) (> 0), or the pixels' own reach where the sun is that low.
   const double span = std::max(0.0, frame.bounds.world_max - frame.bounds.world_min);
+  const double pixels = geometry.extent / 4.0;
   plan.reach = plan.lit_tangent > 0.0 ? std::min(span / plan.lit_tangent, pixels) : pixels;
-  const double half_extent = pixels + plan.reach;
-
-  // Level 0's spacing: a few pixels' footprint at the camera's height above the highest
-  // terrain (at least the near plane), a power of two so that it changes rarely as the camera
-  // moves; as many levels as cover the extent, at most kMaxShadowLevels (then level 0 grows).
   const int n = light.shadow_resolution;
   plan.resolution = n;
-  const double inner = double(n / 2 - 2);  // samples from the centre to a level's usable edge
-  const double clearance = std::max(camera.position.y - frame.bounds.world_max, camera.near);
-  const double pixel_angle = 2.0 * camera.tan_half_fov_y / scene.viewport.height;
-  double spacing =
-      std::exp2(std::floor(std::log2(std::max(4.0 * pixel_angle * clearance, half_extent * 1e-9))));
-  int levels = 1;
-  while (levels < kMaxShadowLevels && inner * spacing * std::exp2(levels - 1) < half_extent) {
-    ++levels;
-  }
-  while (inner * spacing * std::exp2(levels - 1) < half_extent) {
-    spacing *= 2.0;
-  }
+  const int levels = geometry.levels;
+  const double spacing = geometry.spacing;
   plan.levels = levels;
   const double cam_u = camera.position.x * plan.axis_x + camera.position.z * plan.axis_z;
   const double cam_v = camera.position.z * plan.axis_x - camera.position.x * plan.axis_z;
@@ -132,6 +152,7 @@ ShadowParams<Real> make_shadow_params(const ShadowPlan& plan) {
   p.sun_set = plan.sun_set ? 1 : 0;
   p.resolution = plan.resolution;
   p.levels = plan.levels;
+  p.end_level = plan.levels;
   p.axis_x = Real(plan.axis_x);
   p.axis_z = Real(plan.axis_z);
   for (int level = 0; level < plan.levels; ++level) {
@@ -142,10 +163,10 @@ ShadowParams<Real> make_shadow_params(const ShadowPlan& plan) {
     p.nu[level] = Real(plan.nu[level]);
   }
   p.reach = Real(plan.reach);
-  if (plan.levels > 0) {  // N >= 32: N / 2 - 2 > 0, N / 16 >= 2
+  if (plan.levels > 0) {  // N >= 128: N / 2 - 2 > 0, N / 32 >= 4
     p.inv_reach0 = Real(1.0 / (double(plan.resolution / 2 - 2) * plan.spacing[0]));
-    p.blend_samples = Real(plan.resolution / 16);
-    p.inv_blend_samples = Real(1.0 / double(plan.resolution / 16));
+    p.blend_samples = Real(plan.resolution / 32);
+    p.inv_blend_samples = Real(1.0 / double(plan.resolution / 32));
   }
   p.sin_elevation = Real(plan.sin_elevation);
   p.cos_elevation = Real(plan.cos_elevation);
@@ -156,26 +177,26 @@ ShadowParams<Real> make_shadow_params(const ShadowPlan& plan) {
 }
 
 template <class Real>
-void SunHorizonCache<Real>::allocate(int n, int level_count) {
+void SunHorizonCache<Real>::allocate(int n, int first, int end) {
   resolution = n;
-  levels = level_count;
-  const std::size_t samples = std::size_t(n) * n * level_count;
+  first_level = first;
+  end_level = end;
+  const std::size_t samples = std::size_t(n) * n * std::size_t(std::max(0, end - first));
   height.resize(samples);
   tangent.resize(samples);
-  distance.resize(samples);
+  inv_distance.resize(samples);
 }
 
 template <class Real>
-double nearest_drawn_distance(const ShadowPlan& plan, const GridLayout& layout, RowRange rows,
-                              std::span<const Real> dx, std::span<const Real> dz,
-                              std::span<const std::uint8_t> valid,
-                              std::span<const std::uint8_t> need) {
+DrawnExtent drawn_extent(const ShadowPlan& plan, const GridLayout& layout, RowRange rows,
+                         std::span<const Real> dx, std::span<const Real> dz,
+                         std::span<const std::uint8_t> valid, std::span<const std::uint8_t> need) {
   const auto frame = [&](std::size_t k, double& u, double& v) {
     u = double(dx[k]) * plan.axis_x + double(dz[k]) * plan.axis_z;
     v = double(dz[k]) * plan.axis_x - double(dx[k]) * plan.axis_z;
   };
   constexpr int kNeighbours[6][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {-1, -1}};
-  double nearest = HUGE_VAL;
+  DrawnExtent drawn;
   for (int j = rows.begin; j < rows.end; ++j) {
     for (int i = 0; i < layout.width; ++i) {
       const std::size_t k = layout.index(i, j);
@@ -199,26 +220,44 @@ double nearest_drawn_distance(const ShadowPlan& plan, const GridLayout& layout, 
         frame(m, mu, mv);
         edge = std::max({edge, std::abs(mu - u), std::abs(mv - v)});
       }
-      nearest = std::min(nearest, own - edge - 1e-4 * own);
+      drawn.nearest = std::min(drawn.nearest, own - edge - 1e-4 * own);
+      drawn.farthest = std::max(drawn.farthest, (own + edge) * (1.0 + 1e-4));
     }
   }
-  return nearest;
+  return drawn;
 }
 
-int shadow_first_level(const ShadowPlan& plan, double nearest) {
-  if (!(nearest < HUGE_VAL)) {
-    return plan.levels;
+LevelRange shadow_level_range(const ShadowPlan& plan, const DrawnExtent& drawn) {
+  LevelRange range{plan.levels, plan.levels};
+  if (!(drawn.nearest < HUGE_VAL)) {
+    return range;
   }
-  for (int level = 0; level < plan.levels; ++level) {
-    const double last = double(plan.resolution - 1) * plan.spacing[level];
-    const double reach =
-        std::max({std::abs(plan.origin_u[level]), std::abs(plan.origin_u[level] + last),
-                  std::abs(plan.origin_v[level]), std::abs(plan.origin_v[level] + last)});
-    if (reach * (1.0 + 1e-4) >= nearest) {
-      return level;
+  const double span = double(plan.resolution - 1);
+  const auto last_u = [&](int level) { return plan.origin_u[level] + span * plan.spacing[level]; };
+  const auto last_v = [&](int level) { return plan.origin_v[level] + span * plan.spacing[level]; };
+  range.first = plan.levels - 1;
+  int widest = plan.levels - 1;  // the coarsest level a pixel reads
+  for (int level = plan.levels - 1; level >= 0; --level) {
+    const double outer = std::max({std::abs(plan.origin_u[level]), std::abs(last_u(level)),
+                                   std::abs(plan.origin_v[level]), std::abs(last_v(level))});
+    const double inner =
+        std::min({-plan.origin_u[level], last_u(level), -plan.origin_v[level], last_v(level)});
+    if (outer * (1.0 + 1e-4) >= drawn.nearest) {
+      range.first = level;
+    }
+    if (inner >= drawn.farthest * (1.0 + 1e-4)) {
+      widest = level;
     }
   }
-  return plan.levels - 1;
+  range.first = std::min(range.first, widest);
+  // The rows of the coarsest level read continue to the occluders' reach (sweep_sun_horizons);
+  // a finer level's rows end nearer, and need no more.
+  int top = widest;
+  while (top + 1 < plan.levels && last_u(top) < last_u(widest) + plan.reach) {
+    ++top;
+  }
+  range.end = std::min(plan.levels, std::max(top, widest + 1) + 1);
+  return range;
 }
 
 template <class Real>
@@ -280,7 +319,7 @@ HorizonWork sweep_sun_horizons(const ShadowParams<Real>& p, int level, RowRange 
     // two rows around v (levels nest: v lies inside every coarser level).
     int top = level;
     Real covered = last_u;
-    while (top + 1 < p.levels && covered < farthest) {
+    while (top + 1 < p.end_level && covered < farthest) {
       ++top;
       covered = p.origin_u[top] + Real(n - 1) * p.spacing[top];
     }
@@ -312,11 +351,12 @@ HorizonWork sweep_sun_horizons(const ShadowParams<Real>& p, int level, RowRange 
       const Real h = cache.height[k];
       const HullPoint<Real>* ahead = hull_neighbour(hull, u, h, work.popped);
       if (ahead != nullptr) {
-        const Real run = ahead->u - u;  // > 0: every point ahead lies farther along u
-        cache.distance[k] = run;
-        cache.tangent[k] = (ahead->h - h) / run;
+        // run > 0: every point ahead lies farther along u (at least about a spacing).
+        const Real inv_run = Real(1) / (ahead->u - u);
+        cache.inv_distance[k] = inv_run;
+        cache.tangent[k] = (ahead->h - h) * inv_run;
       } else {
-        cache.distance[k] = p.spacing[level];
+        cache.inv_distance[k] = p.inv_spacing[level];
         cache.tangent[k] = Real(kNoHorizonTangent);
       }
       hull.push_back({u, h});
@@ -330,14 +370,14 @@ template ShadowParams<float> make_shadow_params<float>(const ShadowPlan&);
 template ShadowParams<double> make_shadow_params<double>(const ShadowPlan&);
 template struct SunHorizonCache<float>;
 template struct SunHorizonCache<double>;
-template double nearest_drawn_distance<float>(const ShadowPlan&, const GridLayout&, RowRange,
-                                              std::span<const float>, std::span<const float>,
-                                              std::span<const std::uint8_t>,
-                                              std::span<const std::uint8_t>);
-template double nearest_drawn_distance<double>(const ShadowPlan&, const GridLayout&, RowRange,
-                                               std::span<const double>, std::span<const double>,
-                                               std::span<const std::uint8_t>,
-                                               std::span<const std::uint8_t>);
+template DrawnExtent drawn_extent<float>(const ShadowPlan&, const GridLayout&, RowRange,
+                                         std::span<const float>, std::span<const float>,
+                                         std::span<const std::uint8_t>,
+                                         std::span<const std::uint8_t>);
+template DrawnExtent drawn_extent<double>(const ShadowPlan&, const GridLayout&, RowRange,
+                                          std::span<const double>, std::span<const double>,
+                                          std::span<const std::uint8_t>,
+                                          std::span<const std::uint8_t>);
 template void shadow_row_positions<float>(const ShadowParams<float>&, int, int, std::span<float>,
                                           std::span<float>, std::span<float>);
 template void shadow_row_positions<double>(const ShadowParams<double>&, int, int, std::span<double>,

@@ -15,17 +15,21 @@
 // The samples: `levels` square grids of N x N heights (a clipmap), rows along the sun's
 // horizontal direction, level L spaced 2^L times level 0 and centred on the camera, each
 // anchored to a world-space lattice of its spacing (so a moving camera reuses the same ground
-// points: no swimming). A level's heights are stage 3's fractal and sketch at the level's octave
-// count (the frame's LOD rule at the level's spacing) through the frame's own kernels. A row's
-// sweep continues past its level's edge into the coarser levels (their samples beyond it,
-// interpolated between their rows), up to the farthest an occluder can be: the terrain's whole
-// height range climbed at the sun's slope, capped at the cache's reach.
+// points: no swimming); laid out from the camera alone (shadow_geometry), built by a frame
+// only where its pixels read them (shadow_level_range). A level's heights are stage 3's
+// fractal and sketch at the level's octave count (the frame's LOD rule at the level's spacing)
+// through the frame's own kernels. A row's sweep continues past its level's edge into the
+// coarser levels (their samples beyond it, interpolated between their rows), up to the
+// farthest an occluder can be: the terrain's whole height range climbed at the slope of the
+// disc's lower edge, capped at the far plane's corner.
 //
 // Per sample the sweep stores the horizon's slope `tangent` (rise over run toward the sun) and
-// the run `distance` to the sample that sets it. A pixel (sun_visibility.h) reads its level's
-// four samples around it.
+// the reciprocal of the run to the sample that sets it, `inv_distance`. A pixel (sun_visibility.h)
+// reads its level's four samples around it.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -37,7 +41,20 @@
 
 namespace relief {
 
-inline constexpr int kMaxShadowLevels = 12;
+inline constexpr int kMaxShadowLevels = 24;
+
+// The levels' layout, from the camera alone: level 0's spacing, the number of levels, and the
+// half extent they cover.
+struct ShadowGeometry {
+  double spacing = 1;
+  int levels = 1;
+  double extent = 0;
+};
+ShadowGeometry shadow_geometry(const CameraFrame& camera, int viewport_height, int resolution);
+
+// The levels a frame of `scene` can build: 0 without shadows, on a planet or with the sun set
+// (the memory estimate's, pipeline/job_memory.h; a frame builds those its pixels reach).
+int shadow_cache_levels(const Scene& scene);
 
 // Derived once per frame in double (docs/stages.md, "Cast shadows").
 struct ShadowPlan {
@@ -74,14 +91,14 @@ template <class Real>
 struct ShadowParams {
   std::int32_t enabled = 0, sun_set = 0;
   std::int32_t skip_lit = 1;  // FrameSkips::lit_shadows (sun_visibility.h)
-  // The finest level any pixel can read (shadow_first_level); the finer ones are neither
-  // built nor read.
-  std::int32_t first_level = 0;
+  // The levels a frame builds and reads, [first_level, end_level) (shadow_level_range): the
+  // finer ones lie nearer than any pixel, the coarser ones past every pixel and its occluders.
+  std::int32_t first_level = 0, end_level = 0;
   std::int32_t resolution = 0, levels = 0;
   Real axis_x = 1, axis_z = 0;
   Real spacing[kMaxShadowLevels]{}, inv_spacing[kMaxShadowLevels]{};
   Real inv_reach0 = 1;  // 1 / ((N / 2 - 2) spacing[0]): a Chebyshev distance in level-0 squares
-  // The band along a level's edge where its share fades into the next level's: N / 16 samples.
+  // The band along a level's edge where its share fades into the next level's: N / 32 samples.
   Real blend_samples = 1, inv_blend_samples = 1;
   Real origin_u[kMaxShadowLevels]{}, origin_v[kMaxShadowLevels]{};
   Real nu[kMaxShadowLevels]{};
@@ -93,37 +110,51 @@ struct ShadowParams {
 template <class Real>
 ShadowParams<Real> make_shadow_params(const ShadowPlan& plan);
 
-// The cache: per level N rows of N samples, row-major, level after level.
+// The cache: per level N rows of N samples, row-major, level after level, for the levels
+// [first_level, end_level) a frame builds.
 template <class Real>
 struct SunHorizonCache {
-  int resolution = 0, levels = 0;
-  AlignedVector<Real> height;    // camera-relative (stage 3's)
-  AlignedVector<Real> tangent;   // of the horizon toward the sun
-  AlignedVector<Real> distance;  // horizontal run to the sample that sets it (> 0)
+  int resolution = 0, first_level = 0, end_level = 0;
+  AlignedVector<Real> height;        // camera-relative (stage 3's)
+  AlignedVector<Real> tangent;       // of the horizon toward the sun
+  AlignedVector<Real> inv_distance;  // 1 / the horizontal run to the sample that sets it
 
-  void allocate(int n, int level_count);
+  void allocate(int n, int first, int end);
   std::size_t index(int level, int row, int column) const {
-    return (std::size_t(level) * resolution + row) * resolution + column;
+    return (std::size_t(level - first_level) * resolution + row) * resolution + column;
   }
 };
 
-// A lower bound of the Chebyshev distance max(|u|, |v|), in the sun's frame about the camera,
-// of every point of every triangle one of whose vertices in rows [rows.begin, rows.end) is
-// drawn (kDraw in `need`, vertex_culling.h) and valid: per such vertex its own distance less the
-// largest Chebyshev distance to a grid neighbour it shares a triangle with ((i +- 1, j), (i, j +-
-// 1), (i + 1, j + 1), (i - 1, j - 1)), less 1e-4 of it for the pixels' interpolation in float. +inf
-// where there is none.
-template <class Real>
-double nearest_drawn_distance(const ShadowPlan& plan, const GridLayout& layout, RowRange rows,
-                              std::span<const Real> dx, std::span<const Real> dz,
-                              std::span<const std::uint8_t> valid,
-                              std::span<const std::uint8_t> need);
+// Bounds of the Chebyshev distance max(|u|, |v|), in the sun's frame about the camera, of every
+// point of every triangle one of whose vertices in rows [rows.begin, rows.end) is drawn (kDraw
+// in `need`, vertex_culling.h) and valid: per such vertex its own distance less (plus) the
+// largest Chebyshev distance to a grid neighbour it shares a triangle with ((i +- 1, j),
+// (i, j +- 1), (i + 1, j + 1), (i - 1, j - 1)), widened by 1e-4 of it for the pixels'
+// interpolation in float. Empty (nearest +inf, farthest 0) where there is none.
+struct DrawnExtent {
+  double nearest = HUGE_VAL;
+  double farthest = 0;
 
-// The finest level whose square reaches `nearest` (its farthest sample's Chebyshev distance
-// from the camera, widened by 1e-4 for the float test of a pixel against a square, is at least
-// that): every finer square lies nearer than any pixel, which therefore reads none of them.
-// plan.levels where nearest is +inf (no pixel at all).
-int shadow_first_level(const ShadowPlan& plan, double nearest);
+  void merge(const DrawnExtent& o) {
+    nearest = std::min(nearest, o.nearest);
+    farthest = std::max(farthest, o.farthest);
+  }
+};
+template <class Real>
+DrawnExtent drawn_extent(const ShadowPlan& plan, const GridLayout& layout, RowRange rows,
+                         std::span<const Real> dx, std::span<const Real> dz,
+                         std::span<const std::uint8_t> valid, std::span<const std::uint8_t> need);
+
+// The levels a frame with pixels within `drawn` builds, [first, end): from the finest whose
+// square reaches the nearest pixel (every finer square lies nearer than any pixel) to the one
+// past the level whose row ends reach the occluders beyond the farthest pixel's level, and
+// the next coarser level too (a pixel near its level's edge reads it: sun_visibility.h). The
+// squares are tested with a margin of 1e-4 for the float test of a pixel against a square.
+// None (first == end) where `drawn` is empty.
+struct LevelRange {
+  int first = 0, end = 0;
+};
+LevelRange shadow_level_range(const ShadowPlan& plan, const DrawnExtent& drawn);
 
 // The camera-relative positions of row `row` of level `level` (N values each), for stage 3's
 // kernels, and their octave count.

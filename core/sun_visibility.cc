@@ -55,8 +55,7 @@ Real level_share(const ShadowParams<Real>& p, const SunHorizonCache<Real>& c, in
   const Real lift = std::max(Real(0), height - surface);
   Real share[4];
   for (int corner = 0; corner < 4; ++corner) {
-    // distance >= the level's spacing > 0 (sun_horizons.cc).
-    share[corner] = disc_share(p, c.tangent[k[corner]] - lift / c.distance[k[corner]]);
+    share[corner] = disc_share(p, c.tangent[k[corner]] - lift * c.inv_distance[k[corner]]);
   }
   return lerp(lerp(share[0], share[1], f), lerp(share[2], share[3], f), g);
 }
@@ -86,7 +85,7 @@ Real sun_visibility(const ShadowParams<Real>& p, const SunHorizonCache<Real>& c,
   // step toward the finest. The same level as a search from first_level, in two or three tests.
   int exponent = 0;
   std::frexp(std::max(std::abs(u), std::abs(v)) * p.inv_reach0, &exponent);
-  int level = std::clamp(exponent, int(p.first_level), int(p.levels) - 1);
+  int level = std::clamp(exponent, int(p.first_level), int(p.end_level) - 1);
   if (inside(level)) {
     while (level > p.first_level && inside(level - 1)) {
       --level;
@@ -95,9 +94,9 @@ Real sun_visibility(const ShadowParams<Real>& p, const SunHorizonCache<Real>& c,
   } else {
     do {
       ++level;
-    } while (level < p.levels && !inside(level));
+    } while (level < p.end_level && !inside(level));
   }
-  if (level >= p.levels) {  // NaN coordinates, or beyond the coarsest level: lit
+  if (level >= p.end_level) {  // NaN coordinates, or beyond the coarsest level: lit
     ++work.outside;
     return Real(1);
   }
@@ -108,7 +107,7 @@ Real sun_visibility(const ShadowParams<Real>& p, const SunHorizonCache<Real>& c,
   // pixel passes from one level to the next, so that the squares' steps with the camera
   // (a spacing at a time) move no shadow edge at once.
   const Real edge = std::min(std::min(fi, fj), std::min(last - fi, last - fj));
-  if (edge < p.blend_samples && level + 1 < p.levels && inside(level + 1)) {
+  if (edge < p.blend_samples && level + 1 < p.end_level && inside(level + 1)) {
     bool coarse_lit = false;
     const Real coarse = level_share(p, c, level + 1, fi, fj, height, coarse_lit);
     share = lerp(coarse, share, edge * p.inv_blend_samples);

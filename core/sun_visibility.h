@@ -2,14 +2,14 @@
 // terrain's horizon at a shaded point, from the horizons of sun_horizons.h.
 //
 // The point's level is the finest whose samples surround it. At each of the four samples
-// around it the horizon's slope toward the sun, tangent - lift / distance, is that sample's
+// around it the horizon's slope toward the sun, tangent - lift * inv_distance, is that sample's
 // horizon seen from the point's own height (the pixel carries the octaves finer than the
 // level's: `lift` is how far it stands above the level's bilinear surface, never below it, so
 // that the finer octaves lower the horizon of a bump but never raise one into self-shadow).
 // The disc's visible share at a horizon of elevation e_h, for the sun at e_s with angular radius
 // r, is smoothstep(-1, 1, sin(e_s - e_h) / sin r): 1 where e_h <= e_s - r, 0 where
 // e_h >= e_s + r, in between a smooth step of the angle (a disc cut by a horizontal line
-// within 1.5% of its covered area). The four shares are interpolated bilinearly. Within N / 16
+// within 1.5% of its covered area). The four shares are interpolated bilinearly. Within N / 32
 // samples of its level's edge the share fades linearly into the next coarser level's (the
 // squares nest: that level holds the point too), so a pixel passing from one level to the next
 // sees no step, and the levels' squares, which follow the camera a spacing at a time, move no

@@ -80,8 +80,7 @@ void run_backend(const Scene& scene, const StressCase& stress_case, const Stress
   request.outputs = kAllOutputs;
   const MemoryEstimate estimate = estimate_render_memory(scene, backend, kAllOutputs);
   row.estimate_bytes = estimate.total();
-  check_memory(estimate, settings.budget, "this render",
-               "Lower viewport.width/height or grid.width/height");
+  check_memory(estimate, settings.budget, "this render", render_memory_advice(scene));
   request.max_bin_bytes = memory_left(estimate, settings.budget);
 
   const bool measure = settings.measure_memory && peak_memory_measurable();
@@ -181,6 +180,9 @@ std::vector<StressRow> run_stress_case(const Scene& base, const StressCase& stre
     if (backend == Backend::kGl && !settings.gl_unavailable.empty()) {
       row.status = StressStatus::kSkipped;
       row.message = settings.gl_unavailable;
+    } else if (backend == Backend::kGl && scene.lighting.shadows) {
+      row.status = StressStatus::kSkipped;
+      row.message = "the GL backend has no cast shadows yet (lighting.shadows)";
     } else {
       try {
         if (backend == Backend::kReferenceDouble) {

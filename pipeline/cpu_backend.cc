@@ -239,7 +239,7 @@ void CpuBackend<Real>::prepare(StageId id) {
       if (shadow_rows() > 0) {
         shadow_fbm_ = make_fbm_params<Real>(plan_.terrain);
         choose_coordinate_forms(plan_.terrain, shadow_octave_reach(shadow_plan_), shadow_fbm_);
-        horizons_.allocate(shadow_plan_.resolution, shadow_plan_.levels);
+        horizons_.allocate(shadow_plan_.resolution, shadow_.first_level, shadow_.end_level);
       }
       return;
     case StageId::kVertexTransform: {
@@ -316,8 +316,8 @@ std::size_t CpuBackend<Real>::shadow_rows() const {
   if (shadow_.enabled == 0 || shadow_.sun_set != 0) {
     return 0;
   }
-  // Levels [first_level, levels): the finer ones lie nearer than any pixel.
-  return std::size_t(shadow_plan_.levels - shadow_.first_level) *
+  // Levels [first_level, end_level): the others no pixel reads (shadow_level_range).
+  return std::size_t(shadow_.end_level - shadow_.first_level) *
          std::size_t(shadow_plan_.resolution);
 }
 
@@ -399,8 +399,10 @@ void CpuBackend<Real>::after(StageId id) {
       return;
     case StageId::kDrawNeeds:
       params_.surface.water_enabled = water_in_view() ? 1 : 0;
-      if (shadow_rows() > 0 && request_.skips.near_shadow_levels) {
-        shadow_.first_level = shadow_first_level(shadow_plan_, nearest_drawn_);
+      if (shadow_rows() > 0 && request_.skips.unread_shadow_levels) {
+        const LevelRange range = shadow_level_range(shadow_plan_, drawn_);
+        shadow_.first_level = range.first;
+        shadow_.end_level = range.end;
       }
       return;
     case StageId::kTriangleSetup:

@@ -116,7 +116,7 @@ class CpuBackend final : public FrameBackend {
   FbmParams<Real> shadow_fbm_;
   SunHorizonCache<Real> horizons_;
   FbmWork shadow_fbm_work_;
-  double nearest_drawn_ = HUGE_VAL;  // nearest_drawn_distance over the drawn vertices
+  DrawnExtent drawn_;  // where the drawn triangles lie in the sun's frame
   HorizonWork horizon_work_;
   ShadingPlan shading_plan_;
   ShadeParams<Real> shade_;

@@ -74,18 +74,17 @@ void CpuBackend<Real>::tally_draws(RowRange rows, const NeedCount& count) {
       lowest = std::min(lowest, double(grid_.height[k]));
     }
   }
-  // The nearest any pixel can lie in the sun's frame: cache levels finer than that are never
-  // read (core/sun_horizons.h, shadow_first_level).
-  const double nearest = shadow_rows() > 0 && request_.skips.near_shadow_levels
-                             ? nearest_drawn_distance<Real>(shadow_plan_, plan_.layout, rows,
-                                                            grid_.dx, grid_.dz, grid_.valid, need_)
-                             : HUGE_VAL;
+  // Where pixels can lie in the sun's frame: the cache levels built (core/sun_horizons.h).
+  const DrawnExtent drawn = shadow_rows() > 0 && request_.skips.unread_shadow_levels
+                                ? drawn_extent<Real>(shadow_plan_, plan_.layout, rows, grid_.dx,
+                                                     grid_.dz, grid_.valid, need_)
+                                : DrawnExtent{};
   const std::lock_guard<std::mutex> lock(work_mutex_);
   draws_.evaluate += count.evaluate;
   draws_.draw += count.draw;
   draws_.valid_draw += count.valid_draw;
   min_drawn_height_ = std::min(min_drawn_height_, lowest);
-  nearest_drawn_ = std::min(nearest_drawn_, nearest);
+  drawn_.merge(drawn);
 }
 
 template <class Real>
@@ -120,7 +119,7 @@ void CpuBackend<Real>::describe(StageId id, StageTime& time) const {
       return;
     case StageId::kShadowHeights:
       count("cache levels", std::uint64_t(shadow_plan_.levels));
-      count("cache levels nearer than any pixel", std::uint64_t(shadow_.first_level));
+      count("cache levels built", std::uint64_t(shadow_.end_level - shadow_.first_level));
       count("cache samples evaluated", shadow_fbm_work_.points);
       count("cache point-octaves summed", shadow_fbm_work_.octaves);
       return;

@@ -9,17 +9,17 @@
 namespace relief {
 
 struct FrameSkips {
-  bool invalid_vertices = true;    // stages 3-5: nothing at invalid and padding vertices
-  bool unseen_vertices = true;     // stages 3-5: nothing at vertices no visible triangle needs
-  bool unused_octaves = true;      // stage 3: octaves above the frame's largest nu not in the table
-  bool empty_tiles = true;         // tiles: no raster and resolve where no triangle is binned
-  bool water = true;               // no water depth, and none resolved, with no terrain under water
-  bool fog = true;                 // no fog pass when its density is 0
-  bool dither = true;              // no dithering noise when its amount is 0
-  bool specular = true;            // no specular term where its weight is 0
-  bool zero_weights = true;        // no texture fetch for a layer or projection of zero weight
-  bool lit_shadows = true;         // no share of the sun disc evaluated where four samples prove it
-  bool near_shadow_levels = true;  // no cache level finer than any drawn pixel can read
+  bool invalid_vertices = true;  // stages 3-5: nothing at invalid and padding vertices
+  bool unseen_vertices = true;   // stages 3-5: nothing at vertices no visible triangle needs
+  bool unused_octaves = true;    // stage 3: octaves above the frame's largest nu not in the table
+  bool empty_tiles = true;       // tiles: no raster and resolve where no triangle is binned
+  bool water = true;             // no water depth, and none resolved, with no terrain under water
+  bool fog = true;               // no fog pass when its density is 0
+  bool dither = true;            // no dithering noise when its amount is 0
+  bool specular = true;          // no specular term where its weight is 0
+  bool zero_weights = true;      // no texture fetch for a layer or projection of zero weight
+  bool lit_shadows = true;       // no share of the sun disc evaluated where four samples prove it
+  bool unread_shadow_levels = true;  // no cache level that no drawn pixel can read
 };
 
 // Stage 8's share of the skips: the plan's parameters have them all on (make_shade_params);

@@ -126,6 +126,12 @@ MemoryEstimate estimate_rows_render_memory(const Scene& scene, Backend backend,
   return estimate_render_memory(band, backend, outputs);
 }
 
+std::string render_memory_advice(const Scene& scene) {
+  return shadow_cache_levels(scene) > 0
+             ? "Lower viewport.width/height, grid.width/height or lighting.shadow_resolution"
+             : "Lower viewport.width/height or grid.width/height";
+}
+
 MemoryEstimate estimate_render_memory(const Scene& scene, Backend backend,
                                       const FrameOutputs& outputs) {
   MemoryEstimate estimate;
@@ -142,15 +148,17 @@ MemoryEstimate estimate_render_memory(const Scene& scene, Backend backend,
   // 173,349 of 33.5 million), so their worst case refused jobs that fit; the backend counts
   // them with the bins once set up, against what this estimate leaves of the budget.
   estimate.add("grid " + size_text(scene.grid.width, scene.grid.height), vertices * vertex_bytes);
-  // Cast shadows' horizon cache (core/sun_horizons.h): at most kMaxShadowLevels levels of N^2
-  // samples, three values each in the backend's precision (the GL backend refuses shadows).
-  if (scene.lighting.shadows && backend != Backend::kGl) {
+  // Cast shadows' horizon cache (core/sun_horizons.h): the levels the scene lays out, N^2
+  // samples each with three values in the backend's precision; a frame builds those its pixels
+  // read (the GL backend refuses shadows).
+  const int shadow_levels = shadow_cache_levels(scene);
+  if (shadow_levels > 0 && backend != Backend::kGl) {
     const std::uintmax_t n = std::uintmax_t(scene.lighting.shadow_resolution);
     const std::uintmax_t value =
         backend != Backend::kReferenceDouble ? sizeof(float) : sizeof(double);
     estimate.add(
-        "shadow cache " + size_text(int(n), int(n)) + " x " + std::to_string(kMaxShadowLevels),
-        n * n * std::uintmax_t(kMaxShadowLevels) * 3 * value);
+        "shadow cache " + size_text(int(n), int(n)) + " x " + std::to_string(shadow_levels),
+        n * n * std::uintmax_t(shadow_levels) * 3 * value);
   }
   // Set-up's per-thread scratch (raster::PreparedVertices, kept between frames): every vertex
   // one chunk of kSetupChunk triangles spans, padded rows included, 34 bytes each. A narrow

@@ -4,6 +4,8 @@
 // starts.
 #pragma once
 
+#include <string>
+
 #include <cstdint>
 
 #include "core/scene/scene.h"
@@ -11,6 +13,10 @@
 #include "pipeline/memory_budget.h"
 
 namespace relief {
+
+// What to lower when a frame of `scene` does not fit: "Lower viewport.width/height or
+// grid.width/height", and lighting.shadow_resolution where the scene has cast shadows.
+std::string render_memory_advice(const Scene& scene);
 
 // `relief render`: scene resources (lattice, textures with their mip chains), grid buffers
 // and clip coordinates in the backend's precision, and per pixel the sRGB image, its PNG

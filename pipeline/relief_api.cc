@@ -135,9 +135,9 @@ Rendering render_scene(const relief::Scene& scene, Backend backend, const Render
   bool from_option = false;
   const MemoryBudget budget = call_budget(options.max_memory_bytes, from_option);
   check_memory(estimate, budget, "this render",
-               from_option ? "Lower viewport.width/height or grid.width/height, or raise "
-                             "RenderOptions::max_memory_bytes"
-                           : "Lower viewport.width/height or grid.width/height");
+               from_option
+                   ? render_memory_advice(scene) + ", or raise RenderOptions::max_memory_bytes"
+                   : render_memory_advice(scene));
 
   const auto setup_start = std::chrono::steady_clock::now();
   const SceneResources resources = load_scene_resources(scene);  // validates texture files

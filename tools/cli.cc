@@ -385,8 +385,8 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     return output_error;
   } catch (const std::bad_alloc&) {
     // The estimate (job_memory.h) missed, or another process took the memory meanwhile.
-    err << "relief: error: out of memory; nothing was written. Lower the image or grid size, or "
-           "free memory and try again.\n";
+    err << "relief: error: out of memory; nothing was written. Lower the image or grid size (or "
+           "lighting.shadow_resolution), or free memory and try again.\n";
     return output_error;
   } catch (const std::exception& e) {
     err << "relief: internal error: " << brief_text(e.what(), 3 * kBriefChars)

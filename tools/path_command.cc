@@ -129,8 +129,7 @@ int run_path_command(const Scene& scene, const PathOptions& o, std::ostream& out
   FrameRequest request;
   request.backend = o.backend;
   const MemoryEstimate estimate = estimate_render_memory(scene, request.backend, request.outputs);
-  check_memory(estimate, o.budget, "each frame of this path",
-               "Lower viewport.width/height or grid.width/height");
+  check_memory(estimate, o.budget, "each frame of this path", render_memory_advice(scene));
   request.max_bin_bytes = memory_left(estimate, o.budget);
   const SceneResources resources = load_scene_resources(scene);  // the camera's not in them
 

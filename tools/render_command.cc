@@ -106,8 +106,7 @@ int run_render_command(const Scene& scene, const RenderOptions& options, std::os
       band ? estimate_rows_render_memory(scene, request.backend, request.outputs,
                                          band->end - band->begin)
            : estimate_render_memory(scene, request.backend, request.outputs);
-  check_memory(estimate, options.budget, "this render",
-               "Lower viewport.width/height or grid.width/height");
+  check_memory(estimate, options.budget, "this render", render_memory_advice(scene));
   request.max_bin_bytes = memory_left(estimate, options.budget);
 
   const auto setup_start = std::chrono::steady_clock::now();

@@ -111,7 +111,7 @@ SunHorizonCache<Real> build_horizon_cache(const ShadowPlan& plan, const FramePla
     return cache;
   }
   const ShadowParams<Real> params = make_shadow_params<Real>(plan);
-  cache.allocate(plan.resolution, plan.levels);
+  cache.allocate(plan.resolution, 0, plan.levels);
   FbmParams<Real> fbm = make_fbm_params<Real>(frame.terrain);
   choose_coordinate_forms(frame.terrain, shadow_octave_reach(plan), fbm);
   const SketchParams<Real> sketch =

@@ -78,7 +78,7 @@ const SkipField kSkips[] = {{"invalid_vertices", &FrameSkips::invalid_vertices},
                             {"specular", &FrameSkips::specular},
                             {"zero_weights", &FrameSkips::zero_weights},
                             {"lit_shadows", &FrameSkips::lit_shadows},
-                            {"near_shadow_levels", &FrameSkips::near_shadow_levels}};
+                            {"unread_shadow_levels", &FrameSkips::unread_shadow_levels}};
 
 FrameSkips nothing_skipped() {
   FrameSkips none;
@@ -160,8 +160,8 @@ TEST_CASE("everySkipLowersTheCountersOfTheWorkItSaves", "[skip]") {
        "sunset",
        {},
        {"pixels with the sun disc's share evaluated"}},
-      {"near_shadow_levels",
-       &FrameSkips::near_shadow_levels,
+      {"unread_shadow_levels",
+       &FrameSkips::unread_shadow_levels,
        "sunset",
        {},
        {"cache samples evaluated", "samples swept"}},
