@@ -163,8 +163,7 @@ ShadowParams<Real> make_shadow_params(const ShadowPlan& plan) {
     p.nu[level] = Real(plan.nu[level]);
   }
   p.reach = Real(plan.reach);
-  if (plan.levels > 0) {  // N >= 128: N / 2 - 2 > 0, N / 32 >= 4
-    p.inv_reach0 = Real(1.0 / (double(plan.resolution / 2 - 2) * plan.spacing[0]));
+  if (plan.levels > 0) {  // N >= 128: N / 32 >= 4
     p.blend_samples = Real(plan.resolution / 32);
     p.inv_blend_samples = Real(1.0 / double(plan.resolution / 32));
   }

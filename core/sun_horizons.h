@@ -97,7 +97,6 @@ struct ShadowParams {
   std::int32_t resolution = 0, levels = 0;
   Real axis_x = 1, axis_z = 0;
   Real spacing[kMaxShadowLevels]{}, inv_spacing[kMaxShadowLevels]{};
-  Real inv_reach0 = 1;  // 1 / ((N / 2 - 2) spacing[0]): a Chebyshev distance in level-0 squares
   // The band along a level's edge where its share fades into the next level's: N / 32 samples.
   Real blend_samples = 1, inv_blend_samples = 1;
   Real origin_u[kMaxShadowLevels]{}, origin_v[kMaxShadowLevels]{};

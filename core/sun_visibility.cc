@@ -79,22 +79,11 @@ Real sun_visibility(const ShadowParams<Real>& p, const SunHorizonCache<Real>& c,
     fj = (v - p.origin_v[level]) * p.inv_spacing[level];
     return fi >= Real(0) && fi < last && fj >= Real(0) && fj < last;
   };
-  // The finest level from `first_level` whose square holds the point. The squares nest (each
-  // holds the finer one with half a square to spare), so the levels holding it are all those
-  // from the finest on: start at the level its Chebyshev distance suggests (frexp: exact),
-  // step toward the finest. The same level as a search from first_level, in two or three tests.
-  int exponent = 0;
-  std::frexp(std::max(std::abs(u), std::abs(v)) * p.inv_reach0, &exponent);
-  int level = std::clamp(exponent, int(p.first_level), int(p.end_level) - 1);
-  if (inside(level)) {
-    while (level > p.first_level && inside(level - 1)) {
-      --level;
-    }
-    inside(level);  // fi, fj of the level found
-  } else {
-    do {
-      ++level;
-    } while (level < p.end_level && !inside(level));
+  // The finest level from `first_level` whose square holds the point (the squares nest: it
+  // holds the point in every coarser level too).
+  int level = p.first_level;
+  while (level < p.end_level && !inside(level)) {
+    ++level;
   }
   if (level >= p.end_level) {  // NaN coordinates, or beyond the coarsest level: lit
     ++work.outside;

@@ -32,9 +32,6 @@ constexpr const char* kPlanetShadeReason =
 constexpr const char* kHullSweepReason =
     "a stack per row whose pushes and pops depend on the heights "
     "(core/sun_horizons.h)";
-constexpr const char* kSunShareReason =
-    "per pixel the four samples of its level of the cache and branches on their horizons "
-    "(core/sun_visibility.h)";
 
 }  // namespace
 
@@ -52,6 +49,7 @@ CpuKernels<float> highway_kernels(bool planet) {
   k.tiles.encode = h;
   k.tiles.resolve = planet ? KernelKind::kPortable : h;
   k.tiles.shade = planet ? KernelKind::kPortable : h;
+  k.tiles.sun = h;  // no shadows on a planet (its table has no entry)
   for (KernelChoice& c : k.choices) {
     const std::string_view name = c.kernel;
     if (name == "planet domain") {
@@ -64,8 +62,6 @@ CpuKernels<float> highway_kernels(bool planet) {
       c.reason = kBinningReason;
     } else if (name == "hull sweep") {
       c.reason = kHullSweepReason;
-    } else if (name == "sun's share") {
-      c.reason = kSunShareReason;
     } else if (planet && name == "tile resolve") {
       c.reason = kPlanetResolveReason;
     } else if (planet && name == "tile shade") {

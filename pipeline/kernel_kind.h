@@ -15,6 +15,7 @@ enum class KernelKind : std::uint8_t {
 struct TileKernels {
   KernelKind raster = KernelKind::kPortable;
   KernelKind resolve = KernelKind::kPortable;
+  KernelKind sun = KernelKind::kPortable;  // cast shadows' share of the sun (sun_visibility.h)
   KernelKind shade = KernelKind::kPortable;
   KernelKind encode = KernelKind::kPortable;
 };

@@ -12,6 +12,7 @@
 #include "simd/resolve.h"
 #include "simd/shade.h"
 #include "simd/srgb.h"
+#include "simd/sun_share.h"
 
 namespace relief {
 
@@ -274,7 +275,18 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
     std::fill(resolved_attributes.sun, resolved_attributes.sun + TileAttributes<Real>::kPixels,
               Real(1));
   }
-  for (int py = vis.y0; drawn && shadows && py < vis.y0 + vis.height; ++py) {
+  bool shares_simd = false;
+  if constexpr (std::is_same_v<Real, float>) {
+    if (drawn && shadows && kernels_.sun == KernelKind::kHighway) {
+      constexpr std::size_t n = TileAttributes<float>::kPixels;
+      simd::sun_shares(*shadows_.params, *shadows_.cache, {vis.primitive, n},
+                       {resolved_attributes.dx, n}, {resolved_attributes.height, n},
+                       {resolved_attributes.dz, n}, vis.width, vis.height, raster::kTileSize,
+                       {resolved_attributes.sun, n}, work.shadow);
+      shares_simd = true;
+    }
+  }
+  for (int py = vis.y0; drawn && shadows && !shares_simd && py < vis.y0 + vis.height; ++py) {
     for (int px = vis.x0; px < vis.x0 + vis.width; ++px) {
       const std::size_t k = vis.index(px, py);
       if (vis.primitive[k] != raster::kNoPrimitive) {

@@ -96,6 +96,8 @@ void check_pointers_match_kinds(const CpuKernels<Real>& table, const CpuKernels<
       CHECK((table.tiles.raster == KernelKind::kHighway) == highway);
     } else if (name == "tile resolve") {
       CHECK((table.tiles.resolve == KernelKind::kHighway) == highway);
+    } else if (name == "sun's share") {
+      CHECK((table.tiles.sun == KernelKind::kHighway) == highway);
     } else if (name == "tile shade") {
       CHECK((table.tiles.shade == KernelKind::kHighway) == highway);
     } else if (name == "tile encode") {

@@ -1,0 +1,24 @@
+// Cast shadows' per-pixel step (core/sun_visibility.h) as a Highway kernel for float: the same
+// operations as sun_visibility<float>, in the same order, on as many pixels per step as the
+// target's vectors hold, so the shares and the work counters are bit-identical to the scalar
+// reference on every target.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "core/sun_horizons.h"
+#include "core/sun_visibility.h"
+
+namespace relief::simd {
+
+// Over a rectangle: pixel (i, j), 0 <= i < width, 0 <= j < height, has index k = j * stride + i
+// into every span. Where covered[k] != 0xffffffff writes share[k] = sun_visibility<float>(p, c,
+// dx[k], height[k], dz[k]) and adds to `work` exactly what the scalar code adds; leaves the
+// other pixels' shares alone and reads none of their attributes. Precondition: p.enabled.
+void sun_shares(const ShadowParams<float>& p, const SunHorizonCache<float>& c,
+                std::span<const std::uint32_t> covered, std::span<const float> dx,
+                std::span<const float> height, std::span<const float> dz, int width, int height_px,
+                int stride, std::span<float> share, ShadowWork& work);
+
+}  // namespace relief::simd
