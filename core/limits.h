@@ -248,10 +248,11 @@ inline constexpr double kMaxWaveSpeed = 1e6;
 // rounded up to 0.11. A smaller disc would be a step (or no disc at all) from rounding alone.
 inline constexpr double kMinSunDiscDeg = 0.11;
 inline constexpr double kMaxSunDiscDeg = 10.0;
-// lighting.shadow_resolution (core/sun_horizons.h): a cache sample spans about 1 / ((N / 2 - 2)
-// x pixel angle) pixels at every distance, 8 at N = 256; below 128 (16 pixels) the shadows blur
-// into a darkening that matches the ground truth worse than none (relief sweep sunset). At most
-// 1024: 24 levels of 1024^2 samples hold 3 values each, 288 MiB in float, 576 MiB in double.
+// lighting.shadow_resolution (core/sun_horizons.h): a cache sample spans about
+// 1 / ((N / 2 - 2) x pixel angle) pixels at every distance, about 7 at N = 256 for 1024 rows
+// and a 60-degree field; below 128 (about 14 pixels) the shadows blur into a darkening the
+// ground truth does not have (at 32 they looked like none at all). At most 1024: 24 levels of
+// 1024^2 samples hold 3 values each, 288 MiB in float, 576 MiB in double.
 inline constexpr int kMinShadowResolution = 128;
 inline constexpr int kMaxShadowResolution = 1024;
 // Fog per world unit: exp2_det clamps its argument, so any density is total; 1 per unit is

@@ -10,6 +10,7 @@
 
 #include "core/det_math.h"
 #include "core/grid_buffers.h"
+#include "core/lod_rule.h"
 #include "core/stage_params.h"
 
 namespace relief {
@@ -87,10 +88,7 @@ void project_domain_rows(const DomainParams<Real>& p, const DomainRows<Real>& ta
       const Real spacing_sq =
           std::max(axis_spacing_sq(footprint(i - 1, j, here), centre, footprint(i + 1, j, here)),
                    axis_spacing_sq(footprint(i, j - 1, below), centre, footprint(i, j + 1, above)));
-      Real nu = p.nu_max;
-      if (spacing_sq > p.min_spacing_sq) {
-        nu = std::clamp(p.c0 - p.c1 * log2_det(spacing_sq), Real(1), p.nu_max);
-      }
+      Real nu = lod_octave_count(p.c0, p.c1, p.nu_max, p.min_spacing_sq, spacing_sq);
       if (p.whole_octaves != 0) {
         nu = std::ceil(nu);  // nu_max is whole: still within [1, nu_max]
       }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/limits.h"
+#include "core/lod_rule.h"
 #include "core/vertex_culling.h"
 
 namespace relief {
@@ -29,8 +30,8 @@ double clamped_tangent(double angle_deg) {
 // The octave count stage 2's rule gives a vertex spacing of `spacing` (frame_plan.h, LodPlan):
 // the cache's heights are what the frame's grid would carry at its spacing.
 double level_octaves(const LodPlan& lod, double spacing) {
-  double nu = lod.c0 - lod.c1 * std::log2(spacing * spacing);  // spacing > 0
-  nu = std::clamp(nu, 1.0, lod.nu_max);
+  const double nu =
+      lod_octave_count(lod.c0, lod.c1, lod.nu_max, limits::kMinSpacingSq, spacing * spacing);
   return lod.whole_octaves ? std::ceil(nu) : nu;
 }
 
@@ -40,6 +41,7 @@ ShadowGeometry shadow_geometry(const CameraFrame& camera, int viewport_height, i
   // Pixels lie within the far plane's corner, or a little past it (depth has no far plane,
   // and the grid's margin cells reach beyond it): the levels are laid out to four times that;
   // a frame builds those its pixels and their occluders reach (shadow_level_range).
+  // sqrt of at least 1; the viewport is at least 1 pixel high; inner >= 62 (N >= 128).
   const double corner = std::sqrt(1.0 + camera.tan_half_fov_x * camera.tan_half_fov_x +
                                   camera.tan_half_fov_y * camera.tan_half_fov_y);
   ShadowGeometry g;
@@ -112,6 +114,7 @@ ShadowPlan make_shadow_plan(const Scene& scene, const FramePlan& frame) {
     const double s = spacing * std::exp2(level);
     plan.spacing[level] = s;
     // Anchored to the world lattice of spacing s: sample 0 at a whole multiple of s.
+    // s > 0 (shadow_geometry).
     plan.origin_u[level] = (std::floor(cam_u / s) - n / 2) * s - cam_u;
     plan.origin_v[level] = (std::floor(cam_v / s) - n / 2) * s - cam_v;
     plan.nu[level] = level_octaves(frame.lod, s);
@@ -232,7 +235,7 @@ LevelRange shadow_level_range(const ShadowPlan& plan, const DrawnExtent& drawn) 
     return range;
   }
   const double span = double(plan.resolution - 1);
-  const auto last_u = [&](int level) { return plan.origin_u[level] + span * plan.spacing[level]; };
+  const auto last_u = [&](int level) { return level_last_u(plan, level); };
   const auto last_v = [&](int level) { return plan.origin_v[level] + span * plan.spacing[level]; };
   range.first = plan.levels - 1;
   int widest = plan.levels - 1;  // the coarsest level a pixel reads
@@ -249,13 +252,16 @@ LevelRange shadow_level_range(const ShadowPlan& plan, const DrawnExtent& drawn) 
     }
   }
   range.first = std::min(range.first, widest);
-  // The rows of the coarsest level read continue to the occluders' reach (sweep_sun_horizons);
-  // a finer level's rows end nearer, and need no more.
-  int top = widest;
-  while (top + 1 < plan.levels && last_u(top) < last_u(widest) + plan.reach) {
+  // The coarsest level read: the widest's next coarser one too, in the widest's blend band.
+  // Its rows continue to the occluders' reach (sweep_sun_horizons, in float: hence the
+  // margin of 1e-4 and a spacing); a finer level's rows end nearer, and need no more.
+  const int read = std::min(widest + 1, plan.levels - 1);
+  const double target = (last_u(read) + plan.reach) * (1.0 + 1e-4) + plan.spacing[read];
+  int top = read;
+  while (top + 1 < plan.levels && last_u(top) < target) {
     ++top;
   }
-  range.end = std::min(plan.levels, std::max(top, widest + 1) + 1);
+  range.end = top + 1;
   return range;
 }
 
@@ -308,7 +314,7 @@ HorizonWork sweep_sun_horizons(const ShadowParams<Real>& p, int level, RowRange 
   HorizonWork work;
   const int n = p.resolution;
   thread_local std::vector<HullPoint<Real>> hull;
-  const Real last_u = p.origin_u[level] + Real(n - 1) * p.spacing[level];
+  const Real last_u = level_last_u(p, level);
   const Real farthest = last_u + p.reach;
   for (int row = rows.begin; row < rows.end; ++row) {
     hull.clear();
@@ -320,11 +326,11 @@ HorizonWork sweep_sun_horizons(const ShadowParams<Real>& p, int level, RowRange 
     Real covered = last_u;
     while (top + 1 < p.end_level && covered < farthest) {
       ++top;
-      covered = p.origin_u[top] + Real(n - 1) * p.spacing[top];
+      covered = level_last_u(p, top);
     }
     for (int m = top; m > level; --m) {
       const Real s = p.spacing[m];
-      const Real end_before = p.origin_u[m - 1] + Real(n - 1) * p.spacing[m - 1];
+      const Real end_before = level_last_u(p, m - 1);
       const Real fj = (v - p.origin_v[m]) * p.inv_spacing[m];
       const int j0 = std::clamp(int(std::floor(fj)), 0, n - 2);
       const Real g = std::clamp(fj - Real(j0), Real(0), Real(1));

@@ -32,6 +32,7 @@
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "core/frame_plan.h"
@@ -77,8 +78,18 @@ struct ShadowPlan {
   double lit_tangent = 0, dark_tangent = 0;
 };
 
-// From the scene's lighting and the frame: the sun, the cache's extent (camera.far plus the
-// occluder reach) and its levels. Disabled where lighting.shadows is off.
+// Camera-relative u of the last sample of a level's rows (ShadowPlan in double, ShadowParams
+// in Real): the one expression the sweep and the level range both use, so that a row's end
+// and the start of its continuation compare exactly.
+template <class Params>
+auto level_last_u(const Params& p, int level) {
+  using Value = std::remove_cvref_t<decltype(p.origin_u[0])>;
+  return p.origin_u[level] + Value(p.resolution - 1) * p.spacing[level];
+}
+
+// From the scene's lighting and the frame: the sun, the levels (shadow_geometry, anchored to
+// the world lattice of their spacings about the camera), their octave counts and the
+// occluders' reach. Disabled where lighting.shadows is off or on a planet.
 ShadowPlan make_shadow_plan(const Scene& scene, const FramePlan& frame);
 
 // How far from the camera the cache's samples that sum each octave lie (octave_coordinates.h):

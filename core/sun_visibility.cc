@@ -23,14 +23,17 @@ Real disc_share(const ShadowParams<Real>& p, Real tangent) {
     return Real(0);
   }
   // sin(e_s - e_h) with sin e_h = t / sqrt(1 + t^2), cos e_h = 1 / sqrt(1 + t^2) (sqrt's
-  // argument >= 1; |t| is at most 1e6, its square far inside float). Between the two tangents
-  // both angles lie in (-90, 90) degrees and the difference within the disc's radius.
-  const Real sine =
-      (p.sin_elevation - tangent * p.cos_elevation) / std::sqrt(Real(1) + tangent * tangent);
+  // argument >= 1). Between the two tangents both angles lie in (-90, 90] degrees and the
+  // difference within the disc's radius. t is clamped to +-1e6 first (a horizon within 6e-5
+  // degrees of the zenith, the same share to float's precision), so that t^2 stays far inside
+  // float: dark_tangent is 1e30 where the disc reaches the zenith, and a cache's slopes reach
+  // amplitude / spacing.
+  const Real t = std::clamp(tangent, Real(-1e6), Real(1e6));
+  const Real sine = (p.sin_elevation - t * p.cos_elevation) / std::sqrt(Real(1) + t * t);
   // sin_radius >= sin(0.11 degrees) > 0 (limits.h, kMinSunDiscDeg).
   const Real x = std::clamp(sine / p.sin_radius, Real(-1), Real(1));
-  const Real t = Real(0.5) + Real(0.5) * x;
-  return t * t * (Real(3) - Real(2) * t);
+  const Real s = Real(0.5) + Real(0.5) * x;
+  return s * s * (Real(3) - Real(2) * s);
 }
 
 // The disc's share at level `level`, the point at sample coordinates (fi, fj) inside it

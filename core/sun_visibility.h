@@ -16,8 +16,8 @@
 // shadow edge at once.
 //
 // A sample whose horizon lies below tan(e_s - r) lights the disc whatever the lift; a pixel
-// whose four samples do so is lit without any arithmetic beyond four comparisons, one whose
-// four samples lie above tan(e_s + r) even after the lift is dark (both counted).
+// whose four samples do so is lit without any arithmetic beyond four comparisons (counted, as
+// are the pixels evaluated and those whose share comes out 0).
 #pragma once
 
 #include <cstdint>

@@ -4,6 +4,7 @@
 
 #include "core/det_math.h"
 #include "core/limits.h"
+#include "core/lod_rule.h"
 
 namespace relief {
 
@@ -15,12 +16,9 @@ void apply_distance_lod(const DistanceLod& lod, RowRange rows, GridBuffers<Real>
     }
     const double dx = double(grid.dx[k]), dz = double(grid.dz[k]);
     const double distance_sq = dx * dx + dz * dz + lod.gap_sq;
-    // log2_det's domain is x > 0: distances below the guard take every octave, as stage 2
-    // does for spacings below it.
-    double nu = lod.nu_max;
-    if (distance_sq > limits::kMinSpacingSq) {
-      nu = std::clamp(lod.c0 - lod.c1 * log2_det(distance_sq), 1.0, lod.nu_max);
-    }
+    // Distances below the guard take every octave, as stage 2 does for spacings below it.
+    const double nu =
+        lod_octave_count(lod.c0, lod.c1, lod.nu_max, limits::kMinSpacingSq, distance_sq);
     grid.nu[k] = static_cast<Real>(nu);
   }
 }

@@ -1,6 +1,7 @@
 #include "eval/ground_truth.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numbers>
 #include <numeric>
@@ -74,11 +75,12 @@ Scene supersampled_scene(const Scene& scene, const GroundTruthSettings& settings
   out.viewport.height *= settings.supersample;
   out.grid.width *= settings.grid_scale;
   out.grid.height *= settings.grid_scale;
-  // Cast shadows' horizon cache as many times finer as the grid, at most its limit
-  // (docs/ground-truth.md, "Cast shadows").
-  out.lighting.shadow_resolution = int(
+  // Cast shadows' horizon cache as many times finer as the grid, at most its limit, rounded
+  // down to a power of two as the field must be (grid scale 3 takes 2x; docs/ground-truth.md,
+  // "Cast shadows").
+  out.lighting.shadow_resolution = int(std::bit_floor(std::uint64_t(
       std::min<std::int64_t>(std::int64_t(scene.lighting.shadow_resolution) * settings.grid_scale,
-                             limits::kMaxShadowResolution));
+                             limits::kMaxShadowResolution))));
   return out;
 }
 

@@ -147,7 +147,7 @@ std::vector<Variation> full_variations(const Scene& scene) {
   }
   // Cast shadows' horizon cache (core/sun_horizons.h), where the scene has them.
   if (scene.lighting.shadows) {
-    for (int n : {64, 128, 256, 512, 1024}) {
+    for (int n : {128, 256, 512, 1024}) {
       out.push_back({"shadows " + std::to_string(n),
                      "shadow_resolution",
                      std::to_string(n),

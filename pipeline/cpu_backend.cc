@@ -312,68 +312,6 @@ void CpuBackend<Real>::prepare(StageId id) {
 }
 
 template <class Real>
-std::size_t CpuBackend<Real>::shadow_rows() const {
-  if (shadow_.enabled == 0 || shadow_.sun_set != 0) {
-    return 0;
-  }
-  // Levels [first_level, end_level): the others no pixel reads (shadow_level_range).
-  return std::size_t(shadow_.end_level - shadow_.first_level) *
-         std::size_t(shadow_plan_.resolution);
-}
-
-template <class Real>
-void CpuBackend<Real>::run_shadow_heights(std::size_t begin, std::size_t end) {
-  // Stage 3 through the frame's own kernels, one cache row at a time (sun_horizons.h).
-  const int n = shadow_plan_.resolution;
-  thread_local AlignedVector<Real> dx, dz, nu;
-  dx.resize(n);
-  dz.resize(n);
-  nu.resize(n);
-  FbmWork work;
-  const std::size_t first = std::size_t(shadow_.first_level) * std::size_t(n);
-  for (std::size_t unit = first + begin; unit < first + end; ++unit) {
-    const int level = int(unit / n), row = int(unit % n);
-    shadow_row_positions<Real>(shadow_, level, row, dx, dz, nu);
-    const std::span<Real> heights(horizons_.height.data() + horizons_.index(level, row, 0),
-                                  std::size_t(n));
-    const FbmWork row_work = kernels_.fractal(
-        shadow_fbm_, terrain_values_, IndexRange{0, std::size_t(n)}, dx, dz, nu, {}, heights);
-    work.points += row_work.points;
-    work.octaves += row_work.octaves;
-    if (params_.sketch.enabled != 0 && plan_.terrain.sketch != nullptr) {  // §3's base
-      kernels_.sketch(params_.sketch, plan_.terrain.sketch->heights, IndexRange{0, std::size_t(n)},
-                      dx, dz, {}, heights);
-    }
-  }
-  const std::lock_guard<std::mutex> lock(work_mutex_);
-  shadow_fbm_work_.points += work.points;
-  shadow_fbm_work_.octaves += work.octaves;
-}
-
-template <class Real>
-void CpuBackend<Real>::run_sun_horizons(std::size_t begin, std::size_t end) {
-  // Units never span two levels' rows in one call of the sweep.
-  HorizonWork work;
-  const int n = shadow_plan_.resolution;
-  const std::size_t first = std::size_t(shadow_.first_level) * std::size_t(n);
-  end += first;
-  for (std::size_t unit = first + begin; unit < end;) {
-    const int level = int(unit / n), row = int(unit % n);
-    const int rows_here = int(std::min<std::size_t>(end - unit, std::size_t(n - row)));
-    const HorizonWork part =
-        sweep_sun_horizons<Real>(shadow_, level, RowRange{row, row + rows_here}, horizons_);
-    work.samples += part.samples;
-    work.continuation += part.continuation;
-    work.popped += part.popped;
-    unit += std::size_t(rows_here);
-  }
-  const std::lock_guard<std::mutex> lock(work_mutex_);
-  horizon_work_.samples += work.samples;
-  horizon_work_.continuation += work.continuation;
-  horizon_work_.popped += work.popped;
-}
-
-template <class Real>
 bool CpuBackend<Real>::water_in_view() const {
   if (!plan_.water_enabled) {
     return false;

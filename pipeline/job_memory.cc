@@ -108,6 +108,21 @@ std::uintmax_t grid_vertices(const Scene& scene) {
   return make_grid_layout(scene.grid.width, scene.grid.height).size();
 }
 
+// Cast shadows' horizon cache (core/sun_horizons.h): the levels the scene lays out, N^2
+// samples each with three values in the backend's precision; a frame builds those its pixels
+// read (the GL backend refuses shadows).
+void add_shadow_cache(const Scene& scene, Backend backend, MemoryEstimate& estimate) {
+  const int levels = shadow_cache_levels(scene);
+  if (levels == 0 || backend == Backend::kGl) {
+    return;
+  }
+  const std::uintmax_t n = std::uintmax_t(scene.lighting.shadow_resolution);
+  const std::uintmax_t value =
+      backend != Backend::kReferenceDouble ? sizeof(float) : sizeof(double);
+  estimate.add("shadow cache " + size_text(int(n), int(n)) + " x " + std::to_string(levels),
+               n * n * std::uintmax_t(levels) * 3 * value);
+}
+
 }  // namespace
 
 MemoryEstimate estimate_scene_resources_memory(const Scene& scene) {
@@ -121,9 +136,15 @@ MemoryEstimate estimate_rows_render_memory(const Scene& scene, Backend backend,
   if (backend == Backend::kGl) {
     return estimate_render_memory(scene, backend, outputs);
   }
-  Scene band = scene;  // the per-pixel parts scale with the rows; nothing else reads them
+  // The per-pixel parts scale with the rows; the shadow cache's levels are laid out from the
+  // whole viewport (its pixel angle and corner), as the band's frame lays them out.
+  Scene band = scene;
   band.viewport.height = std::max(1, std::min(rows, scene.viewport.height));
-  return estimate_render_memory(band, backend, outputs);
+  MemoryEstimate estimate = estimate_render_memory(band, backend, outputs);
+  std::erase_if(estimate.parts,
+                [](const auto& part) { return part.first.rfind("shadow cache", 0) == 0; });
+  add_shadow_cache(scene, backend, estimate);
+  return estimate;
 }
 
 std::string render_memory_advice(const Scene& scene) {
@@ -148,18 +169,7 @@ MemoryEstimate estimate_render_memory(const Scene& scene, Backend backend,
   // 173,349 of 33.5 million), so their worst case refused jobs that fit; the backend counts
   // them with the bins once set up, against what this estimate leaves of the budget.
   estimate.add("grid " + size_text(scene.grid.width, scene.grid.height), vertices * vertex_bytes);
-  // Cast shadows' horizon cache (core/sun_horizons.h): the levels the scene lays out, N^2
-  // samples each with three values in the backend's precision; a frame builds those its pixels
-  // read (the GL backend refuses shadows).
-  const int shadow_levels = shadow_cache_levels(scene);
-  if (shadow_levels > 0 && backend != Backend::kGl) {
-    const std::uintmax_t n = std::uintmax_t(scene.lighting.shadow_resolution);
-    const std::uintmax_t value =
-        backend != Backend::kReferenceDouble ? sizeof(float) : sizeof(double);
-    estimate.add(
-        "shadow cache " + size_text(int(n), int(n)) + " x " + std::to_string(shadow_levels),
-        n * n * std::uintmax_t(shadow_levels) * 3 * value);
-  }
+  add_shadow_cache(scene, backend, estimate);
   // Set-up's per-thread scratch (raster::PreparedVertices, kept between frames): every vertex
   // one chunk of kSetupChunk triangles spans, padded rows included, 34 bytes each. A narrow
   // grid's chunk spans many rows: on a 2 x 8192 grid 2,049 rows of 16, 1.1 MiB a thread.

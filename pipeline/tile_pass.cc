@@ -7,12 +7,12 @@
 #include <vector>
 
 #include "core/srgb.h"
+#include "pipeline/tile_shadows.h"
 #include "raster/resolve.h"
 #include "simd/raster_tile.h"
 #include "simd/resolve.h"
 #include "simd/shade.h"
 #include "simd/srgb.h"
-#include "simd/sun_share.h"
 
 namespace relief {
 
@@ -267,34 +267,11 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
   }
   const Clock::time_point resolved = Clock::now();
 
-  // Cast shadows: each covered pixel's share of the sun disc (sun_visibility.h); without them
-  // the whole disc (the Highway shading reads no share at all then).
-  TileAttributes<Real>& resolved_attributes = scratch->attributes;
-  const bool shadows = shadows_.params != nullptr;
-  if (!shadows) {
-    std::fill(resolved_attributes.sun, resolved_attributes.sun + TileAttributes<Real>::kPixels,
-              Real(1));
-  }
-  bool shares_simd = false;
-  if constexpr (std::is_same_v<Real, float>) {
-    if (drawn && shadows && kernels_.sun == KernelKind::kHighway) {
-      constexpr std::size_t n = TileAttributes<float>::kPixels;
-      simd::sun_shares(*shadows_.params, *shadows_.cache, {vis.primitive, n},
-                       {resolved_attributes.dx, n}, {resolved_attributes.height, n},
-                       {resolved_attributes.dz, n}, vis.width, vis.height, raster::kTileSize,
-                       {resolved_attributes.sun, n}, work.shadow);
-      shares_simd = true;
-    }
-  }
-  for (int py = vis.y0; drawn && shadows && !shares_simd && py < vis.y0 + vis.height; ++py) {
-    for (int px = vis.x0; px < vis.x0 + vis.width; ++px) {
-      const std::size_t k = vis.index(px, py);
-      if (vis.primitive[k] != raster::kNoPrimitive) {
-        resolved_attributes.sun[k] = sun_visibility<Real>(
-            *shadows_.params, *shadows_.cache, resolved_attributes.dx[k],
-            resolved_attributes.height[k], resolved_attributes.dz[k], work.shadow);
-      }
-    }
+  // Cast shadows: each covered pixel's share of the sun disc (tile_shadows.h).
+  if (drawn) {
+    tile_sun_shares(shadows_, kernels_.sun,
+                    std::is_same_v<Real, float> && kernels_.shade == KernelKind::kHighway, vis,
+                    scratch->attributes, work.shadow);
   }
   const Clock::time_point shadowed = Clock::now();
 
@@ -305,23 +282,24 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
     if (kernels_.shade == KernelKind::kHighway) {
       const TileAttributes<float>& a = scratch->attributes;
       constexpr std::size_t n = TileAttributes<float>::kPixels;
-      const ShadingInputs in{{vis.primitive, n},
-                             {a.dx, n},
-                             {a.dz, n},
-                             {a.height, n},
-                             {a.dx_ddx, n},
-                             {a.dx_ddy, n},
-                             {a.dz_ddx, n},
-                             {a.dz_ddy, n},
-                             {a.height_ddx, n},
-                             {a.height_ddy, n},
-                             {a.nx, n},
-                             {a.ny, n},
-                             {a.nz, n},
-                             {a.slope, n},
-                             {a.water_depth, n},
-                             {},
-                             shadows ? std::span<const float>(a.sun, n) : std::span<const float>{}};
+      const ShadingInputs in{
+          {vis.primitive, n},
+          {a.dx, n},
+          {a.dz, n},
+          {a.height, n},
+          {a.dx_ddx, n},
+          {a.dx_ddy, n},
+          {a.dz_ddx, n},
+          {a.dz_ddy, n},
+          {a.height_ddx, n},
+          {a.height_ddy, n},
+          {a.nx, n},
+          {a.ny, n},
+          {a.nz, n},
+          {a.slope, n},
+          {a.water_depth, n},
+          {},
+          shadows_.params != nullptr ? std::span<const float>(a.sun, n) : std::span<const float>{}};
       simd::shade_rect(shade_, resources_, in, vis.x0, vis.y0, vis.width, vis.height,
                        raster::kTileSize, std::span<float>(scratch->rgb), work.shade);
       shaded_simd = true;

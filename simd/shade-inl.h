@@ -12,8 +12,10 @@
 #define RELIEF_SIMD_SHADE_INL_H_
 #endif
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 
 #include <hwy/highway.h>
 
@@ -39,10 +41,8 @@ namespace hn = hwy::HWY_NAMESPACE;
 constexpr double kShadeMinProjectionWeight = 0.01;
 constexpr double kShadeMinLayerWeight = 1e-3;
 
-// The per-pixel fields ShadeRect reads, in AttributeVectors' order.
-constexpr int kShadeFields = 15;
-constexpr int kDepthField = 13;
-constexpr int kSunField = 14;
+// The per-pixel fields ShadeRect reads, in AttributeVectors' order; two may be absent.
+constexpr int kShadeFields = 15, kDepthField = 13, kSunField = 14;
 
 // What the kernel reads besides the pixels: the parameters and the resources' views.
 struct ShadeContext {
@@ -338,18 +338,11 @@ void ShadeRect(const ShadeParams<float>& p, const ShadeResources& r, const Shadi
       in.ny,     in.nz,     in.slope,      in.water_depth, in.sun};
   // The water depth is not resolved (and may be absent) where no terrain lies under water.
   const bool reads_depth = p.water_enabled && p.terrain_water;
-  // Fields read from the constant tail instead: the water depth where it is not read, the sun's
-  // share where the frame has no cast shadows.
-  const auto absent = [&](int f) {
-    return (f == kDepthField && (!reads_depth || spans[f].empty())) ||
-           (f == kSunField && spans[f].empty());
-  };
+  // Fields read from the constant tail (0; the sun's share 1, the whole disc): absent, or unread.
+  const auto absent = [&](int f) { return spans[f].empty() || (f == kDepthField && !reads_depth); };
   constexpr int kMaxLanes = HWY_MAX_BYTES / sizeof(float);
   HWY_ALIGN float tail[kShadeFields][kMaxLanes] = {};
-  // Without cast shadows every pixel sees the whole sun disc (ShadingInputs::sun empty).
-  for (float& share : tail[kSunField]) {
-    share = 1.0f;
-  }
+  std::fill(std::begin(tail[kSunField]), std::end(tail[kSunField]), 1.0f);
   HWY_ALIGN std::uint32_t tail_primitive[kMaxLanes] = {};
   HWY_ALIGN float out[3 * kMaxLanes];
   ShadeWork work;

@@ -33,8 +33,12 @@ HWY_INLINE V Lerp(V a, V b, V f) {
 
 // disc_share (sun_visibility.cc).
 template <class D, class V = hn::Vec<D>>
-HWY_INLINE V DiscShare(D d, const ShadowParams<float>& p, V t) {
+HWY_INLINE V DiscShare(D d, const ShadowParams<float>& p, V tangent) {
   const V one = hn::Set(d, 1.0f);
+  // std::clamp(tangent, -1e6, 1e6).
+  const V low = hn::Set(d, -1e6f), high = hn::Set(d, 1e6f);
+  const V t = hn::IfThenElse(hn::Lt(tangent, low), low,
+                             hn::IfThenElse(hn::Lt(high, tangent), high, tangent));
   const V sine =
       hn::Div(hn::Sub(hn::Set(d, p.sin_elevation), hn::Mul(t, hn::Set(d, p.cos_elevation))),
               hn::Sqrt(hn::Add(one, hn::Mul(t, t))));
@@ -46,8 +50,9 @@ HWY_INLINE V DiscShare(D d, const ShadowParams<float>& p, V t) {
   const V half = hn::Set(d, 0.5f);
   const V s = hn::Add(half, hn::Mul(half, x));
   const V smooth = hn::Mul(hn::Mul(s, s), hn::Sub(hn::Set(d, 3.0f), hn::Mul(hn::Set(d, 2.0f), s)));
-  return hn::IfThenElse(hn::Le(t, hn::Set(d, p.lit_tangent)), one,
-                        hn::IfThenElse(hn::Ge(t, hn::Set(d, p.dark_tangent)), hn::Zero(d), smooth));
+  return hn::IfThenElse(
+      hn::Le(tangent, hn::Set(d, p.lit_tangent)), one,
+      hn::IfThenElse(hn::Ge(tangent, hn::Set(d, p.dark_tangent)), hn::Zero(d), smooth));
 }
 
 // level_share (sun_visibility.cc) for the lanes of `active`, each at its own level; `proven`

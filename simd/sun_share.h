@@ -15,7 +15,8 @@ namespace relief::simd {
 // Over a rectangle: pixel (i, j), 0 <= i < width, 0 <= j < height, has index k = j * stride + i
 // into every span. Where covered[k] != 0xffffffff writes share[k] = sun_visibility<float>(p, c,
 // dx[k], height[k], dz[k]) and adds to `work` exactly what the scalar code adds; leaves the
-// other pixels' shares alone and reads none of their attributes. Precondition: p.enabled.
+// other pixels' shares alone and uses none of their attributes (whole vectors are loaded and
+// the uncovered lanes masked). Precondition: p.enabled.
 void sun_shares(const ShadowParams<float>& p, const SunHorizonCache<float>& c,
                 std::span<const std::uint32_t> covered, std::span<const float> dx,
                 std::span<const float> height, std::span<const float> dz, int width, int height_px,

@@ -1,7 +1,8 @@
 // Cast shadows (core/sun_horizons.h, core/sun_visibility.h): the sweep against a brute-force
 // search of every sample's horizon, the per-pixel share against exact ray casting in double
-// over the whole terrain function, and frame properties that need no oracle at all: shadows
-// only darken, a flat terrain or a sun at the zenith casts none, a set sun lights nothing.
+// over the terrain function of the point's level and over the whole function, and frame
+// properties that need no oracle at all: shadows only darken, a flat terrain or a sun at the
+// zenith casts none, a set sun lights nothing.
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -14,6 +15,7 @@
 #include "core/sun_horizons.h"
 #include "core/sun_visibility.h"
 #include "pipeline/frame.h"
+#include "pipeline/gl_backend.h"
 #include "pipeline/job_memory.h"
 #include "pipeline/scene_resources.h"
 #include "tests/oracles/whole_frame.h"
@@ -22,8 +24,9 @@
 namespace relief {
 namespace {
 
-// Two levels of 32 samples, level 1 twice as coarse, both centred on the camera, rows along +x.
-ShadowParams<double> two_levels() {
+// Two levels of 32 samples, level 1 twice as coarse, both about the camera, rows along +x,
+// every row of level 0 strictly between two of level 1's; occluders up to `reach` past a row.
+ShadowParams<double> two_levels(double reach) {
   ShadowPlan plan;
   plan.enabled = true;
   plan.resolution = 32;
@@ -33,10 +36,11 @@ ShadowParams<double> two_levels() {
   for (int level = 0; level < 2; ++level) {
     plan.spacing[level] = std::exp2(level);
     plan.origin_u[level] = -16.0 * plan.spacing[level];
-    plan.origin_v[level] = -16.0 * plan.spacing[level] + 0.25;  // rows between level 1's
     plan.nu[level] = 1;
   }
-  plan.reach = 1e9;  // every coarser sample past the end is an occluder candidate
+  plan.origin_v[0] = -16.0 + 0.25;
+  plan.origin_v[1] = -32.0 + 0.6;  // level 0's rows lie 0.35 or 1.35 past one of level 1's
+  plan.reach = reach;
   plan.sin_elevation = std::sin(0.3);
   plan.cos_elevation = std::cos(0.3);
   plan.sin_radius = std::sin(0.01);
@@ -46,63 +50,70 @@ ShadowParams<double> two_levels() {
 }
 
 TEST_CASE("theSweepFindsEverySamplesHorizonAsABruteForceSearchDoes", "[shadows]") {
-  const ShadowParams<double> p = two_levels();
-  SunHorizonCache<double> cache;
-  cache.allocate(32, 0, 2);
-  std::mt19937 random(7);
-  std::uniform_real_distribution<double> height(-50.0, 50.0);
-  for (double& h : cache.height) {
-    h = height(random);
-  }
-  for (int level = 0; level < 2; ++level) {
-    sweep_sun_horizons<double>(p, level, RowRange{0, 32}, cache);
-  }
-  for (int level = 0; level < 2; ++level) {
-    for (int row = 0; row < 32; ++row) {
-      // The candidates: the row's own samples, then (level 0) level 1's past the row's end,
-      // their heights interpolated between level 1's two rows around the row's v.
-      std::vector<std::pair<double, double>> line;
-      for (int i = 0; i < 32; ++i) {
-        line.push_back(
-            {p.origin_u[level] + i * p.spacing[level], cache.height[cache.index(level, row, i)]});
-      }
-      if (level == 0) {
-        const double v = p.origin_v[0] + row * p.spacing[0];
-        const double fj = (v - p.origin_v[1]) / p.spacing[1];
-        const int j0 = int(std::floor(fj));
-        const double g = fj - j0;
+  // With every coarser sample past a row's end an occluder candidate, and with the reach cut
+  // at 5 units (one coarser sample past it is kept).
+  for (const double reach : {1e9, 5.0}) {
+    const ShadowParams<double> p = two_levels(reach);
+    SunHorizonCache<double> cache;
+    cache.allocate(32, 0, 2);
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> height(-50.0, 50.0);
+    for (double& h : cache.height) {
+      h = height(random);
+    }
+    for (int level = 0; level < 2; ++level) {
+      sweep_sun_horizons<double>(p, level, RowRange{0, 32}, cache);
+    }
+    for (int level = 0; level < 2; ++level) {
+      for (int row = 0; row < 32; ++row) {
+        // The candidates: the row's own samples, then (level 0) level 1's past the row's end
+        // up to the reach and one sample more, their heights interpolated between level 1's
+        // two rows around the row's v.
+        std::vector<std::pair<double, double>> line;
         for (int i = 0; i < 32; ++i) {
-          const double u = p.origin_u[1] + i * p.spacing[1];
-          if (u > line[31].first) {
-            const double h0 = cache.height[cache.index(1, j0, i)];
-            const double h1 = cache.height[cache.index(1, j0 + 1, i)];
-            line.push_back({u, h0 + (h1 - h0) * g});
+          line.push_back(
+              {p.origin_u[level] + i * p.spacing[level], cache.height[cache.index(level, row, i)]});
+        }
+        if (level == 0) {
+          const double v = p.origin_v[0] + row * p.spacing[0];
+          const double fj = (v - p.origin_v[1]) / p.spacing[1];
+          const int j0 = int(std::floor(fj));
+          const double g = fj - j0;
+          REQUIRE(g > 0.1);
+          REQUIRE(g < 0.9);
+          for (int i = 0; i < 32; ++i) {
+            const double u = p.origin_u[1] + i * p.spacing[1];
+            if (u > line[31].first && u <= line[31].first + reach + p.spacing[1]) {
+              const double h0 = cache.height[cache.index(1, j0, i)];
+              const double h1 = cache.height[cache.index(1, j0 + 1, i)];
+              line.push_back({u, h0 + (h1 - h0) * g});
+            }
           }
         }
-      }
-      for (int i = 0; i < 32; ++i) {
-        double best = -HUGE_VAL;
-        for (std::size_t k = 0; k < line.size(); ++k) {
-          if (line[k].first > line[i].first) {
-            best =
-                std::max(best, (line[k].second - line[i].second) / (line[k].first - line[i].first));
+        for (int i = 0; i < 32; ++i) {
+          double best = -HUGE_VAL;
+          for (std::size_t k = 0; k < line.size(); ++k) {
+            if (line[k].first > line[i].first) {
+              best = std::max(best,
+                              (line[k].second - line[i].second) / (line[k].first - line[i].first));
+            }
           }
+          INFO("reach " << reach << ", level " << level << " row " << row << " sample " << i);
+          const std::size_t at = cache.index(level, row, i);
+          if (best == -HUGE_VAL) {  // the last sample of the last level: nothing ahead
+            CHECK(cache.tangent[at] < -1e5);
+            continue;
+          }
+          CHECK(cache.tangent[at] == Approx(best).epsilon(1e-12).margin(1e-12));
+          // The run reaches the sample that sets the horizon.
+          const double hit_u = line[i].first + 1.0 / cache.inv_distance[at];
+          const auto it = std::find_if(line.begin(), line.end(), [&](const auto& point) {
+            return std::abs(point.first - hit_u) < 1e-9 * (1.0 + std::abs(hit_u));
+          });
+          REQUIRE(it != line.end());
+          CHECK((it->second - line[i].second) * cache.inv_distance[at] ==
+                Approx(best).epsilon(1e-12));
         }
-        INFO("level " << level << " row " << row << " sample " << i);
-        const std::size_t at = cache.index(level, row, i);
-        if (best == -HUGE_VAL) {  // the last sample of the last level: nothing ahead
-          CHECK(cache.tangent[at] < -1e5);
-          continue;
-        }
-        CHECK(cache.tangent[at] == Approx(best).epsilon(1e-12).margin(1e-12));
-        // The run reaches the sample that sets the horizon.
-        const double hit_u = line[i].first + 1.0 / cache.inv_distance[at];
-        const auto it = std::find_if(line.begin(), line.end(), [&](const auto& point) {
-          return std::abs(point.first - hit_u) < 1e-9 * (1.0 + std::abs(hit_u));
-        });
-        REQUIRE(it != line.end());
-        CHECK((it->second - line[i].second) * cache.inv_distance[at] ==
-              Approx(best).epsilon(1e-12));
       }
     }
   }
@@ -177,6 +188,25 @@ TEST_CASE("theCachedShareOfTheSunIsCloseToExactRayCastingInDouble", "[shadows]")
                              << " points on the wrong side of half");
   CHECK(mean < 0.1);
   CHECK(wrong <= points / 10);
+  // Against the terrain's whole function (every octave, a 0.5-unit march) the cache errs more:
+  // the octaves finer than a pixel shade their own back slopes, which the frame leaves to the
+  // normal's Lambert term (measured 0.2 on 120 points).
+  double whole_sum = 0.0;
+  const double all = double(frame.terrain.octaves.count);
+  for (int k = 0; k < 30; ++k) {
+    const double dx = offset(random), dz = offset(random);
+    const double h = fbm_height<double>(frame.terrain, dx, dz, all);
+    double horizon = -HUGE_VAL;
+    for (double t = 0.5; t <= plan.reach; t += 0.5) {
+      const double x = dx + t * plan.axis_x, z = dz + t * plan.axis_z;
+      horizon = std::max(horizon, (fbm_height<double>(frame.terrain, x, z, all) - h) / t);
+    }
+    whole_sum += std::abs(exact_share(elevation, radius, horizon) -
+                          sun_visibility<double>(params, cache, dx, h, dz, work));
+  }
+  INFO("against every octave: mean |share error| " << whole_sum / 30);
+  CHECK(whole_sum / 30 < 0.35);
+  CHECK(whole_sum / 30 > mean);
 }
 
 std::vector<std::string> small(std::vector<std::string> more) {
@@ -286,6 +316,28 @@ TEST_CASE("aFarPlaneFarAwayKeepsTheShadowsAndEveryPixelInTheCache", "[shadows]")
   CHECK(counter(side, "pixels beyond the shadow cache") == 0);
 }
 
+TEST_CASE("leavingOutUnreadLevelsChangesNoBitWhereTheOccludersReachFar", "[shadows]") {
+  // With the disc's lower edge at or below the horizon the occluders' reach is capped at the
+  // far plane's corner: the rows of the coarsest level read (and of the next, which its blend
+  // band reads) continue that far, through levels the skip must then keep.
+  for (const char* elevation : {"lighting.sun_elevation_deg=0.3", "lighting.sun_elevation_deg=2",
+                                "lighting.sun_elevation_deg=40"}) {
+    for (const char* far : {"camera.far=60000", "camera.far=3000"}) {
+      const Scene scene = resolve_scene("sunset", small({elevation, far}));
+      const SceneResources resources = load_scene_resources(scene);
+      FrameRequest request;
+      request.backend = Backend::kReference;
+      request.outputs.linear = true;
+      const Frame skipped = render_frame(scene, resources, request);
+      request.skips.unread_shadow_levels = false;
+      const Frame full = render_frame(scene, resources, request);
+      INFO(elevation << ", " << far);
+      CHECK(counter(skipped, "cache levels built") < counter(full, "cache levels built"));
+      CHECK(skipped.image.linear == full.image.linear);
+    }
+  }
+}
+
 TEST_CASE("theMemoryEstimateCountsTheShadowCacheOnlyWhereOneIsBuilt", "[shadows]") {
   const auto cache_bytes = [](const Scene& scene, Backend backend) {
     std::uintmax_t bytes = 0;
@@ -314,11 +366,15 @@ TEST_CASE("theMemoryEstimateCountsTheShadowCacheOnlyWhereOneIsBuilt", "[shadows]
 }
 
 TEST_CASE("theStressSuiteSkipsTheGlBackendOnAShadowedScene", "[shadows]") {
-  // relief stress sunset failed every GL row as "refused unexpectedly".
+  // relief stress sunset failed every GL row as "refused unexpectedly"; where GL runs (Mesa's
+  // llvmpipe in CI) its rows are now skipped with the reason.
   const test::CliResult r = test::run(
       {"stress", "sunset", "--viewport", "160", "128", "--grid", "64", "--axis", "pitch"});
   INFO(r.out << r.err);
   CHECK(r.code == 0);
+  if (gl_backend_built() && r.out.find("no GL context") == std::string::npos) {
+    CHECK_THAT(r.out, Catch::Contains("the GL backend has no cast shadows yet"));
+  }
 }
 
 }  // namespace

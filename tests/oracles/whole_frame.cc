@@ -105,20 +105,23 @@ ShadingInputs shading_inputs(const TerrainFrame& frame, const raster::ResolvedFr
 
 template <class Real>
 SunHorizonCache<Real> build_horizon_cache(const ShadowPlan& plan, const FramePlan& frame,
-                                          const SceneResources& resources) {
+                                          const SceneResources& resources, int first, int end) {
   SunHorizonCache<Real> cache;
   if (!plan.enabled || plan.sun_set) {
     return cache;
   }
-  const ShadowParams<Real> params = make_shadow_params<Real>(plan);
-  cache.allocate(plan.resolution, 0, plan.levels);
+  end = end < 0 ? plan.levels : end;
+  ShadowParams<Real> params = make_shadow_params<Real>(plan);
+  params.first_level = first;
+  params.end_level = end;
+  cache.allocate(plan.resolution, first, end);
   FbmParams<Real> fbm = make_fbm_params<Real>(frame.terrain);
   choose_coordinate_forms(frame.terrain, shadow_octave_reach(plan), fbm);
   const SketchParams<Real> sketch =
       make_sketch_params<Real>(frame.terrain.sketch_plan, resources.sketch_or_null());
   const int n = plan.resolution;
   std::vector<Real> dx(n), dz(n), nu(n);
-  for (int level = 0; level < plan.levels; ++level) {
+  for (int level = first; level < end; ++level) {
     for (int row = 0; row < n; ++row) {
       shadow_row_positions<Real>(params, level, row, dx, dz, nu);
       const std::span<Real> heights(cache.height.data() + cache.index(level, row, 0),
@@ -131,16 +134,16 @@ SunHorizonCache<Real> build_horizon_cache(const ShadowPlan& plan, const FramePla
       }
     }
   }
-  for (int level = 0; level < plan.levels; ++level) {
+  for (int level = first; level < end; ++level) {
     sweep_sun_horizons<Real>(params, level, RowRange{0, n}, cache);
   }
   return cache;
 }
 
 template SunHorizonCache<float> build_horizon_cache<float>(const ShadowPlan&, const FramePlan&,
-                                                           const SceneResources&);
+                                                           const SceneResources&, int, int);
 template SunHorizonCache<double> build_horizon_cache<double>(const ShadowPlan&, const FramePlan&,
-                                                             const SceneResources&);
+                                                             const SceneResources&, int, int);
 
 namespace {
 

@@ -51,11 +51,12 @@ ShadingInputs shading_inputs(const TerrainFrame& frame, const raster::ResolvedFr
 // The whole frame: sRGB image and linear radiance (FrameImage's srgb and linear).
 FrameImage render_whole_frame(const Scene& scene, const SceneResources& resources);
 
-// Cast shadows' horizon cache composed from core's functions (core/sun_horizons.h): every
-// level's heights by stage 3's portable fBm and sketch, then every row swept. Empty where the
-// plan is disabled or the sun has set.
+// Cast shadows' horizon cache composed from core's functions (core/sun_horizons.h): the heights
+// of levels [first, end) (end < 0: every level) by stage 3's portable fBm and sketch, then
+// their rows swept. Empty where the plan is disabled or the sun has set.
 template <class Real>
 SunHorizonCache<Real> build_horizon_cache(const ShadowPlan& plan, const FramePlan& frame,
-                                          const SceneResources& resources);
+                                          const SceneResources& resources, int first = 0,
+                                          int end = -1);
 
 }  // namespace relief

@@ -1,0 +1,22 @@
+// Cast shadows in a tile (tile_pass.h): after the resolve, each covered pixel's share of the
+// sun disc (core/sun_visibility.h), through the Highway kernel (simd/sun_share.h) or the
+// portable step, the same bits either way.
+#pragma once
+
+#include "core/sun_visibility.h"
+#include "pipeline/kernel_kind.h"
+#include "pipeline/tile_pass.h"
+#include "raster/bins.h"
+
+namespace relief {
+
+// Writes `attributes.sun` at every covered pixel of `visibility`: the share with `shadows`
+// (params non-null), else 1. Without shadows and with a Highway shade (which then reads no
+// share, tile_pass.cc) nothing is written. `kind`: the sun's kernel (TileKernels::sun), Highway
+// in float only.
+template <class Real>
+void tile_sun_shares(const TileShadows<Real>& shadows, KernelKind kind, bool highway_shade,
+                     const raster::TileVisibility& visibility, TileAttributes<Real>& attributes,
+                     ShadowWork& work);
+
+}  // namespace relief
