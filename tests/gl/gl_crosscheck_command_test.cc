@@ -11,12 +11,12 @@
 
 #include "core/frame_plan.h"
 #include "core/scene/scene_json.h"
-#include "tests/gl/gl_presets.h"
 #include "core/stage_params.h"
 #include "gpu/gl_checks.h"
 #include "gpu/gl_terrain.h"
 #include "pipeline/job_memory.h"
 #include "pipeline/scene_resources.h"
+#include "tests/gl/gl_presets.h"
 #include "tests/gl/gl_test_context.h"
 #include "tests/support/cli_support.h"
 #include "tests/support/test_support.h"

@@ -14,7 +14,6 @@
 #include <catch2/catch.hpp>
 
 #include "core/scene/scene_json.h"
-#include "tests/gl/gl_presets.h"
 #include "core/shading_plan.h"
 #include "core/stage_params.h"
 #include "core/vertex_culling.h"
@@ -24,6 +23,7 @@
 #include "raster/rasterize.h"
 #include "raster/topology.h"
 #include "tests/gl/gl_frame_compare.h"
+#include "tests/gl/gl_presets.h"
 #include "tests/gl/gl_test_context.h"
 #include "tests/oracles/whole_frame.h"
 
