@@ -11,6 +11,26 @@ void OctaveReach::merge(const OctaveReach& other) {
   }
 }
 
+int finest_octave(double nu) {
+  if (nu <= 1.0) {
+    return 0;
+  }
+  if (nu < double(limits::kMaxOctaves)) {
+    return static_cast<int>(std::ceil(nu)) - 1;
+  }
+  return limits::kMaxOctaves - 1;
+}
+
+OctaveReach running_reach(const OctaveReach& by_finest) {
+  OctaveReach reach;
+  double farthest = 0.0;
+  for (int n = limits::kMaxOctaves - 1; n >= 0; --n) {
+    farthest = std::max(farthest, by_finest.extent[n]);
+    reach.extent[n] = farthest;
+  }
+  return reach;
+}
+
 template <class Real>
 OctaveReach octave_reach(IndexRange range, std::span<const Real> dx, std::span<const Real> dz,
                          std::span<const Real> nu, std::span<const std::uint8_t> valid) {
@@ -22,25 +42,11 @@ OctaveReach octave_reach(IndexRange range, std::span<const Real> dx, std::span<c
     if (!valid[k]) {
       continue;
     }
-    // nu outside [1, N] (or NaN, from a scene that skipped validation) sums what fbm.cc sums
-    // for it: octave 0 at most below 1, every octave above N.
-    const double vertex_nu = double(nu[k]);
-    int n = limits::kMaxOctaves - 1;
-    if (vertex_nu <= 1.0) {
-      n = 0;
-    } else if (vertex_nu < double(limits::kMaxOctaves)) {
-      n = static_cast<int>(std::ceil(vertex_nu)) - 1;
-    }
+    const int n = finest_octave(double(nu[k]));
     const double extent = std::max(std::abs(double(dx[k])), std::abs(double(dz[k])));
     by_finest.extent[n] = std::max(by_finest.extent[n], extent);
   }
-  OctaveReach reach;
-  double farthest = 0.0;
-  for (int n = limits::kMaxOctaves - 1; n >= 0; --n) {
-    farthest = std::max(farthest, by_finest.extent[n]);
-    reach.extent[n] = farthest;
-  }
-  return reach;
+  return running_reach(by_finest);
 }
 
 template <class Real>

@@ -114,6 +114,16 @@ struct OctaveReach {
   void merge(const OctaveReach& other);
 };
 
+// The finest octave a point summing nu octaves reaches (fbm.h sums octave n where n < nu):
+// ceil(nu) - 1, octave 0 for nu <= 1, the last table entry for nu past it (or NaN, from a
+// scene that skipped validation: fbm.cc then sums every octave).
+int finest_octave(double nu);
+
+// Per octave the farthest extent of any point summing it, from the farthest per finest octave
+// summed: a point summing octave n sums every coarser one (a running maximum from the fine
+// octaves down).
+OctaveReach running_reach(const OctaveReach& by_finest);
+
 template <class Real>
 OctaveReach octave_reach(IndexRange range, std::span<const Real> dx, std::span<const Real> dz,
                          std::span<const Real> nu, std::span<const std::uint8_t> valid);

@@ -125,8 +125,7 @@ ShadowPlan make_shadow_plan(const Scene& scene, const FramePlan& frame) {
 OctaveReach shadow_octave_reach(const ShadowPlan& plan) {
   OctaveReach by_finest;
   for (int level = 0; level < plan.levels; ++level) {
-    // The finest octave the level sums (fbm.h sums octave n where n < nu; nu >= 1).
-    const int n = std::clamp(int(std::ceil(plan.nu[level])) - 1, 0, limits::kMaxOctaves - 1);
+    const int n = finest_octave(plan.nu[level]);
     const double last = double(plan.resolution - 1) * plan.spacing[level];
     double extent = 0;
     for (const double u : {plan.origin_u[level], plan.origin_u[level] + last}) {
@@ -138,14 +137,7 @@ OctaveReach shadow_octave_reach(const ShadowPlan& plan) {
     }
     by_finest.extent[n] = std::max(by_finest.extent[n], extent * (1.0 + 1e-6));
   }
-  // A sample summing octave n sums every coarser one.
-  OctaveReach reach;
-  double farthest = 0.0;
-  for (int n = limits::kMaxOctaves - 1; n >= 0; --n) {
-    farthest = std::max(farthest, by_finest.extent[n]);
-    reach.extent[n] = farthest;
-  }
-  return reach;
+  return running_reach(by_finest);
 }
 
 template <class Real>
