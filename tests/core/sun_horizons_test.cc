@@ -5,7 +5,6 @@
 // zenith casts none, a set sun lights nothing.
 #include <algorithm>
 #include <cmath>
-#include <random>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -20,6 +19,7 @@
 #include "pipeline/scene_resources.h"
 #include "tests/oracles/whole_frame.h"
 #include "tests/support/cli_support.h"
+#include "tests/support/hashed_draws.h"
 
 namespace relief {
 namespace {
@@ -56,10 +56,9 @@ TEST_CASE("theSweepFindsEverySamplesHorizonAsABruteForceSearchDoes", "[shadows]"
     const ShadowParams<double> p = two_levels(reach);
     SunHorizonCache<double> cache;
     cache.allocate(32, 0, 2);
-    std::mt19937 random(7);
-    std::uniform_real_distribution<double> height(-50.0, 50.0);
+    test::HashedDraws draws(7);
     for (double& h : cache.height) {
-      h = height(random);
+      h = draws.uniform(-50.0, 50.0);
     }
     for (int level = 0; level < 2; ++level) {
       sweep_sun_horizons<double>(p, level, RowRange{0, 32}, cache);
@@ -159,13 +158,13 @@ TEST_CASE("theCachedShareOfTheSunIsCloseToExactRayCastingInDouble", "[shadows]")
   const ShadowParams<double> params = make_shadow_params<double>(plan);
   const SunHorizonCache<double> cache = build_horizon_cache<double>(plan, frame, resources);
   const double elevation = 10.0 * M_PI / 180.0, radius = scene.sky.sun_disc_deg * M_PI / 180.0;
-  std::mt19937 random(11);
-  std::uniform_real_distribution<double> offset(-3000.0, 3000.0);
+  test::HashedDraws draws(11);
+  const auto offset = [&] { return draws.uniform(-3000.0, 3000.0); };
   double error_sum = 0.0, worst = 0.0;
   int points = 0, wrong = 0;
   ShadowWork work;
   for (int k = 0; k < 60; ++k) {
-    const double dx = offset(random), dz = offset(random);
+    const double dx = offset(), dz = offset();
     const int level = level_at(params, dx, dz);
     REQUIRE(level >= 0);
     const double nu = plan.nu[level], step = plan.spacing[level] / 4;
@@ -194,7 +193,7 @@ TEST_CASE("theCachedShareOfTheSunIsCloseToExactRayCastingInDouble", "[shadows]")
   double whole_sum = 0.0;
   const double all = double(frame.terrain.octaves.count);
   for (int k = 0; k < 30; ++k) {
-    const double dx = offset(random), dz = offset(random);
+    const double dx = offset(), dz = offset();
     const double h = fbm_height<double>(frame.terrain, dx, dz, all);
     double horizon = -HUGE_VAL;
     for (double t = 0.5; t <= plan.reach; t += 0.5) {

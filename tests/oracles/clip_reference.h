@@ -13,6 +13,7 @@
 #include "core/counter_hash.h"
 #include "raster/clip.h"
 #include "raster/raster_types.h"
+#include "tests/support/hashed_draws.h"
 
 namespace relief::test {
 
@@ -158,11 +159,6 @@ class ExactTriangle {
   std::vector<Exact> px_, py_;  // the clipped image in window coordinates
   int orientation_ = 0;
 };
-
-// Uniform in [lo, hi) from a counter-based hash of `key` (test inputs only).
-inline double hashed_uniform(std::uint64_t key, double lo, double hi) {
-  return lo + (hi - lo) * unit_open_interval(mix64(key + kGoldenGamma));
-}
 
 // Triangle `index` of the randomised near-plane set: one or two vertices in front of the near
 // plane, the others behind it (between the eye and the near plane, or behind the eye, where

@@ -5,7 +5,6 @@
 // and off: the shares and the work counters bit for bit, and no uncovered pixel or pixel past
 // the row written; also for a cache of some of the levels only, as a frame builds.
 #include <cstdint>
-#include <random>
 #include <span>
 #include <string>
 #include <vector>
@@ -20,6 +19,7 @@
 #include "simd/targets.h"
 #include "tests/oracles/whole_frame.h"
 #include "tests/simd/kernel_ranges.h"
+#include "tests/support/hashed_draws.h"
 #include "tests/support/simd_targets.h"
 
 namespace relief {
@@ -39,15 +39,15 @@ TEST_CASE("theSunShareKernelIsTheScalarStepOnEveryTarget", "[simd][shadows]") {
   REQUIRE(plan.levels > 6);
   // Points at every scale of the levels, from the finest square to past the coarsest, and
   // heights around the cache's surface (below it: no lift; above: lifted horizons).
-  std::mt19937 random(5);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  test::HashedDraws draws(5);
+  const auto unit = [&] { return draws.uniform(0.0, 1.0); };
   const auto point = [&](float& dx, float& dz, float& h) {
     const double reach =
-        plan.spacing[0] * std::exp2(unit(random) * (plan.levels + 1)) * plan.resolution * 0.5;
-    const double angle = unit(random) * 6.283185307179586;
+        plan.spacing[0] * std::exp2(unit() * (plan.levels + 1)) * plan.resolution * 0.5;
+    const double angle = unit() * 6.283185307179586;
     dx = float(reach * std::cos(angle));
     dz = float(reach * std::sin(angle));
-    h = float(-700.0 + 1400.0 * unit(random));
+    h = float(-700.0 + 1400.0 * unit());
   };
   const EachTarget targets;
   ShadowWork reached;  // the scalar's branches the points reach, with the sun up and the skip
@@ -71,7 +71,7 @@ TEST_CASE("theSunShareKernelIsTheScalarStepOnEveryTarget", "[simd][shadows]") {
           for (int j = 0; j < rows; ++j) {
             for (int i = 0; i < w; ++i) {
               const std::size_t k = std::size_t(j) * stride + i;
-              covered[k] = unit(random) < 1.0 / 3.0 ? 0xffffffffu : std::uint32_t(k);
+              covered[k] = unit() < 1.0 / 3.0 ? 0xffffffffu : std::uint32_t(k);
               point(dx[k], dz[k], h[k]);
             }
           }
