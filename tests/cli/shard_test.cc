@@ -12,6 +12,7 @@
 
 #include "core/scene/scene_json.h"
 #include "tests/support/cli_support.h"
+#include "tests/support/shard_support.h"
 #include "tests/support/test_support.h"
 #include "tools/shard.h"
 
@@ -20,43 +21,9 @@ namespace {
 
 using Catch::Matchers::Contains;
 using test::read_bytes;
+using test::require_stitched_equal;
 using test::run;
-
-std::vector<std::string> size_sets(int width, int height) {
-  return {"--set", "viewport.width=" + std::to_string(width),
-          "--set", "viewport.height=" + std::to_string(height),
-          "--set", "grid.width=96",
-          "--set", "grid.height=96"};
-}
-
-// relief render SCENE at width x height, whole and in `count` shards, then stitched (the
-// shards given in reverse order): the same bytes.
-void require_stitched_equal(const std::string& scene, int width, int height, int count,
-                            const std::vector<std::string>& extra = {}) {
-  INFO(scene << " " << width << "x" << height << " in " << count << " shards");
-  test::TempDir dir("shard");
-  const auto args = [&](std::vector<std::string> head) {
-    const std::vector<std::string> sizes = size_sets(width, height);
-    head.insert(head.end(), sizes.begin(), sizes.end());
-    head.insert(head.end(), extra.begin(), extra.end());
-    return head;
-  };
-  const std::string whole = (dir.path() / "whole.png").string();
-  REQUIRE(run(args({"render", scene, "-o", whole})).code == 0);
-  std::vector<std::string> stitch = {"stitch", "-o", (dir.path() / "stitched.png").string()};
-  for (int i = count - 1; i >= 0; --i) {
-    const std::string part = (dir.path() / ("part" + std::to_string(i) + ".png")).string();
-    const std::string shard = std::to_string(i) + "/" + std::to_string(count);
-    const test::CliResult r = run(args({"render", scene, "--shard", shard, "-o", part}));
-    INFO(r.err);
-    REQUIRE(r.code == 0);
-    stitch.push_back(part);
-  }
-  const test::CliResult r = run(stitch);
-  INFO(r.err);
-  REQUIRE(r.code == 0);
-  CHECK(read_bytes(dir.path() / "stitched.png") == read_bytes(whole));
-}
+using test::size_sets;
 
 TEST_CASE("shardsOfEveryPresetStitchToTheBytesOfOneRender", "[shard]") {
   for (const std::string& preset : preset_names()) {
@@ -70,12 +37,6 @@ TEST_CASE("sevenAndSixtyFourShardsStitchToTheBytesOfOneRender", "[shard]") {
   require_stitched_equal("lava", 80, 4096, 64);    // one tile row each
   require_stitched_equal("default", 157, 455, 7, {"--backend", "reference-double"});
   require_stitched_equal("default", 157, 455, 7, {"--simd", "SCALAR"});
-}
-
-// GL draws whole frames and keeps the shard's rows (render_frame_rows).
-TEST_CASE("glShardsStitchToTheBytesOfOneGlRender", "[gl]") {
-  require_stitched_equal("default", 157, 200, 3, {"--backend", "gl"});
-  require_stitched_equal("planet", 157, 200, 2, {"--backend", "gl"});
 }
 
 TEST_CASE("shardsPartitionTheRowsAndFramesInWholeTiles", "[shard]") {
