@@ -80,7 +80,8 @@ CompareResult compare_images(const FloatImage& a, const FloatImage& b,
                              const CompareThresholds& thresholds);
 
 // Per pixel the largest absolute difference of its channels (ImageBufAlgo::absdiff, then
-// maxchan), rows as stored; NaN where a channel differs in NaN-ness. a and b have the same
+// maxchan), rows as stored; NaN only where channel 0's difference is NaN (NaN against a number,
+// or equal infinities, whose difference is inf - inf). a and b have the same
 // size and channel count.
 std::vector<float> largest_channel_difference(const FloatImage& a, const FloatImage& b);
 

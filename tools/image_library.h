@@ -4,7 +4,9 @@
 // initialisers died of a signal under an address-space limit (ulimit -v) between about 387 and
 // 449 MB, before any message could be printed. Now the module librelief_images.so (oiio_library.cc)
 // holds every OpenImageIO call and is loaded with dlopen by the first command that reads an
-// image file, compares images or writes EXR; a render to PNG never loads it.
+// image file or writes EXR; a render to PNG never loads it, and neither does comparing images in
+// memory (image_compare.h computes idiff's figures itself), so relief crosscheck runs on a
+// machine without OpenImageIO. relief compare loads it to read its two files.
 #pragma once
 
 #include <cstddef>
@@ -17,7 +19,6 @@
 #include <vector>
 
 #include "image/png_text.h"
-#include "tools/image_compare.h"
 
 namespace relief {
 
@@ -52,12 +53,6 @@ class ImageLibrary {
   virtual ~ImageLibrary() = default;
   // Null with `error` set when OpenImageIO cannot open the file as an image.
   virtual std::unique_ptr<ImageReader> open(const std::string& path, std::string& error) const = 0;
-  // ImageBufAlgo::compare's figures (the pixel count and idiff's verdict are image_compare.cc's);
-  // a and b: the same size and channel count, at least one pixel.
-  virtual CompareResult compare(const FloatImage& a, const FloatImage& b, float fail,
-                                float warn) const = 0;
-  virtual std::vector<float> largest_channel_difference(const FloatImage& a,
-                                                        const FloatImage& b) const = 0;
   // An EXR file's bytes (float_image_file.h); empty with `error` set on failure.
   virtual std::vector<unsigned char> encode_exr(int width, int height, int channels,
                                                 std::span<const float> values, std::size_t stride,
