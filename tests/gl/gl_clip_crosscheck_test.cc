@@ -13,6 +13,7 @@
 // float from clip coordinates spanning 19 orders of magnitude. Each triangle is drawn alone,
 // with depth test ALWAYS, so coverage is compared without depth interplay.
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <sstream>
@@ -45,6 +46,19 @@ constexpr double kGlCoverageTolerance = 2.0 / 256;
 // together with test::kDepthBound.
 constexpr double kGlDepthDeviationBound = 1e-3;
 
+// A GL rasterises the triangle of its vertices snapped to its sub-pixel grid (GL_SUBPIXEL_BITS
+// b, at least 4; the OpenGL 4.5 core specification, §14.6), each moved by up to sqrt(2) 2^-(b+1)
+// px, and interpolates depth over that triangle. The snapped triangle is an affine image A of
+// the exact one; a pixel p it covers has A^-1(p) = p - sum lambda_i delta_i with lambda_i in
+// [0, 1] summing to 1, so its depth is the exact plane's at most max |delta_i| away: |grad z|
+// sqrt(2) 2^-(b+1) besides the arithmetic's deviation. (llvmpipe interpolates the unsnapped
+// plane; an NVIDIA GPU the snapped one: seen 0.0038 on the non-dyadic set.)
+double gl_snap_distance() {
+  GLint bits = 0;
+  glGetIntegerv(GL_SUBPIXEL_BITS, &bits);
+  return std::sqrt(2.0) * std::ldexp(1.0, -(std::max(bits, 4) + 1));
+}
+
 struct GlStats {
   int triangles = 0;
   long gl_covered = 0;
@@ -57,6 +71,9 @@ struct GlStats {
   long relief_exact_mismatches = 0;  // Relief against the exact image
   double relief_worst_exact_distance = 0;
   double gl_worst_depth_error = 0;  // against exact arithmetic
+  // The GL's depth error over what its snapping and arithmetic allow (gl_snap_distance), and
+  // Relief's difference from the GL over that plus Relief's own bound: <= 1 within the bounds.
+  double gl_depth_ratio = 0, depth_difference_ratio = 0;
   double relief_worst_depth_error = 0;
   double worst_depth_difference = 0;  // Relief against llvmpipe
   std::string first_failure;
@@ -71,6 +88,8 @@ struct GlStats {
       << " px), llvmpipe at " << gl_exact_mismatches << " (farthest " << gl_worst_exact_distance
       << " px); depth error against exact: llvmpipe " << gl_worst_depth_error << ", Relief "
       << relief_worst_depth_error << "; largest depth difference " << worst_depth_difference
+      << "; over their bounds: GL depth " << gl_depth_ratio << ", difference "
+      << depth_difference_ratio
       << (first_failure.empty() ? "" : "; first failure: " + first_failure);
     return s.str();
   }
@@ -96,9 +115,30 @@ gpu::GlImage draw_one(const raster::RasterState& state, const raster::ClipVertex
   return gpu::draw_with_gl(test::gl_context(), draw);
 }
 
+// `compare_gl` false: GL's image of the triangle is undefined (gl_defines): it is drawn (no GL
+// error may result) but only Relief is compared, with the exact image.
 void compare_one(const raster::RasterState& state, const raster::ClipVertex v[3], int index,
-                 GlStats& s) {
+                 GlStats& s, bool compare_gl = true) {
   const gpu::GlImage theirs = draw_one(state, v);
+  if (!compare_gl) {
+    const std::vector<float> ours = test::relief_pixels(state, v);
+    const test::ExactTriangle exact(v, state.viewport);
+    ++s.triangles;
+    for (int py = 0; py < state.height; ++py) {
+      for (int px = 0; px < state.width; ++px) {
+        const std::size_t k = static_cast<std::size_t>(py) * state.width + px;
+        const bool relief_covers = !std::isnan(ours[k]);
+        const double distance = double(exact.signed_distance(px + Exact(0.5), py + Exact(0.5)));
+        s.relief_covered += relief_covers;
+        if (relief_covers != (distance < 0)) {
+          ++s.relief_exact_mismatches;
+          s.relief_worst_exact_distance =
+              std::max(s.relief_worst_exact_distance, std::abs(distance));
+        }
+      }
+    }
+    return;
+  }
   const std::vector<float> ours = test::relief_pixels(state, v);
   const test::ExactTriangle exact(v, state.viewport);
   ++s.triangles;
@@ -139,6 +179,21 @@ void compare_one(const raster::RasterState& state, const raster::ClipVertex v[3]
       }
       s.gl_worst_depth_error =
           std::max(s.gl_worst_depth_error, double(std::abs(theirs.depth[k] - exact_depth)));
+      // The plane's gradient in px (depth z/w is affine in window coordinates).
+      // (Where interpolate cannot, the depth there stays the pixel's: no gradient, the strict
+      // bound.)
+      Exact bx[3], right = exact_depth, left = exact_depth, up = exact_depth, down = exact_depth;
+      exact.interpolate(u + Exact(0.5), vv, bx, right);
+      exact.interpolate(u - Exact(0.5), vv, bx, left);
+      exact.interpolate(u, vv + Exact(0.5), bx, up);
+      exact.interpolate(u, vv - Exact(0.5), bx, down);
+      const double gradient = std::hypot(double(right - left), double(up - down));
+      const double allowed = kGlDepthDeviationBound + gradient * gl_snap_distance();
+      s.gl_depth_ratio =
+          std::max(s.gl_depth_ratio, double(std::abs(theirs.depth[k] - exact_depth)) / allowed);
+      s.depth_difference_ratio =
+          std::max(s.depth_difference_ratio,
+                   double(std::abs(ours[k] - theirs.depth[k])) / (test::kDepthBound + allowed));
       s.relief_worst_depth_error =
           std::max(s.relief_worst_depth_error, double(std::abs(ours[k] - exact_depth)));
       s.worst_depth_difference =
@@ -160,8 +215,8 @@ void require_agreement(const GlStats& s) {
   CHECK(s.mismatches_beyond_tolerance == 0);
   CHECK(s.relief_worst_exact_distance <= test::kCoverageTolerance);
   CHECK(s.relief_worst_depth_error <= test::kDepthBound);
-  CHECK(s.gl_worst_depth_error <= kGlDepthDeviationBound);
-  CHECK(s.worst_depth_difference <= test::kDepthBound + kGlDepthDeviationBound);
+  CHECK(s.gl_depth_ratio <= 1.0);
+  CHECK(s.depth_difference_ratio <= 1.0);
 }
 
 TEST_CASE("glCrossCheckNearPlaneTrianglesWithWFromOneMillionthTo1e13", "[gl]") {
@@ -183,9 +238,21 @@ TEST_CASE("glCrossCheckNonDyadicTrianglesInFrontOfTheNearPlane", "[gl]") {
   CHECK(s.gl_covered > 100000);
 }
 
-TEST_CASE("glCrossCheckDegenerateVerticesDrawWhatGlDraws", "[gl]") {
+// Whether GL defines the image of a triangle with vertex `v`: not where v, its subnormals
+// flushed to zero (GLSL 4.50 §4.7.1 allows the flush), is (0, 0, 0, 0): such a vertex lies on
+// every clip plane (-w <= x, y <= w, 0 <= z <= w), so clipping keeps it, and its perspective
+// division is 0 / 0 (the OpenGL 4.5 core specification, §13.6, divides by w without a
+// condition). llvmpipe draws a fan that Relief reproduces; an NVIDIA GPU draws another (seen:
+// 45,696 pixels of a 64 x 64 triangle's 16384 px viewport where the exact image has none).
+bool gl_defines(const raster::ClipVertex& v) {
+  const auto flushed = [](float c) { return std::abs(c) < FLT_MIN ? 0.0f : c; };
+  return !(flushed(v.x) == 0 && flushed(v.y) == 0 && flushed(v.z) == 0 && flushed(v.w) == 0);
+}
+
+TEST_CASE("glCrossCheckDegenerateVerticesDrawWhatGlDrawsWhereGlDefinesIt", "[gl]") {
   // A hostile vertex with two ordinary ones, in each position, through a 64 x 64 viewport
-  // equal to the framebuffer and through the 16384 px one of the random sets.
+  // equal to the framebuffer and through the 16384 px one of the random sets. Where GL leaves
+  // the image undefined (gl_defines), Relief is held to the exact image alone.
   raster::RasterState small;
   small.width = small.height = 64;
   small.viewport = {0, 0, 64, 64};
@@ -202,6 +269,10 @@ TEST_CASE("glCrossCheckDegenerateVerticesDrawWhatGlDraws", "[gl]") {
                                    {-0.5f * scale, 0.75f * scale, 0.25f, 1}};
         v[rotation] = hostile;
         const long gl_before = s.gl_covered, relief_before = s.relief_covered;
+        if (!gl_defines(hostile)) {
+          compare_one(state, v, index++, s, false);
+          continue;
+        }
         compare_one(state, v, index++, s);
         if (s.gl_covered == gl_before && s.relief_covered != relief_before) {
           ++gl_empty_relief_drawn;

@@ -50,6 +50,11 @@ struct FrameDifference {
   // triangle: <= 1 is within the bound.
   double depth_ratio = 0, height_ratio = 0, normal_ratio = 0, octaves_ratio = 0;
   double linear_ratio = 0;
+  // Where linear_ratio is largest: the pixel (x, y from the bottom), channel, both values, the
+  // tolerance, and the pixel's normal and octave differences there (where a difference comes
+  // from).
+  int worst_x = -1, worst_y = -1, worst_channel = -1;
+  double worst_cpu = 0, worst_gl = 0, worst_allowed = 0, worst_normal = 0, worst_octaves = 0;
 
   double primitive_share() const { return pixels ? double(primitive_differs) / pixels : 0.0; }
 };
@@ -122,6 +127,20 @@ inline FrameDifference compare_frames(const FrameImage& cpu, const gpu::GlFrameI
                                  ? 4.0 * float_ulp(value) + shift * linear_slope(cpu, k, c)
                                  : kBackgroundRelative * std::abs(value);
       if (same && covered) {
+        if (dl / allowed > d.linear_ratio) {
+          d.worst_x = int(k % std::size_t(cpu.width));
+          d.worst_y = int(k / std::size_t(cpu.width));
+          d.worst_channel = c;
+          d.worst_cpu = value;
+          d.worst_gl = gl.linear[i];
+          d.worst_allowed = allowed;
+          d.worst_normal = 0;
+          for (int n = 0; n < 3; ++n) {
+            d.worst_normal = std::max(
+                d.worst_normal, std::abs(double(cpu.normal[3 * k + n]) - gl.normal[3 * k + n]));
+          }
+          d.worst_octaves = std::abs(double(cpu.octaves[k]) - double(gl.octaves[k]));
+        }
         d.linear_ratio = std::max(d.linear_ratio, dl / allowed);
         const double dn = std::abs(double(cpu.normal[i]) - double(gl.normal[i]));
         d.normal_max = std::max(d.normal_max, dn);
@@ -182,7 +201,10 @@ inline std::ostream& operator<<(std::ostream& out, const FrameDifference& d) {
              << "; normal " << d.normal_max << "; height relative " << d.height_relative
              << "; octaves " << d.octaves_max << "; over their tolerances: depth " << d.depth_ratio
              << ", height " << d.height_ratio << ", normal " << d.normal_ratio << ", octaves "
-             << d.octaves_ratio << ", linear " << d.linear_ratio;
+             << d.octaves_ratio << ", linear " << d.linear_ratio << " (worst at (" << d.worst_x
+             << ", " << d.worst_y << ") channel " << d.worst_channel << ": CPU " << d.worst_cpu
+             << ", GL " << d.worst_gl << ", allowed " << d.worst_allowed << ", normal difference "
+             << d.worst_normal << ", octaves " << d.worst_octaves << ")";
 }
 
 }  // namespace relief::test

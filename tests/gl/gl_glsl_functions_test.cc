@@ -1,8 +1,9 @@
 // The GLSL ports of core's deterministic functions (gpu/shaders/common.glsl: log2_det,
 // exp2_det, normalize_or; gpu/shaders/det_trig.glsl.in: sin_cos_det, atan2_det) against the C++
-// originals, bit for bit, through a compute shader.
-// docs/gl-shading.md: where GLSL only promises bounded error, llvmpipe's IEEE arithmetic
-// still gives the CPU's bits, which is what these tests pin down.
+// originals through a compute shader: bit for bit where they use + - * only, and where this GL
+// divides and takes square roots as the CPU does (llvmpipe: tests/gl/gl_arithmetic.h); on a GL
+// that uses GLSL 4.50's allowance (a / b 2.5 ULP, sqrt 4.5 units: an NVIDIA GPU), within the
+// bound that allowance gives each function, derived at the check.
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -18,10 +19,17 @@
 #include "gpu/gl_shader_prelude.h"
 #include "gpu/gl_shader_sources.h"
 #include "gpu/glsl_sources.h"
+#include "tests/gl/gl_arithmetic.h"
 #include "tests/gl/gl_test_context.h"
 
 namespace relief {
 namespace {
+
+using test::kFloatUnit;
+
+double ulp(double x) {
+  return test::detail::ulp_of(x);
+}
 
 // Which GLSL library the test shader is built with.
 enum class Library {
@@ -85,15 +93,38 @@ std::vector<float> log_inputs() {
   return x;
 }
 
-TEST_CASE("glslLog2DetIsTheCppLog2DetBitForBit", "[gl]") {
+// log2_det's one inexact operation on a GL is y = (m - 1) / (m + 1) (m - 1 exact by Sterbenz,
+// m + 1 correctly rounded on both): the GL's y lies within 2.5 + 0.5 units of the CPU's. The
+// rest, e + y S(y^2), is the same float function G of y on both sides: |G(y') - G(y)| <=
+// L |y' - y| + 2 E, with L = max |g'| = (2 / ln 2) / (1 - y^2) <= 2.973 (|y| <= 0.1716) and E
+// the float evaluation error of G at one point: the Horner sum S (<= 2.92) within 9 roundings
+// of 2^-24, times y one more: 14.6 units of |y|, and the last addition half an ulp of the
+// result. In all: 2.973 * 3 + 2 * 14.6 <= 39 units of |y|, and one ulp of the result.
+double log2_det_bound(float x, float cpu) {
+  const std::uint32_t bits = std::bit_cast<std::uint32_t>(x);
+  double m = std::bit_cast<float>((bits & 0x7fffffu) | 0x3f800000u);
+  if (m > double(float(1.41421356237309505))) {
+    m *= 0.5;
+  }
+  const double y = (m - 1) / (m + 1);
+  return 39 * kFloatUnit * std::abs(y) + ulp(cpu);
+}
+
+TEST_CASE("glslLog2DetIsTheCppLog2DetWithinGlslsDivisionAllowance", "[gl]") {
   const std::vector<float> x = log_inputs();
   const std::vector<float> gl = run_glsl("out_values[i] = log2_det(x);", x, 1);
-  std::size_t differ = 0;
+  const bool exact = test::gl_arithmetic().exact();
+  std::size_t differ = 0, beyond = 0;
   for (std::size_t k = 0; k < x.size(); ++k) {
-    differ += std::bit_cast<std::uint32_t>(gl[k]) != std::bit_cast<std::uint32_t>(log2_det(x[k]));
+    const float cpu = log2_det(x[k]);
+    differ += std::bit_cast<std::uint32_t>(gl[k]) != std::bit_cast<std::uint32_t>(cpu);
+    beyond += !(std::abs(double(gl[k]) - cpu) <= log2_det_bound(x[k], cpu));
   }
-  INFO(differ << " of " << x.size() << " differ");
-  CHECK(differ == 0);
+  INFO(differ << " of " << x.size() << " differ, " << beyond << " beyond the bound");
+  CHECK(beyond == 0);
+  if (exact) {
+    CHECK(differ == 0);
+  }
 }
 
 TEST_CASE("glslExp2DetIsTheCppExp2DetBitForBit", "[gl]") {
@@ -110,7 +141,7 @@ TEST_CASE("glslExp2DetIsTheCppExp2DetBitForBit", "[gl]") {
   CHECK(differ == 0);
 }
 
-TEST_CASE("glslNormalizeOrIsTheCppNormalizeOrBitForBit", "[gl]") {
+TEST_CASE("glslNormalizeOrIsTheCppNormalizeOrWithinGlslsSqrtAllowance", "[gl]") {
   std::vector<float> x;
   for (int k = 0; k < 20000; ++k) {
     x.push_back(float(k) * 0.37f - 3000.0f);
@@ -122,15 +153,26 @@ TEST_CASE("glslNormalizeOrIsTheCppNormalizeOrBitForBit", "[gl]") {
   out_values[3u * i + 1u] = n.y;
   out_values[3u * i + 2u] = n.z;)";
   const std::vector<float> gl = run_glsl(body, x, 3);
-  std::size_t differ = 0;
+  // v * (1 / sqrt(|v|^2)), |v|^2 the same on both sides: the GL's square root within
+  // kSpecSqrtUnits, its division 2.5 units and its product half a unit; the CPU's three
+  // roundings half a unit each: each component within 9 units of its size (and the second order).
+  const double units = test::kSpecSqrtUnits + test::kSpecDivisionUnits + 0.5 + 3 * 0.5 + 1e-3;
+  std::size_t differ = 0, beyond = 0;
   for (std::size_t k = 0; k < x.size(); ++k) {
     const float v = x[k];
     const Vec3<float> n =
         normalize_or(Vec3<float>{v, 0.5f * v - 7.0f, 3.0f - 0.25f * v}, Vec3<float>{0, 1, 0});
     differ += gl[3 * k] != n.x || gl[3 * k + 1] != n.y || gl[3 * k + 2] != n.z;
+    for (int c = 0; c < 3; ++c) {
+      const double cpu = c == 0 ? n.x : (c == 1 ? n.y : n.z);
+      beyond += !(std::abs(double(gl[3 * k + c]) - cpu) <= units * kFloatUnit * std::abs(cpu));
+    }
   }
-  INFO(differ << " of " << x.size() << " differ");
-  CHECK(differ == 0);
+  INFO(differ << " of " << x.size() << " differ, " << beyond << " components beyond the bound");
+  CHECK(beyond == 0);
+  if (test::gl_arithmetic().exact()) {
+    CHECK(differ == 0);
+  }
 }
 
 TEST_CASE("glslSinCosDetIsTheCppSinCosDetBitForBit", "[gl][planet]") {
@@ -169,7 +211,7 @@ TEST_CASE("glslSinCosDetIsTheCppSinCosDetBitForBit", "[gl][planet]") {
   CHECK(differ == 0);
 }
 
-TEST_CASE("glslAtan2DetIsTheCppAtan2DetBitForBit", "[gl][planet]") {
+TEST_CASE("glslAtan2DetIsTheCppAtan2DetWithinGlslsDivisionAllowance", "[gl][planet]") {
   // y >= 0 (the domain), x of both signs: every octant boundary (t = tan(pi/8), y = |x|, x = 0)
   // and the (0, 0) guard.
   std::vector<float> ys, xs;
@@ -197,13 +239,25 @@ TEST_CASE("glslAtan2DetIsTheCppAtan2DetBitForBit", "[gl][planet]") {
   const std::string body = R"(
   out_values[i] = (i & 1u) == 0u ? atan2_det(x, in_values[i + 1u]) : 0.0;)";
   const std::vector<float> gl = run_glsl(body, packed, 1, Library::kTerrain);
-  std::size_t differ = 0;
+  // Both sides lie within 3.5 ulp of atan2 of the same floats (core/det_math.h) but for the
+  // GL's divisions: t = lo / hi and u = (t - 1) / (t + 1) 2.5 units instead of half a unit,
+  // 2 units more of t and of u, which reach the angle with a gain of at most 1 (|atan'| <= 1,
+  // |du/dt| = 2 / (t + 1)^2 <= 1 above tan(pi/8)): |GL - CPU| <= 7 ulp + 2 (t + |u|) units.
+  std::size_t differ = 0, beyond = 0;
   for (std::size_t k = 0; k < ys.size(); ++k) {
-    differ += std::bit_cast<std::uint32_t>(gl[2 * k]) !=
-              std::bit_cast<std::uint32_t>(atan2_det(ys[k], xs[k]));
+    const float cpu = atan2_det(ys[k], xs[k]);
+    differ += std::bit_cast<std::uint32_t>(gl[2 * k]) != std::bit_cast<std::uint32_t>(cpu);
+    const double ax = std::abs(double(xs[k])), y = ys[k];
+    const double t = std::max(ax, y) > 0 ? std::min(ax, y) / std::max(ax, y) : 0.0;
+    const double u = std::abs((t - 1) / (t + 1));
+    const double bound = 7 * ulp(cpu) + 2 * kFloatUnit * (t + u);
+    beyond += !(std::abs(double(gl[2 * k]) - cpu) <= bound);
   }
-  INFO(differ << " of " << ys.size() << " differ");
-  CHECK(differ == 0);
+  INFO(differ << " of " << ys.size() << " differ, " << beyond << " beyond the bound");
+  CHECK(beyond == 0);
+  if (test::gl_arithmetic().exact()) {
+    CHECK(differ == 0);
+  }
 }
 
 }  // namespace

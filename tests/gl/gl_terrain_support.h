@@ -17,9 +17,10 @@
 
 namespace relief::test {
 
-// True where the GL rounds every operation the shaders use as the CPU does (llvmpipe: LLVM's
-// IEEE + - * / and sqrt, `precise` honoured): the GL stages must then be bit-identical.
-bool gl_is_exact(const std::string& renderer);
+// True where the GL rounds every operation the shaders use as the CPU does, as measured on it
+// (tests/gl/gl_arithmetic.h; llvmpipe: LLVM's IEEE + - * / and sqrt, `precise` honoured): the
+// GL stages must then be bit-identical.
+bool gl_is_exact();
 
 struct GlTerrainRun {
   std::unique_ptr<NoiseLattice> lattice;  // on the heap: the plan points at it

@@ -32,7 +32,7 @@ constexpr int kWidth = 90;
 constexpr int kHeight = 77;
 
 bool exact() {
-  return test::gl_is_exact(test::gl_context().renderer());
+  return test::gl_is_exact();
 }
 
 TEST_CASE("glTerrainStagesMatchTheCpuOnEveryPreset", "[gl]") {

@@ -1,0 +1,162 @@
+// This GL's float arithmetic, measured on it against the CPU's IEEE arithmetic: the premise of
+// every bound the [gl] tests derive. The GLSL 4.50 specification (§4.7.1, "Range and
+// Precision") requires + - * and conversions to be correctly rounded, and allows a / b and
+// 1.0 / b 2.5 ULP, inversesqrt 2 ULP and sqrt what 1.0 / inversesqrt() gives; §4.7.2's
+// `precise` forbids fusing a * b + c into one operation. Mesa's llvmpipe divides and takes
+// square roots correctly rounded (the CPU's bits); an NVIDIA GPU does not. A test that pins the
+// CPU's bits where a GL divides does so only where gl_arithmetic() says this GL divides as the
+// CPU does, and otherwise checks the bound the specification's allowance gives.
+#pragma once
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <epoxy/gl.h>
+
+#include "gpu/gl_checks.h"
+#include "gpu/gl_program.h"
+#include "gpu/gl_shader_prelude.h"
+#include "tests/gl/gl_test_context.h"
+#include "tests/support/hashed_draws.h"
+
+namespace relief::test {
+
+// The largest relative spacing of floats: ulp(x) <= kFloatUnit |x| for every normal x, so an
+// allowance of k ULP is at most k kFloatUnit relative.
+inline constexpr double kFloatUnit = 0x1.0p-23;
+
+// GLSL 4.50 §4.7.1's allowances in kFloatUnit of the exact result.
+inline constexpr double kSpecDivisionUnits = 2.5;
+inline constexpr double kSpecInverseSqrtUnits = 2.0;
+// sqrt "inherited from 1.0 / inversesqrt()": 2 then 2.5, and their product's second order.
+inline constexpr double kSpecSqrtUnits = 4.5 + 5.0 * kFloatUnit;
+
+struct GlArithmetic {
+  // Largest error over the probe's inputs, in ulps of the exact result (0.5: correctly rounded).
+  double division_ulps = 0, reciprocal_ulps = 0, sqrt_ulps = 0, inversesqrt_ulps = 0;
+  // The same, relative to the exact result, in kFloatUnit.
+  double division_units = 0, reciprocal_units = 0, sqrt_units = 0, inversesqrt_units = 0;
+  // Whether a / b and sqrt gave the CPU's float bits on every input.
+  bool divides_as_cpu = true, sqrt_as_cpu = true;
+  // + - * and float(double) gave the CPU's bits on every input (GLSL: correctly rounded).
+  bool basic_as_cpu = true;
+  // A precise a * b + c gave float(float(a * b) + c) on every input (not fused).
+  bool precise_unfused = true;
+  std::size_t inputs = 0;
+
+  // Division and square roots as the CPU's: GLSL functions built of them keep the CPU's bits.
+  bool exact() const { return divides_as_cpu && sqrt_as_cpu; }
+};
+
+namespace detail {
+
+inline double ulp_of(double exact) {
+  int exponent = 0;
+  std::frexp(std::abs(exact), &exponent);  // |exact| in [2^(exponent-1), 2^exponent)
+  return std::ldexp(1.0, std::max(exponent - 1, -126) - 23);
+}
+
+// A float of magnitude in [2^lo, 2^hi), either sign, mantissa uniform.
+inline float draw_float(HashedDraws& draws, int lo, int hi) {
+  const double mantissa = draws.uniform(1.0, 2.0);
+  const int exponent = int(std::floor(draws.uniform(lo, hi)));
+  const float sign = draws.uniform(0.0, 1.0) < 0.5 ? -1.0f : 1.0f;
+  return sign * static_cast<float>(std::ldexp(mantissa, exponent));
+}
+
+inline GlArithmetic measure_gl_arithmetic() {
+  gl_context();
+  const std::string main = R"(
+layout(local_size_x = 64) in;
+layout(std430, binding = 0) readonly buffer In { float in_values[]; };
+layout(std430, binding = 1) writeonly buffer Out { float out_values[]; };
+uniform uint u_count;
+void main() {
+  const uint i = gl_GlobalInvocationID.x;
+  if (i >= u_count) { return; }
+  const float a = in_values[3u * i], b = in_values[3u * i + 1u], c = in_values[3u * i + 2u];
+  precise float quotient = a / b;
+  precise float reciprocal = 1.0 / b;
+  precise float root = sqrt(abs(a));
+  precise float inverse_root = inversesqrt(abs(a));
+  precise float sum = a + c;
+  precise float difference = a - c;
+  precise float product = a * b;
+  precise float unfused = a * b + c;
+  out_values[8u * i] = quotient;
+  out_values[8u * i + 1u] = reciprocal;
+  out_values[8u * i + 2u] = root;
+  out_values[8u * i + 3u] = inverse_root;
+  out_values[8u * i + 4u] = sum;
+  out_values[8u * i + 5u] = difference;
+  out_values[8u * i + 6u] = product;
+  out_values[8u * i + 7u] = unfused;
+}
+)";
+  // Operands whose quotients, products and sums stay normal (GLSL may flush subnormals) and
+  // whose divisors lie in the range the allowance covers, [2^-126, 2^126].
+  HashedDraws draws(0x61726974686d);
+  std::vector<float> in;
+  const std::size_t count = 1 << 16;
+  for (std::size_t k = 0; k < count; ++k) {
+    in.push_back(draw_float(draws, -40, 40));
+    in.push_back(draw_float(draws, -40, 40));
+    in.push_back(draw_float(draws, -40, 40));
+  }
+  const gpu::GlProgram program(
+      {{GL_COMPUTE_SHADER, {{"prelude", gpu::shader_prelude()}, {"probe", main}}}});
+  GLuint buffers[2];
+  glCreateBuffers(2, buffers);
+  glNamedBufferData(buffers[0], GLsizeiptr(in.size() * sizeof(float)), in.data(), GL_STATIC_DRAW);
+  std::vector<float> out(8 * count);
+  glNamedBufferData(buffers[1], GLsizeiptr(out.size() * sizeof(float)), nullptr, GL_STATIC_READ);
+  glUseProgram(program.id());
+  glProgramUniform1ui(program.id(), glGetUniformLocation(program.id(), "u_count"), GLuint(count));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffers[0]);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, buffers[1]);
+  glDispatchCompute(GLuint((count + 63) / 64), 1, 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  glGetNamedBufferSubData(buffers[1], 0, GLsizeiptr(out.size() * sizeof(float)), out.data());
+  glUseProgram(0);
+  glDeleteBuffers(2, buffers);
+  gpu::check_gl("measure_gl_arithmetic");
+
+  GlArithmetic r;
+  r.inputs = count;
+  const auto same = [](float x, float y) {
+    return std::bit_cast<std::uint32_t>(x) == std::bit_cast<std::uint32_t>(y);
+  };
+  const auto record = [](double gl, double exact, double& ulps, double& units) {
+    const double error = std::abs(gl - exact);
+    ulps = std::max(ulps, error / ulp_of(exact));
+    units = std::max(units, error / (std::abs(exact) * kFloatUnit));
+  };
+  for (std::size_t k = 0; k < count; ++k) {
+    const float a = in[3 * k], b = in[3 * k + 1], c = in[3 * k + 2];
+    const float* g = &out[8 * k];
+    const double abs_a = std::abs(double(a));
+    record(g[0], double(a) / double(b), r.division_ulps, r.division_units);
+    record(g[1], 1.0 / double(b), r.reciprocal_ulps, r.reciprocal_units);
+    record(g[2], std::sqrt(abs_a), r.sqrt_ulps, r.sqrt_units);
+    record(g[3], 1.0 / std::sqrt(abs_a), r.inversesqrt_ulps, r.inversesqrt_units);
+    r.divides_as_cpu = r.divides_as_cpu && same(g[0], a / b) && same(g[1], 1.0f / b);
+    r.sqrt_as_cpu = r.sqrt_as_cpu && same(g[2], std::sqrt(std::abs(a)));
+    r.basic_as_cpu = r.basic_as_cpu && same(g[4], a + c) && same(g[5], a - c) && same(g[6], a * b);
+    const float product = a * b;
+    r.precise_unfused = r.precise_unfused && same(g[7], product + c);
+  }
+  return r;
+}
+
+}  // namespace detail
+
+// Measured once per process, on the test context.
+inline const GlArithmetic& gl_arithmetic() {
+  static const GlArithmetic measured = detail::measure_gl_arithmetic();
+  return measured;
+}
+
+}  // namespace relief::test
