@@ -100,8 +100,16 @@ class CaseList {
   explicit CaseList(std::vector<StressCase>& cases) : cases_(cases) {}
   void add(std::string axis, std::string name, std::vector<std::string> overrides,
            std::string refused_naming = "", bool error_bounded = false) {
-    cases_.push_back({std::move(axis), std::move(name), std::move(overrides),
-                      std::move(refused_naming), error_bounded});
+    cases_.push_back({std::move(axis),
+                      std::move(name),
+                      std::move(overrides),
+                      std::move(refused_naming),
+                      {},
+                      error_bounded});
+  }
+  // The last case added is refused on these backends only.
+  void refuse_only_on(std::vector<std::string> backends) {
+    cases_.back().refused_backends = std::move(backends);
   }
 
  private:
@@ -235,14 +243,24 @@ void add_size_cases(CaseList& list, const Scene& base, std::uintmax_t budget,
   Scene sized = base;
   // The narrow grids: set-up's scratch holds a chunk's rows for every thread (job_memory.cc),
   // 1.1 MiB a thread on 2 x 8192, so whether they fit depends on the machine's threads (16
-  // threads need 17 MiB of it): refused by name where the estimate exceeds the budget.
+  // threads need 17 MiB of it) and on the backend (GL sets up no triangles): refused by name
+  // on the backends whose estimate exceeds the budget.
   for (const auto& [w, h] : {std::pair{2, max_grid}, std::pair{max_grid, 2}}) {
     sized.grid.width = w;
     sized.grid.height = h;
     sized.grid.margin = 0;
     const std::string size = std::to_string(w) + "x" + std::to_string(h);
+    std::vector<std::string> refusing;
+    for (const Backend backend : backends) {
+      if (largest_estimate(sized, {backend}) > budget) {
+        refusing.emplace_back(backend_name(backend));
+      }
+    }
     list.add("grid", size + ", margin 0", with_margin(grid(w, h), 0),
-             largest_estimate(sized, backends) <= budget ? "" : "grid " + size);
+             refusing.empty() ? "" : "grid " + size);
+    if (refusing.size() < backends.size()) {
+      list.refuse_only_on(std::move(refusing));
+    }
   }
   sized = base;
   // GL draws from one index buffer of 3 x 4 bytes a triangle, two triangles a cell, bound as a

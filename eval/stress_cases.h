@@ -20,9 +20,25 @@ struct StressCase {
   // Non-empty: the case must be refused (a scene error or a memory estimate over the budget)
   // with a message containing this text, the field it names.
   std::string refused_naming;
+  // Where only some backends' estimates exceed the budget (set-up's scratch is the CPU
+  // rasteriser's alone): the backends (backend_name) that must refuse; empty: every backend.
+  std::vector<std::string> refused_backends;
   // The float error against the reference-double backend must stay within the bounds of
   // stress_run.h (the distance axis: the error must not grow with the distance).
   bool error_bounded = false;
+
+  // Whether `backend` (backend_name) must refuse this case.
+  bool refused_on(const std::string& backend) const {
+    if (refused_naming.empty()) {
+      return false;
+    }
+    for (const std::string& b : refused_backends) {
+      if (b == backend) {
+        return true;
+      }
+    }
+    return refused_backends.empty();
+  }
 };
 
 // The cases for `base` (validated), in axis order. Heights relative to the terrain (just

@@ -7,6 +7,7 @@
 #include "core/limits.h"
 #include "core/proto_texture.h"
 #include "core/shading_plan.h"
+#include "gpu/glsl_rounding.h"
 #include "gpu/glsl_sources.h"
 
 namespace relief::gpu {
@@ -151,6 +152,7 @@ std::string glsl_prelude() {
   constant_double(out, "RELIEF_QUARTER_PI", det_math_detail::kQuarterPi);
   constant_double(out, "RELIEF_TAN_EIGHTH_PI", det_math_detail::kTanEighthPi);
   constant_double(out, "RELIEF_PI", 2.0 * det_math_detail::kHalfPi);
+  out += kCorrectlyRoundedGlsl;  // div_cr, sqrt_cr (glsl_rounding.h)
   return out;
 }
 

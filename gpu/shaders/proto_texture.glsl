@@ -9,12 +9,12 @@ layout(binding = 0) uniform sampler2D proto_texture[kMaxLayers];
 uniform int u_texture_size[kMaxLayers];
 
 // x minus a whole number of periods n (a power of two), exactly (proto_texture.cc, wrap).
-// x * (1 / n) is x / n exactly (n a power of two), without GLSL's 2.5-ulp division.
+// x * (1 / n) is x / n exactly (n a power of two); 1 / n correctly rounded (div_cr) is exact.
 float wrap_repeat(float x, float n) {
   if (isinf(x) || isnan(x)) {
     return 0.0;
   }
-  precise float r = x - n * trunc(x * (1.0 / n));
+  precise float r = x - n * trunc(x * div_cr(1.0, n));
   return r;
 }
 

@@ -3,9 +3,12 @@
 // Precision") requires + - * and conversions to be correctly rounded, and allows a / b and
 // 1.0 / b 2.5 ULP, inversesqrt 2 ULP and sqrt what 1.0 / inversesqrt() gives; §4.7.2's
 // `precise` forbids fusing a * b + c into one operation. Mesa's llvmpipe divides and takes
-// square roots correctly rounded (the CPU's bits); an NVIDIA GPU does not. A test that pins the
-// CPU's bits where a GL divides does so only where gl_arithmetic() says this GL divides as the
-// CPU does, and otherwise checks the bound the specification's allowance gives.
+// square roots correctly rounded (the CPU's bits); an NVIDIA GPU does not. The shaders therefore
+// divide and take square roots with div_cr and sqrt_cr (gpu/glsl_rounding.h), formed in double
+// and rounded once: the CPU's bits wherever the GL's double operations are accurate, which
+// GLSL does not promise. A test that pins the CPU's bits where a shader divides does so only
+// where gl_arithmetic() measured div_cr and sqrt_cr to give them, and otherwise checks the
+// bound the specification's allowance gives.
 #pragma once
 
 #include <bit>
@@ -39,16 +42,19 @@ struct GlArithmetic {
   double division_ulps = 0, reciprocal_ulps = 0, sqrt_ulps = 0, inversesqrt_ulps = 0;
   // The same, relative to the exact result, in kFloatUnit.
   double division_units = 0, reciprocal_units = 0, sqrt_units = 0, inversesqrt_units = 0;
-  // Whether a / b and sqrt gave the CPU's float bits on every input.
+  // Whether the built-in a / b and sqrt gave the CPU's float bits on every input.
   bool divides_as_cpu = true, sqrt_as_cpu = true;
+  // Whether the shaders' div_cr (a / b and 1 / b) and sqrt_cr did.
+  bool div_cr_as_cpu = true, sqrt_cr_as_cpu = true;
   // + - * and float(double) gave the CPU's bits on every input (GLSL: correctly rounded).
   bool basic_as_cpu = true;
   // A precise a * b + c gave float(float(a * b) + c) on every input (not fused).
   bool precise_unfused = true;
   std::size_t inputs = 0;
 
-  // Division and square roots as the CPU's: GLSL functions built of them keep the CPU's bits.
-  bool exact() const { return divides_as_cpu && sqrt_as_cpu; }
+  // The shaders' division and square roots as the CPU's: GLSL functions built of them keep
+  // the CPU's bits.
+  bool exact() const { return div_cr_as_cpu && sqrt_cr_as_cpu; }
 };
 
 namespace detail {
@@ -76,7 +82,8 @@ layout(std430, binding = 1) writeonly buffer Out { float out_values[]; };
 uniform uint u_count;
 void main() {
   const uint i = gl_GlobalInvocationID.x;
-  if (i >= u_count) { return; }
+  const uint count = u_count;
+  if (i >= count) { return; }
   const float a = in_values[3u * i], b = in_values[3u * i + 1u], c = in_values[3u * i + 2u];
   precise float quotient = a / b;
   precise float reciprocal = 1.0 / b;
@@ -86,6 +93,9 @@ void main() {
   precise float difference = a - c;
   precise float product = a * b;
   precise float unfused = a * b + c;
+  precise float quotient_cr = div_cr(a, b);
+  precise float reciprocal_cr = div_cr(1.0, b);
+  precise float root_cr = sqrt_cr(abs(a));
   out_values[8u * i] = quotient;
   out_values[8u * i + 1u] = reciprocal;
   out_values[8u * i + 2u] = root;
@@ -94,6 +104,9 @@ void main() {
   out_values[8u * i + 5u] = difference;
   out_values[8u * i + 6u] = product;
   out_values[8u * i + 7u] = unfused;
+  out_values[8u * count + 3u * i] = quotient_cr;
+  out_values[8u * count + 3u * i + 1u] = reciprocal_cr;
+  out_values[8u * count + 3u * i + 2u] = root_cr;
 }
 )";
   // Operands whose quotients, products and sums stay normal (GLSL may flush subnormals) and
@@ -111,7 +124,7 @@ void main() {
   GLuint buffers[2];
   glCreateBuffers(2, buffers);
   glNamedBufferData(buffers[0], GLsizeiptr(in.size() * sizeof(float)), in.data(), GL_STATIC_DRAW);
-  std::vector<float> out(8 * count);
+  std::vector<float> out(11 * count);
   glNamedBufferData(buffers[1], GLsizeiptr(out.size() * sizeof(float)), nullptr, GL_STATIC_READ);
   glUseProgram(program.id());
   glProgramUniform1ui(program.id(), glGetUniformLocation(program.id(), "u_count"), GLuint(count));
@@ -147,6 +160,9 @@ void main() {
     r.basic_as_cpu = r.basic_as_cpu && same(g[4], a + c) && same(g[5], a - c) && same(g[6], a * b);
     const float product = a * b;
     r.precise_unfused = r.precise_unfused && same(g[7], product + c);
+    const float* cr = &out[8 * count + 3 * k];
+    r.div_cr_as_cpu = r.div_cr_as_cpu && same(cr[0], a / b) && same(cr[1], 1.0f / b);
+    r.sqrt_cr_as_cpu = r.sqrt_cr_as_cpu && same(cr[2], std::sqrt(std::abs(a)));
   }
   return r;
 }

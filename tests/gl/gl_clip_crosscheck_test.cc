@@ -238,15 +238,20 @@ TEST_CASE("glCrossCheckNonDyadicTrianglesInFrontOfTheNearPlane", "[gl]") {
   CHECK(s.gl_covered > 100000);
 }
 
-// Whether GL defines the image of a triangle with vertex `v`: not where v, its subnormals
-// flushed to zero (GLSL 4.50 §4.7.1 allows the flush), is (0, 0, 0, 0): such a vertex lies on
-// every clip plane (-w <= x, y <= w, 0 <= z <= w), so clipping keeps it, and its perspective
+// Whether GL defines the image of a triangle with vertex `v` (its subnormals flushed to zero,
+// which GLSL 4.50 §4.7.1 allows). Not where it is (0, 0, 0, 0): such a vertex lies on every
+// clip plane (-w <= x, y <= w, 0 <= z <= w), so clipping keeps it, and its perspective
 // division is 0 / 0 (the OpenGL 4.5 core specification, §13.6, divides by w without a
-// condition). llvmpipe draws a fan that Relief reproduces; an NVIDIA GPU draws another (seen:
-// 45,696 pixels of a 64 x 64 triangle's 16384 px viewport where the exact image has none).
+// condition). Nor where w is -0: the clip inequalities cannot tell -0 from +0, but a GL that
+// clips and rasterises in homogeneous coordinates reads the sign of w as the side on which the
+// point at infinity lies, and the two sides give different images. llvmpipe draws what Relief
+// draws for both; an NVIDIA H100 draws a 64 x 64 fan for the origin (45,696 pixels where the
+// exact image has none) and the other side's image for w = -0 (up to 41 px away).
 bool gl_defines(const raster::ClipVertex& v) {
-  const auto flushed = [](float c) { return std::abs(c) < FLT_MIN ? 0.0f : c; };
-  return !(flushed(v.x) == 0 && flushed(v.y) == 0 && flushed(v.z) == 0 && flushed(v.w) == 0);
+  const auto flushed = [](float c) { return std::abs(c) < FLT_MIN ? std::copysign(0.0f, c) : c; };
+  const float x = flushed(v.x), y = flushed(v.y), z = flushed(v.z), w = flushed(v.w);
+  const bool origin = x == 0 && y == 0 && z == 0 && w == 0;
+  return !origin && !(w == 0 && std::signbit(w));
 }
 
 TEST_CASE("glCrossCheckDegenerateVerticesDrawWhatGlDrawsWhereGlDefinesIt", "[gl]") {

@@ -88,11 +88,32 @@ inline double linear_slope(const FrameImage& cpu, std::size_t k, int c) {
   return sx + sy;
 }
 
+// Under GL_LINEAR_MIPMAP_NEAREST (shading.texture_filter = bilinear) a texture's level is
+// round(lambda), a step, and GL computes lambda its own way: the OpenGL 4.5 core
+// specification (§8.14.1) lets an implementation approximate the scale factor rho (and the
+// derivatives it comes from are GL's own, GLSL 4.50 §8.14.1). Where lambda lies near n + 1/2 a
+// GL may therefore take the other level, and the colour jumps by |L(n+1) - L(n)|. The CPU's
+// frame with trilinear filtering sizes that jump, as relief crosscheck does (tools/crosscheck.h):
+// |trilinear - bilinear| = min(f, 1 - f) |L(n+1) - L(n)| with f = frac(lambda), and a pixel
+// within 1/16 level of the switch has min(f, 1 - f) >= 7/16, so |L(n+1) - L(n)| <=
+// |trilinear - bilinear| / (7/16) there: the envelope added to each channel's tolerance.
+inline std::vector<double> level_switch_envelope(const FrameImage& bilinear,
+                                                 const FrameImage& trilinear) {
+  std::vector<double> envelope(bilinear.linear.size());
+  for (std::size_t i = 0; i < envelope.size(); ++i) {
+    envelope[i] = std::abs(double(trilinear.linear[i]) - double(bilinear.linear[i])) / (7.0 / 16);
+  }
+  return envelope;
+}
+
 // `explained(k)`: whether a different winning triangle at pixel k has a reason (the test's
 // rule: an edge within rounding distance, or the framebuffer's border).
+// `level_envelope` (bilinear filtering: level_switch_envelope), per channel of each pixel, is
+// added to the linear tolerance of pixels with terrain; empty: none.
 inline FrameDifference compare_frames(const FrameImage& cpu, const gpu::GlFrameImage& gl,
                                       double camera_y, const ReferenceTolerances& tolerance,
-                                      const std::function<bool(std::size_t)>& explained) {
+                                      const std::function<bool(std::size_t)>& explained,
+                                      const std::vector<double>& level_envelope = {}) {
   FrameDifference d;
   d.pixels = std::size_t(cpu.width) * cpu.height;
   double srgb_sq = 0, linear_sq = 0, allowed_sq = 0;
@@ -123,9 +144,10 @@ inline FrameDifference compare_frames(const FrameImage& cpu, const gpu::GlFrameI
       // background's relative bound.
       const double value = cpu.linear[i];
       const double shift = (same ? 1.0 : 2.0) * kSampleShift;
-      const double allowed = covered || !same
-                                 ? 4.0 * float_ulp(value) + shift * linear_slope(cpu, k, c)
-                                 : kBackgroundRelative * std::abs(value);
+      const double envelope = covered && !level_envelope.empty() ? level_envelope[i] : 0.0;
+      const double allowed =
+          covered || !same ? 4.0 * float_ulp(value) + shift * linear_slope(cpu, k, c) + envelope
+                           : kBackgroundRelative * std::abs(value);
       if (same && covered) {
         if (dl / allowed > d.linear_ratio) {
           d.worst_x = int(k % std::size_t(cpu.width));

@@ -67,7 +67,7 @@ inline std::vector<StressRow> run_stress_axes(const std::vector<std::string>& ax
     for (StressRow& row : run_stress_case(base, c, settings)) {
       INFO(row.axis << ": " << row.name << " on " << row.backend << ": " << row.message);
       CHECK(row.status != StressStatus::kSkipped);
-      if (!c.refused_naming.empty()) {
+      if (c.refused_on(row.backend)) {
         // Refused by the scene's validation or the memory estimate, naming what is too large.
         CHECK(row.status == StressStatus::kRefused);
         CHECK_THAT(row.message, Catch::Contains(c.refused_naming));
