@@ -33,6 +33,8 @@ void GlName::reset() {
   if (name_ != 0 && context_ != nullptr && current_egl_context() == context_) {
     if (kind_ == Kind::kBuffer) {
       glDeleteBuffers(1, &name_);
+    } else if (kind_ == Kind::kQuery) {
+      glDeleteQueries(1, &name_);
     } else {
       glDeleteProgram(name_);
     }

@@ -1,6 +1,6 @@
-// Owners of GL object names (buffers, programs): deleted when the owner dies, if the context
-// they were made in is still current on this thread (otherwise they went, or go, with it; a GL
-// call with no context current would abort the process through libepoxy).
+// Owners of GL object names (buffers, programs, queries): deleted when the owner dies, if the
+// context they were made in is still current on this thread (otherwise they went, or go, with
+// it; a GL call with no context current would abort the process through libepoxy).
 #pragma once
 
 #include <cstddef>
@@ -13,7 +13,7 @@ namespace relief::gpu {
 
 class GlName {
  public:
-  enum class Kind { kBuffer, kProgram };
+  enum class Kind { kBuffer, kProgram, kQuery };
 
   GlName() = default;
   GlName(Kind kind, unsigned int name, void* context)

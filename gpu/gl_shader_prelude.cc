@@ -133,7 +133,7 @@ std::string shader_prelude() {
   s += define_float("RELIEF_QUARTER_PI", float(det_math_detail::kQuarterPi));
   s += define_float("RELIEF_HALF_PI", float(det_math_detail::kHalfPi));
   s += define_float("RELIEF_PI", float(2.0 * det_math_detail::kHalfPi));
-  s += kCorrectlyRoundedGlsl;  // div_cr, sqrt_cr (glsl_rounding.h)
+  s += kCorrectlyRoundedGlsl;  // divide, square_root: correctly rounded (glsl_rounding.h)
   return s;
 }
 

@@ -50,6 +50,10 @@ void upload_bytes(const GlName& buffer, std::size_t offset, const void* data, st
 }  // namespace
 
 GlTerrain::GlTerrain(GridLayout layout, const NoiseLattice& lattice, const HeightSketch* sketch)
+    : GlTerrain(nullptr, layout, lattice, sketch) {}
+
+GlTerrain::GlTerrain(std::shared_ptr<const GlTerrainPrograms> programs, GridLayout layout,
+                     const NoiseLattice& lattice, const HeightSketch* sketch)
     : layout_(layout) {
   require_gl45("GlTerrain");
   context_ = current_egl_context();
@@ -64,22 +68,12 @@ GlTerrain::GlTerrain(GridLayout layout, const NoiseLattice& lattice, const Heigh
         " to " + std::to_string(limits::kMaxGridSide) + " (pitch = width rounded up to " +
         std::to_string(limits::kRowAlignFloats) + ")");
   }
-  const int p = lattice.size;
-  if (p < limits::kMinLatticeSize || p > limits::kMaxLatticeSize ||
-      !std::has_single_bit(unsigned(p)) || lattice.mask != p - 1 ||
-      lattice.values.size() != std::size_t(p) * std::size_t(p)) {
-    throw std::invalid_argument("GlTerrain: the lattice (size " + std::to_string(p) + ", " +
-                                std::to_string(lattice.values.size()) +
-                                " values) is not a make_noise_lattice one");
-  }
-  lattice_size_ = p;
+  check_lattice("GlTerrain", lattice);
 
   // What this GL must offer: enough storage blocks and bindings, blocks as large as a stream
   // and as the lattice, and a work group per row.
   const std::size_t stream_bytes = layout.size() * sizeof(float);
-  const std::size_t lattice_bytes = sizeof(GlLatticeHeader) + lattice.values.size() * sizeof(float);
-  GLint64 max_block_bytes = 0;
-  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block_bytes);
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block_bytes_);
   GLint max_groups_y = 0;
   glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 1, &max_groups_y);
   GLint max_groups_x = 0;
@@ -93,25 +87,26 @@ GlTerrain::GlTerrain(GridLayout layout, const NoiseLattice& lattice, const Heigh
                   " bindings; this GL offers " + std::to_string(blocks) + " and " +
                   std::to_string(bindings));
   }
-  const std::size_t sketch_bytes = sketch ? sketch->heights.size() * sizeof(float) : 0;
-  if (static_cast<GLint64>(sketch_bytes) > max_block_bytes) {
-    throw GlError("GlTerrain: the sketch (" + std::to_string(sketch_bytes) +
-                  " bytes) exceeds this GL's largest storage block (" +
-                  std::to_string(max_block_bytes) + " bytes)");
-  }
-  if (static_cast<GLint64>(std::max(stream_bytes, lattice_bytes)) > max_block_bytes) {
+  check_sketch("GlTerrain", sketch);
+  const std::size_t lattice_bytes = sizeof(GlLatticeHeader) + lattice.values.size() * sizeof(float);
+  if (static_cast<GLint64>(std::max(stream_bytes, lattice_bytes)) > max_block_bytes_) {
     throw GlError("GlTerrain: a stream of grid " + dims(layout.width, layout.height, layout.pitch) +
                   " (" + std::to_string(stream_bytes) + " bytes) or the lattice (" +
                   std::to_string(lattice_bytes) +
                   " bytes) exceeds this GL's largest storage block (" +
-                  std::to_string(max_block_bytes) + " bytes)");
+                  std::to_string(max_block_bytes_) + " bytes)");
   }
   if (layout.height > max_groups_y || (layout.pitch + kGroupSize - 1) / kGroupSize > max_groups_x) {
     throw GlError("GlTerrain: grid " + dims(layout.width, layout.height, layout.pitch) +
                   " needs more compute work groups than this GL dispatches");
   }
 
-  programs_ = build_terrain_programs();
+  if (programs == nullptr) {
+    programs = std::make_shared<const GlTerrainPrograms>(build_terrain_programs());
+  } else if (programs->context != context_) {
+    throw GlError("GlTerrain: the programs given were built in another OpenGL context");
+  }
+  programs_ = std::move(programs);
   domain_params_ =
       make_storage_buffer(padded_block_size(sizeof(DomainParams<float>)), "stage 2's parameters");
   fbm_params_ =
@@ -131,28 +126,83 @@ GlTerrain::GlTerrain(GridLayout layout, const NoiseLattice& lattice, const Heigh
     streams_[static_cast<int>(stream)] =
         make_storage_buffer(bytes, "stream " + std::string(gl_stream_name(stream)));
   }
-  lattice_ = make_storage_buffer(lattice_bytes, "the noise lattice");
+  sketch_params_ = make_storage_buffer(padded_block_size(sizeof(SketchParams<float>)),
+                                       "the sketch's parameters");
+  set_lattice(lattice);
+  set_sketch(sketch);
+}
+
+void GlTerrain::check_lattice(const char* who, const NoiseLattice& lattice) const {
+  const int p = lattice.size;
+  if (p < limits::kMinLatticeSize || p > limits::kMaxLatticeSize ||
+      !std::has_single_bit(unsigned(p)) || lattice.mask != p - 1 ||
+      lattice.values.size() != std::size_t(p) * std::size_t(p)) {
+    throw std::invalid_argument(std::string(who) + ": the lattice (size " + std::to_string(p) +
+                                ", " + std::to_string(lattice.values.size()) +
+                                " values) is not a make_noise_lattice one");
+  }
+}
+
+void GlTerrain::check_sketch(const char* who, const HeightSketch* sketch) const {
+  if (sketch == nullptr) {
+    return;
+  }
+  if (sketch->width < 2 || sketch->height < 2 ||
+      sketch->heights.size() != std::size_t(sketch->width) * std::size_t(sketch->height)) {
+    throw std::invalid_argument(
+        std::string(who) + ": the sketch (" + std::to_string(sketch->width) + " x " +
+        std::to_string(sketch->height) + ", " + std::to_string(sketch->heights.size()) +
+        " heights) is not a make_height_sketch one");
+  }
+  const std::size_t bytes = sketch->heights.size() * sizeof(float);
+  if (static_cast<GLint64>(bytes) > max_block_bytes_) {
+    throw GlError(std::string(who) + ": the sketch (" + std::to_string(bytes) +
+                  " bytes) exceeds this GL's largest storage block (" +
+                  std::to_string(max_block_bytes_) + " bytes)");
+  }
+}
+
+void GlTerrain::set_lattice(const NoiseLattice& lattice) {
+  require_context("set_lattice");
+  check_lattice("GlTerrain::set_lattice", lattice);
+  const std::size_t bytes = sizeof(GlLatticeHeader) + lattice.values.size() * sizeof(float);
+  if (static_cast<GLint64>(bytes) > max_block_bytes_) {
+    throw GlError("GlTerrain::set_lattice: the lattice (" + std::to_string(bytes) +
+                  " bytes) exceeds this GL's largest storage block (" +
+                  std::to_string(max_block_bytes_) + " bytes)");
+  }
+  lattice_size_ = 0;  // unusable until the upload below has succeeded
+  if (bytes != lattice_bytes_) {
+    lattice_ = make_storage_buffer(bytes, "the noise lattice");
+    lattice_bytes_ = bytes;
+  }
   const GlLatticeHeader header{lattice.size, lattice.mask};
   upload_bytes(lattice_, 0, &header, sizeof header);
   upload_bytes(lattice_, sizeof header, lattice.values.data(),
                lattice.values.size() * sizeof(float));
-  check_gl("uploading the noise lattice");
-  sketch_params_ = make_storage_buffer(padded_block_size(sizeof(SketchParams<float>)),
-                                       "the sketch's parameters");
-  if (sketch != nullptr) {
-    if (sketch->width < 2 || sketch->height < 2 ||
-        sketch->heights.size() != std::size_t(sketch->width) * std::size_t(sketch->height)) {
-      throw std::invalid_argument("GlTerrain: the sketch (" + std::to_string(sketch->width) +
-                                  " x " + std::to_string(sketch->height) + ", " +
-                                  std::to_string(sketch->heights.size()) +
-                                  " heights) is not a make_height_sketch one");
-    }
-    sketch_width_ = sketch->width;
-    sketch_height_ = sketch->height;
-    sketch_ = make_storage_buffer(sketch_bytes, "the sketch");
-    upload_bytes(sketch_, 0, sketch->heights.data(), sketch_bytes);
-    check_gl("uploading the sketch");
+  check_gl("uploading the noise lattice");  // once per scene: always checked
+  lattice_size_ = lattice.size;
+}
+
+void GlTerrain::set_sketch(const HeightSketch* sketch) {
+  require_context("set_sketch");
+  check_sketch("GlTerrain::set_sketch", sketch);
+  sketch_width_ = 0;  // none until the upload below has succeeded
+  sketch_height_ = 0;
+  if (sketch == nullptr) {
+    sketch_ = GlName();
+    sketch_bytes_ = 0;
+    return;
   }
+  const std::size_t bytes = sketch->heights.size() * sizeof(float);
+  if (bytes != sketch_bytes_) {
+    sketch_ = make_storage_buffer(bytes, "the sketch");
+    sketch_bytes_ = bytes;
+  }
+  upload_bytes(sketch_, 0, sketch->heights.data(), bytes);
+  check_gl("uploading the sketch");
+  sketch_width_ = sketch->width;
+  sketch_height_ = sketch->height;
 }
 
 void GlTerrain::require_context(const char* who) const {
@@ -160,7 +210,15 @@ void GlTerrain::require_context(const char* who) const {
     throw GlError(std::string("GlTerrain::") + who +
                   ": the OpenGL context this GlTerrain was made in is not current on this thread");
   }
-  clear_gl_errors();
+  if (checks_ == GlErrorChecks::kEachCall) {
+    clear_gl_errors();
+  }
+}
+
+void GlTerrain::checkpoint(const std::string& what) const {
+  if (checks_ == GlErrorChecks::kEachCall) {
+    check_gl(what);
+  }
 }
 
 void GlTerrain::bind_stream(GlStream stream) const {
@@ -169,12 +227,18 @@ void GlTerrain::bind_stream(GlStream stream) const {
 
 void GlTerrain::dispatch(unsigned int program, int groups_x, int groups_y,
                          const std::string& what) const {
-  check_gl("binding the buffers of " + what);
+  checkpoint("binding the buffers of " + what);
+  if (timer_ != nullptr) {
+    timer_->begin(what);
+  }
   glUseProgram(program);
   glDispatchCompute(static_cast<GLuint>(groups_x), static_cast<GLuint>(groups_y), 1);
   glMemoryBarrier(kStageBarrier);
   glUseProgram(0);
-  check_gl(what);
+  if (timer_ != nullptr) {
+    timer_->end();
+  }
+  checkpoint(what);
 }
 
 void GlTerrain::run(const TerrainParams<float>& params) {
@@ -203,14 +267,14 @@ void GlTerrain::project_domain(const DomainParams<float>& params, const DomainRo
   upload_bytes(rows_, row_bytes, rows.x0.data(), row_bytes);
   upload_bytes(rows_, 2 * row_bytes, rows.step_x.data(), row_bytes);
   upload_planet(planet);
-  check_gl("uploading stage 2's parameters");
+  checkpoint("uploading stage 2's parameters");
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingParams, domain_params_.get());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingRows, rows_.get());
   for (const GlStream s :
        {GlStream::kDx, GlStream::kDz, GlStream::kSigma, GlStream::kNu, GlStream::kValid}) {
     bind_stream(s);
   }
-  dispatch(programs_.domain.get(), (layout_.pitch + kGroupSize - 1) / kGroupSize, layout_.height,
+  dispatch(programs_->domain.get(), (layout_.pitch + kGroupSize - 1) / kGroupSize, layout_.height,
            "stage 2 (domain.comp)");
 }
 
@@ -233,9 +297,9 @@ void GlTerrain::evaluate_fbm(const FbmParams<float>& params, OctaveForms forms) 
                                 std::to_string(lattice_size_));
   }
   upload_bytes(fbm_params_, 0, &params, sizeof params);
-  check_gl("uploading stage 3's parameters");
+  checkpoint("uploading stage 3's parameters");
   const int groups_x = (layout_.pitch + kGroupSize - 1) / kGroupSize;
-  for (const GLuint program : {programs_.reach.get(), programs_.fbm.get()}) {
+  for (const GLuint program : {programs_->reach.get(), programs_->fbm.get()}) {
     glProgramUniform1i(program, glGetUniformLocation(program, "grid_pitch"), layout_.pitch);
   }
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingParams, fbm_params_.get());
@@ -247,13 +311,13 @@ void GlTerrain::evaluate_fbm(const FbmParams<float>& params, OctaveForms forms) 
     // octave_reach, then choose_coordinate_forms writing FbmParams::exact_coordinates.
     glClearNamedBufferData(reach_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingReach, reach_.get());
-    dispatch(programs_.reach.get(), groups_x, layout_.height, "the octave reach (reach.comp)");
-    dispatch(programs_.forms.get(), 1, 1, "the coordinate forms (forms.comp)");
+    dispatch(programs_->reach.get(), groups_x, layout_.height, "the octave reach (reach.comp)");
+    dispatch(programs_->forms.get(), 1, 1, "the coordinate forms (forms.comp)");
   }
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingLattice, lattice_.get());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingMask,
                    use_need_ ? need_.get() : buffer(GlStream::kValid));
-  dispatch(programs_.fbm.get(), groups_x, layout_.height, "stage 3 (fbm.comp)");
+  dispatch(programs_->fbm.get(), groups_x, layout_.height, "stage 3 (fbm.comp)");
 }
 
 void GlTerrain::add_sketch(const SketchParams<float>& params) {
@@ -269,8 +333,8 @@ void GlTerrain::add_sketch(const SketchParams<float>& params) {
   require_equal(who, "SketchParams::width", params.width, sketch_width_);
   require_equal(who, "SketchParams::height", params.height, sketch_height_);
   upload_bytes(sketch_params_, 0, &params, sizeof params);
-  check_gl("uploading the sketch's parameters");
-  const GLuint program = programs_.sketch.get();
+  checkpoint("uploading the sketch's parameters");
+  const GLuint program = programs_->sketch.get();
   glProgramUniform1i(program, glGetUniformLocation(program, "grid_pitch"), layout_.pitch);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingParams, sketch_params_.get());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingSketch, sketch_.get());
@@ -290,8 +354,8 @@ void GlTerrain::surface_pass(const SurfaceParams<float>& params) {
   require_equal(who, "SurfaceParams::height", params.height, layout_.height);
   require_equal(who, "SurfaceParams::pitch", params.pitch, layout_.pitch);
   upload_bytes(surface_params_, 0, &params, sizeof params);
-  check_gl("uploading stage 4's parameters");
-  const GLuint program = programs_.surface.get();
+  checkpoint("uploading stage 4's parameters");
+  const GLuint program = programs_->surface.get();
   glProgramUniform1i(program, glGetUniformLocation(program, "use_need"), use_need_ ? 1 : 0);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingParams, surface_params_.get());
   for (const GlStream s :
@@ -303,98 +367,6 @@ void GlTerrain::surface_pass(const SurfaceParams<float>& params) {
                    use_need_ ? need_.get() : buffer(GlStream::kValid));
   dispatch(program, (layout_.pitch + kGroupSize - 1) / kGroupSize, layout_.height,
            "stage 4 (surface.comp)");
-}
-
-void GlTerrain::set_need(std::span<const std::uint8_t> need) {
-  require_context("set_need");
-  if (need.empty()) {
-    use_need_ = false;
-    return;
-  }
-  require_equal("GlTerrain::set_need", "the need flags' count", need.size(), layout_.size());
-  if (need_.get() == 0) {
-    need_ = make_storage_buffer(layout_.size(), "the need flags");
-  }
-  upload_bytes(need_, 0, need.data(), need.size());
-  check_gl("uploading the need flags");
-  use_need_ = true;
-}
-
-void GlTerrain::check_stream_size(const char* who, GlStream stream, std::size_t count) const {
-  require_equal(who,
-                (std::string("the size of stream ") + std::string(gl_stream_name(stream))).c_str(),
-                count, layout_.size());
-}
-
-void GlTerrain::upload(GlStream stream, std::span<const float> values) {
-  require_context("upload");
-  if (stream == GlStream::kValid) {
-    throw std::invalid_argument("GlTerrain::upload: the valid stream holds bytes (upload_valid)");
-  }
-  check_stream_size("GlTerrain::upload", stream, values.size());
-  upload_bytes(streams_[static_cast<int>(stream)], 0, values.data(), values.size_bytes());
-  check_gl("uploading stream " + std::string(gl_stream_name(stream)));
-}
-
-void GlTerrain::upload_valid(std::span<const std::uint8_t> valid) {
-  require_context("upload_valid");
-  check_stream_size("GlTerrain::upload_valid", GlStream::kValid, valid.size());
-  upload_bytes(streams_[static_cast<int>(GlStream::kValid)], 0, valid.data(), valid.size());
-  check_gl("uploading stream valid");
-}
-
-void GlTerrain::read(GlStream stream, std::span<float> out) const {
-  require_context("read");
-  if (stream == GlStream::kValid) {
-    throw std::invalid_argument("GlTerrain::read: the valid stream holds bytes (read_valid)");
-  }
-  check_stream_size("GlTerrain::read", stream, out.size());
-  glGetNamedBufferSubData(buffer(stream), 0, static_cast<GLsizeiptr>(out.size_bytes()), out.data());
-  check_gl("reading stream " + std::string(gl_stream_name(stream)));
-}
-
-void GlTerrain::read_valid(std::span<std::uint8_t> out) const {
-  require_context("read_valid");
-  check_stream_size("GlTerrain::read_valid", GlStream::kValid, out.size());
-  glGetNamedBufferSubData(buffer(GlStream::kValid), 0, static_cast<GLsizeiptr>(out.size()),
-                          out.data());
-  check_gl("reading stream valid");
-}
-
-void GlTerrain::read_all(GridBuffers<float>& out) const {
-  require_equal("GlTerrain::read_all", "GridBuffers::layout.pitch", out.layout.pitch,
-                layout_.pitch);
-  require_equal("GlTerrain::read_all", "GridBuffers::layout.height", out.layout.height,
-                layout_.height);
-  read(GlStream::kDx, out.dx);
-  read(GlStream::kDz, out.dz);
-  read(GlStream::kSigma, out.sigma);
-  read(GlStream::kNu, out.nu);
-  read_valid(out.valid);
-  read(GlStream::kHeight, out.height);
-  read(GlStream::kNx, out.nx);
-  read(GlStream::kNy, out.ny);
-  read(GlStream::kNz, out.nz);
-  read(GlStream::kSlope, out.slope);
-  read(GlStream::kWaterDepth, out.water_depth);
-  if (!out.bent_x.empty() && buffer(GlStream::kBentX) != 0) {
-    read(GlStream::kBentX, out.bent_x);
-    read(GlStream::kBentY, out.bent_y);
-    read(GlStream::kBentZ, out.bent_z);
-    read(GlStream::kBentDrop, out.bent_drop);
-  }
-}
-
-FbmParams<float> GlTerrain::fbm_params() const {
-  require_context("fbm_params");
-  FbmParams<float> params;
-  glGetNamedBufferSubData(fbm_params_.get(), 0, sizeof params, &params);
-  check_gl("reading stage 3's parameters");
-  return params;
-}
-
-unsigned int GlTerrain::buffer(GlStream stream) const {
-  return streams_[static_cast<int>(stream)].get();
 }
 
 }  // namespace relief::gpu

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 
@@ -24,6 +25,7 @@
 #include "core/lattice.h"
 #include "core/stage_params.h"
 #include "gpu/gl_objects.h"
+#include "gpu/gl_pass_timer.h"
 #include "gpu/gl_streams.h"
 #include "gpu/gl_terrain_programs.h"
 
@@ -36,6 +38,15 @@ enum class OctaveForms {
   kAsGiven,    // FbmParams::exact_coordinates as passed
 };
 
+// Who reads glGetError after a GlTerrain call.
+enum class GlErrorChecks {
+  kEachCall,  // every call, before and after its GL work: an error names the call (the default)
+  kByCaller,  // the caller, once per group of calls (check_gl): the GL backend's frames. An
+              // error is recorded when the call is made; glGetError never waits for the GPU,
+              // but under a threaded driver (NVIDIA's threaded optimisation, Mesa's glthread)
+              // it waits for the driver's thread to catch up: once per stage, not per call.
+};
+
 class GlTerrain {
  public:
   // Compiles the programs, checks their parameter layouts, allocates the streams of `layout`
@@ -46,6 +57,12 @@ class GlTerrain {
   // `sketch`: §3's low-frequency base of the scene (core/height_sketch.h), uploaded here; null:
   // none (add_sketch then accepts only disabled parameters).
   GlTerrain(GridLayout layout, const NoiseLattice& lattice, const HeightSketch* sketch = nullptr);
+  // The same with programs built once (build_terrain_programs) and shared by every GlTerrain of
+  // their context, so that a new grid or scene costs no compilation; null: built here. Throws
+  // GlError if they were built in another context. The programs' uniforms are set by each call
+  // before its dispatch, so sharing them carries nothing from one GlTerrain to another.
+  GlTerrain(std::shared_ptr<const GlTerrainPrograms> programs, GridLayout layout,
+            const NoiseLattice& lattice, const HeightSketch* sketch = nullptr);
   ~GlTerrain() = default;
   GlTerrain(const GlTerrain&) = delete;
   GlTerrain& operator=(const GlTerrain&) = delete;
@@ -70,6 +87,17 @@ class GlTerrain {
   // Nothing when planet.enabled is 0.
   void bend_vertices(const PlanetParams<float>& planet);
   void bend_normals(const PlanetParams<float>& planet);
+
+  // Replace stage 3's lattice or the sketch (null: none), with the constructor's checks, keeping
+  // the streams: a later frame of another scene on the same grid. Each upload is checked for
+  // GL errors whatever set_error_checks says (it happens once per scene, not per frame).
+  void set_lattice(const NoiseLattice& lattice);
+  void set_sketch(const HeightSketch* sketch);
+
+  // Each dispatch from now on is a pass of `timer` (gl_pass_timer.h), named as GL errors name
+  // it ("stage 3 (fbm.comp)"); null: none (the default). The timer must outlive the calls.
+  void set_pass_timer(GlPassTimer* timer) { timer_ = timer; }
+  void set_error_checks(GlErrorChecks checks) { checks_ = checks; }
 
   // The frame's need flags (core/vertex_culling.h: kEvaluate, kDraw), one byte per vertex:
   // stage 3 evaluates where they are non-zero, stage 4 where kDraw is set; empty: stage 3
@@ -101,15 +129,22 @@ class GlTerrain {
 
  private:
   void require_context(const char* who) const;
+  void checkpoint(const std::string& what) const;  // check_gl under GlErrorChecks::kEachCall
+  void check_lattice(const char* who, const NoiseLattice& lattice) const;
+  void check_sketch(const char* who, const HeightSketch* sketch) const;
   void check_stream_size(const char* who, GlStream stream, std::size_t count) const;
   void bind_stream(GlStream stream) const;
   void dispatch(unsigned int program, int groups_x, int groups_y, const std::string& what) const;
   void upload_planet(const PlanetParams<float>& planet);
 
   GridLayout layout_;
-  void* context_ = nullptr;  // the EGL context the objects belong to
+  void* context_ = nullptr;           // the EGL context the objects belong to
+  std::int64_t max_block_bytes_ = 0;  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE
   int lattice_size_ = 0;
-  GlTerrainPrograms programs_;
+  std::size_t lattice_bytes_ = 0, sketch_bytes_ = 0;  // the buffers' sizes
+  std::shared_ptr<const GlTerrainPrograms> programs_;
+  GlPassTimer* timer_ = nullptr;
+  GlErrorChecks checks_ = GlErrorChecks::kEachCall;
   GlName domain_params_, fbm_params_, sketch_params_, surface_params_;  // the structs' bytes
   GlName planet_params_;
   GlName sketch_;  // the sketch's texel heights, when there is one

@@ -13,7 +13,7 @@ namespace relief::gpu {
 
 void GlTerrain::upload_planet(const PlanetParams<float>& planet) {
   glNamedBufferSubData(planet_params_.get(), 0, sizeof planet, &planet);
-  check_gl("uploading the planet's parameters");
+  checkpoint("uploading the planet's parameters");
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingPlanet, planet_params_.get());
 }
 
@@ -31,7 +31,7 @@ void GlTerrain::bend_vertices(const PlanetParams<float>& planet) {
     }
   }
   upload_planet(planet);
-  const GLuint program = programs_.bend.get();
+  const GLuint program = programs_->bend.get();
   glProgramUniform1i(program, glGetUniformLocation(program, "grid_pitch"), layout_.pitch);
   for (const GlStream s :
        {GlStream::kDx, GlStream::kDz, GlStream::kHeight, GlStream::kValid, GlStream::kBentX,
@@ -48,7 +48,7 @@ void GlTerrain::bend_normals(const PlanetParams<float>& planet) {
     return;
   }
   upload_planet(planet);
-  const GLuint program = programs_.bend_normals.get();
+  const GLuint program = programs_->bend_normals.get();
   glProgramUniform1i(program, glGetUniformLocation(program, "grid_pitch"), layout_.pitch);
   for (const GlStream s : {GlStream::kDx, GlStream::kDz, GlStream::kValid, GlStream::kNx,
                            GlStream::kNy, GlStream::kNz}) {

@@ -66,6 +66,7 @@ unsigned int program_named(const GlTerrainPrograms& programs, std::string_view n
 GlTerrainPrograms build_terrain_programs() {
   const std::string prelude = shader_prelude();
   GlTerrainPrograms p;
+  p.context = current_egl_context();
   p.domain =
       build(prelude, "domain.comp (stage 2)", {"det_math.glsl", "log2_det.glsl", "domain.comp"});
   p.reach = build(prelude, "reach.comp (octave reach)", {"reach.comp"});

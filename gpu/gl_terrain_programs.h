@@ -21,6 +21,10 @@ struct GlTerrainPrograms {
   GlName surface;       // stage 4: surface.comp
   GlName bend;          // a planet's bend after stage 3: bend.comp
   GlName bend_normals;  // a planet's normals into the bent frame after stage 4
+
+  // The EGL context they were built in (current_egl_context()): a GlTerrain given them checks
+  // that it is its own.
+  void* context = nullptr;
 };
 
 // The parameter blocks each program reads, with the layouts they must have.

@@ -152,7 +152,7 @@ std::string glsl_prelude() {
   constant_double(out, "RELIEF_QUARTER_PI", det_math_detail::kQuarterPi);
   constant_double(out, "RELIEF_TAN_EIGHTH_PI", det_math_detail::kTanEighthPi);
   constant_double(out, "RELIEF_PI", 2.0 * det_math_detail::kHalfPi);
-  out += kCorrectlyRoundedGlsl;  // div_cr, sqrt_cr (glsl_rounding.h)
+  out += kGlRoundedGlsl;  // divide, square_root: the GL's own (glsl_rounding.h)
   return out;
 }
 

@@ -1,38 +1,66 @@
-// Division and square root rounded as IEEE 754 (and the CPU) round them, for every GLSL
-// program: both preludes (gl_shader_prelude.cc for the compute stages, glsl_prelude.cc for the
-// draw) end with these functions, and the shaders call div_cr and sqrt_cr wherever the CPU
-// divides or takes a float square root.
+// How the GLSL programs divide and take float square roots: every shader calls divide(a, b)
+// and square_root(x) where the CPU divides or takes a float square root, and each prelude
+// defines them (gl_shader_prelude.cc for the compute stages, glsl_prelude.cc for the draw).
 //
-// Why: GLSL 4.50 (§4.7.1) lets a / b and 1.0 / b be 2.5 ULP off and sqrt inherit the error
-// of 1.0 / inversesqrt(), and an NVIDIA GPU uses that allowance (docs/gl-backend.md gives the
-// errors measured on an H100; tests/gl/gl_arithmetic.h), so the GL's stages left the CPU's bits at
-// every division and its frames drifted from the CPU's by whatever the shading made of that.
-// A float quotient or square root formed in double and rounded once to float is the correctly
-// rounded float result: the double operation's error (at most a few ulp of double) is far
-// below the least distance, about 2^-49 relative, between a float quotient or square root and
-// a midpoint of two floats (and double rounding is innocuous from 53 >= 2 x 24 + 2 bits,
-// Figueroa 1995). That holds where the GL's double division and square root are accurate to a
-// few double ulp; GLSL promises double operations only single precision, so
-// tests/gl/gl_arithmetic.h measures div_cr and sqrt_cr on every GL the tests run on.
-// The double overloads are the GL's own double operations (det_trig.glsl.in's double twin).
+// GLSL 4.50 (§4.7.1) lets a / b and 1.0 / b be 2.5 ULP off and sqrt inherit the error of
+// 1.0 / inversesqrt(), and an NVIDIA GPU uses that allowance (docs/gl-backend.md gives the
+// errors measured on an H100; tests/gl/gl_arithmetic.h measures them on every GL the tests
+// run on): the GL's stages left the CPU's bits at every division, and the terrain drifted from
+// the CPU's by whatever the later stages made of that.
+//
+// The compute stages (1-4) therefore divide and take square roots correctly rounded: formed in
+// double and rounded once to float. A float quotient or square root lies at least about 2^-49
+// relative from a midpoint of two floats, far beyond the double operation's error of a few
+// double ulps, and double rounding is innocuous from 53 >= 2 x 24 + 2 bits (Figueroa 1995): the
+// result is the IEEE 754 one, the CPU's, wherever the GL's double division and square root are
+// accurate to a few double ulps (GLSL promises double operations only single precision; the
+// tests measure it). On the H100 this made stages 1-4 bit-identical to the CPU's and cost
+// nothing measurable (0.14 ms for all of them).
+//
+// The draw keeps the GL's own float division and square root: the same correctly rounded
+// functions took the H100's terrain draw from 8.3 to 30.5 ms of GPU time (fp64 in a fragment
+// shader), and the frames' remaining differences come from rasterisation, not from the
+// shading's divisions (docs/gl-backend.md, "On a GPU"). The double overloads are the GL's own
+// double operations on both sides (det_trig.glsl.in's double twin, a planet's sky).
 #pragma once
 
 namespace relief::gpu {
 
+// The compute stages' definitions.
 inline constexpr const char* kCorrectlyRoundedGlsl = R"(
-float div_cr(float a, float b) {
+float divide(float a, float b) {
   precise double q = double(a) / double(b);
   return float(q);
 }
-double div_cr(double a, double b) {
+double divide(double a, double b) {
   precise double q = a / b;
   return q;
 }
-float sqrt_cr(float x) {
+float square_root(float x) {
   precise double r = sqrt(double(x));
   return float(r);
 }
-double sqrt_cr(double x) {
+double square_root(double x) {
+  precise double r = sqrt(x);
+  return r;
+}
+)";
+
+// The draw programs' definitions: the GL's own operations.
+inline constexpr const char* kGlRoundedGlsl = R"(
+float divide(float a, float b) {
+  precise float q = a / b;
+  return q;
+}
+double divide(double a, double b) {
+  precise double q = a / b;
+  return q;
+}
+float square_root(float x) {
+  precise float r = sqrt(x);
+  return r;
+}
+double square_root(double x) {
   precise double r = sqrt(x);
   return r;
 }

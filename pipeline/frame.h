@@ -114,6 +114,10 @@ struct FrameStats {
   std::vector<KernelReport> kernels;  // the CPU backends' kernel table, in stage order
   // The parts of the fused tile stage, as CPU time summed over the threads that ran tiles.
   std::vector<StageTime> tile_parts;
+  // The GL backend's passes in the order they ran: each compute dispatch and draw's GPU time
+  // from GL timer queries, then "read-back (CPU wall time)"; empty for the CPU backends, and
+  // without the GPU times where the GL has no timer (gpu/gl_pass_timer.h).
+  std::vector<StageTime> gpu_passes;
   double total_ms = 0;  // the frame, start to end
   raster::RasterStats raster;
 };

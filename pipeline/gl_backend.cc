@@ -1,17 +1,14 @@
 #include "pipeline/gl_backend.h"
 
-#include <cstdint>
 #include <mutex>
 #include <optional>
-#include <thread>
 #include <utility>
+#include <vector>
 
 #include "core/frame_plan.h"
-#include "core/input_file.h"
 #include "core/shading_plan.h"
 #include "core/stage_params.h"
 #include "pipeline/frame_skips.h"
-#include "pipeline/memory_budget.h"
 #include "pipeline/stage_table.h"
 #include "raster/topology.h"
 
@@ -20,7 +17,7 @@
 #include "gpu/gl_checks.h"
 #include "gpu/gl_shading.h"
 #include "gpu/gl_terrain.h"
-#include "gpu/headless_gl.h"
+#include "pipeline/gl_scene_cache.h"
 #endif
 
 namespace relief {
@@ -28,72 +25,39 @@ namespace relief {
 #ifdef RELIEF_WITH_GL
 namespace {
 
-// The process's GL context and the programs it compiled (llvmpipe takes a second or more to
-// compile them: once per process, not per frame). `mutex` serialises GL frames.
-struct GlSession {
-  std::mutex mutex;
-  std::unique_ptr<gpu::HeadlessGl> gl;
-  std::string error;  // why there is no context
-  std::unique_ptr<gpu::GlTerrainDraw> draw;
-};
-
-// The address space a GL driver maps beyond the frame's own memory (current_context).
-constexpr std::uintmax_t kGlDriverAddressSpace = std::uintmax_t{768} << 20;
-
-GlSession& session() {
-  static GlSession* const state = new GlSession;  // never destroyed: the driver outlives it
-  return *state;
-}
-
-// The context, current on this thread, or GlBackendError. Called with the session locked.
-gpu::HeadlessGl& current_context(GlSession& s) {
-  if (s.gl == nullptr && s.error.empty()) {
-    // Under an address-space limit (ulimit -v) Mesa's llvmpipe crashes (SIGSEGV in its shader
-    // compiler) instead of failing: refuse before the driver loads. Measured on llvmpipe (Mesa
-    // 22.3, 2 cores): a small GL render dies with 691 MiB of address space left at this point
-    // and succeeds with 730 MiB; kGlDriverAddressSpace, and 8 MiB for each rasteriser thread's
-    // stack of a larger machine.
-    const std::uintmax_t need =
-        kGlDriverAddressSpace + (std::uintmax_t{8} << 20) * std::thread::hardware_concurrency();
-    if (const std::optional<std::uintmax_t> left = address_space_remaining();
-        left && *left < need) {
-      throw GlBackendError("the address-space limit (ulimit -v) leaves " + format_bytes(*left) +
-                           "; the GL driver needs about " + format_bytes(need) +
-                           " of address space for its shader compiler and threads. Raise "
-                           "ulimit -v or use a CPU backend (--backend simd)");
-    }
-    s.gl = gpu::HeadlessGl::open(s.error);  // current on this thread when it opens
-    if (s.gl == nullptr && s.error.empty()) {
-      s.error = "no OpenGL context";
-    }
-  }
-  if (s.gl == nullptr) {
-    throw GlBackendError("the GL backend needs OpenGL 4.5 through EGL: " + s.error);
-  }
-  if (!s.gl->make_current()) {
-    throw GlBackendError("the GL context cannot be made current on this thread");
-  }
-  return *s.gl;
-}
-
-// Runs `work` with the context current on this thread, released afterwards; gpu/'s errors
-// (GlError, a shader log, a limit the frame needs) become GlBackendError.
+// Runs `work`, turning gpu/'s errors (GlError, a shader log, a limit the frame needs) into
+// GlBackendError naming `what`. After a failure the scene's GL objects may be half-written:
+// they are dropped, and the next frame makes them again.
 template <class Work>
-void with_context(GlSession& s, const char* what, Work&& work) {
-  gpu::HeadlessGl& gl = current_context(s);
+void guarded(GlSession& s, const char* what, Work&& work) {
   try {
     work();
+  } catch (const GlBackendError&) {
+    s.cache.forget_scene();
+    throw;
   } catch (const std::exception& e) {
-    gl.release();
+    s.cache.forget_scene();
     throw GlBackendError(std::string("the GL backend's ") + what + ": " + e.what());
   }
-  gl.release();
 }
 
+// A frame's GL work, with no synchronisation inside the frame:
+// - The context is made current once, by the constructor, on the thread that runs the frame,
+//   and released by the destructor. Each stage's GL commands are issued in after(), which the
+//   runner calls on that thread (frame.cc's run_table); run() has nothing to do in parallel
+//   (one stream of GL commands), so no stage takes the context to another thread.
+// - Nothing is uploaded or compiled that an earlier frame left in the session's cache
+//   (gl_scene_cache.h); the parameter structs alone are uploaded each frame.
+// - glGetError is read once per stage (GlErrorChecks::kByCaller), and twice by the draw. An
+//   error is recorded when the call is made, so glGetError never waits for the GPU; under a
+//   threaded driver (NVIDIA's threaded optimisation, off by default on Linux; Mesa's glthread)
+//   it waits for the driver's thread to catch up with the calls, a few per frame.
+// - The one wait is the read-back of the requested outputs, after which the passes' timer
+//   queries are read (they are complete by then).
 class GlBackend final : public FrameBackend {
  public:
   GlBackend(const Scene& scene, const SceneResources& resources, const FrameRequest& request)
-      : lock_(session().mutex),
+      : lock_(gl_session().mutex),
         scene_(scene),
         resources_(resources),
         request_(request),
@@ -106,23 +70,22 @@ class GlBackend final : public FrameBackend {
           "lighting.shadows = true: the GL backend has no cast shadows yet; allowed false with "
           "--backend gl (or render with --backend simd, reference or reference-double)");
     }
-    with_context(session(), "set-up", [&] {
-      terrain_ = std::make_unique<gpu::GlTerrain>(plan_.layout, resources_.terrain_values(),
-                                                  resources_.sketch_or_null());
+    GlSession& s = gl_session();
+    current_.emplace(s);
+    guarded(s, "set-up", [&] {
+      gpu::clear_gl_errors();
+      timer_ = &s.cache.pass_timer();
+      timer_->clear();  // a failed frame's passes
+      if (params_.domain.terrain_visible != 0) {
+        terrain_ = &s.cache.terrain(plan_.layout, resources_);
+      }
     });
   }
 
-  // The frame's GL objects belong to the session's context: deleted there (GL deletes a name
-  // in whatever context is current, so with another context current, a caller's own, it
-  // would delete that context's objects of the same names, and with none it would abort).
-  ~GlBackend() override {
-    GlSession& s = session();
-    if (s.gl != nullptr && s.gl->make_current()) {
-      upload_.reset();
-      terrain_.reset();
-      s.gl->release();
-    }
-  }
+  // The frame's own GL objects (upload_) go before current_ releases the context: GL deletes
+  // a name in whatever context is current, so with a caller's own context current it would
+  // delete that context's object of the same name, and with none libepoxy aborts.
+  ~GlBackend() override = default;
   GlBackend(const GlBackend&) = delete;
   GlBackend& operator=(const GlBackend&) = delete;
 
@@ -131,7 +94,7 @@ class GlBackend final : public FrameBackend {
       case StageId::kProjectedDomain:
       case StageId::kFractal:
       case StageId::kSurface:
-        return params_.domain.terrain_visible != 0 ? 1 : 0;
+        return terrain_ != nullptr ? 1 : 0;
       case StageId::kTiles:
         return 1;
       default:
@@ -139,29 +102,38 @@ class GlBackend final : public FrameBackend {
     }
   }
 
-  void run(StageId id, std::size_t /*begin*/, std::size_t /*end*/) override {
-    GlSession& s = session();
+  // Nothing in parallel: the stage's GL commands are issued by after() (above).
+  void run(StageId /*id*/, std::size_t /*begin*/, std::size_t /*end*/) override {}
+
+  void after(StageId id) override {
+    if (units(id) == 0) {
+      return;
+    }
+    GlSession& s = gl_session();
     switch (id) {
       case StageId::kProjectedDomain:
-        with_context(s, "projected domain", [&] {
+        guarded(s, "projected domain", [&] {
           terrain_->project_domain(params_.domain, params_.domain_rows, params_.planet);
+          gpu::check_gl("stage 2 (domain.comp)");
         });
         return;
       case StageId::kFractal:
-        with_context(s, "fractal", [&] {
+        guarded(s, "fractal", [&] {
           terrain_->evaluate_fbm(params_.fbm);
           terrain_->add_sketch(params_.sketch);     // §3's low-frequency base (none: no pass)
           terrain_->bend_vertices(params_.planet);  // a planet's bend (none: no pass)
+          gpu::check_gl("stage 3 (reach.comp, forms.comp, fbm.comp, sketch.comp, bend.comp)");
         });
         return;
       case StageId::kSurface:
-        with_context(s, "surface pass", [&] {
+        guarded(s, "surface pass", [&] {
           terrain_->surface_pass(params_.surface);
           terrain_->bend_normals(params_.planet);  // into the bent frame (none: no pass)
+          gpu::check_gl("stage 4 (surface.comp, bend_normals.comp)");
         });
         return;
       case StageId::kTiles:
-        with_context(s, "draw", [&] { draw(s); });
+        guarded(s, "draw", [&] { draw(s); });
         return;
       default:
         return;
@@ -176,6 +148,7 @@ class GlBackend final : public FrameBackend {
 
   void finish(Frame& frame) override {
     frame.image = std::move(image_);
+    frame.stats.gpu_passes = std::move(passes_);
     // GL draws the grid's two triangles per cell (raster/topology.h); its rasteriser has no
     // set-up pieces or bins to count (the report says so rather than printing 0).
     frame.stats.raster.triangles = raster::GridTriangles{plan_.layout, {}, {}}.count();
@@ -189,12 +162,10 @@ class GlBackend final : public FrameBackend {
     // No culling on the GL side, hence no lowest drawn height: the water pass over terrain
     // runs wherever there is water (it changes no pixel above the water).
     apply_skips(request_.skips, true, shade);
-    if (s.draw == nullptr) {
-      s.draw = std::make_unique<gpu::GlTerrainDraw>();
-    }
+    const FrameOutputs& o = request_.outputs;
     gpu::GlGridStreams streams;
     streams.layout = plan_.layout;
-    if (params_.domain.terrain_visible != 0) {
+    if (terrain_ != nullptr) {
       const auto name = [&](gpu::GlStream stream) { return terrain_->buffer(stream); };
       // On a planet the bent positions (docs/planet.md): stage 5 transforms them, stage 8
       // reads the bent x and z, the unbent height and the drop.
@@ -210,7 +181,7 @@ class GlBackend final : public FrameBackend {
       streams.nz = name(gpu::GlStream::kNz);
       streams.slope = name(gpu::GlStream::kSlope);
       streams.water_depth = name(gpu::GlStream::kWaterDepth);
-      streams.nu = request_.outputs.octaves ? name(gpu::GlStream::kNu) : 0;
+      streams.nu = o.octaves ? name(gpu::GlStream::kNu) : 0;
       streams.valid = name(gpu::GlStream::kValid);
     } else {
       // Nothing to draw: an upload of the (zero, invalid) buffers keeps the draw's inputs
@@ -219,37 +190,40 @@ class GlBackend final : public FrameBackend {
       upload_ = std::make_unique<gpu::GlGridUpload>(*empty_grid_);
       streams = upload_->streams();
     }
-    const gpu::GlShadeResources textures(ShadeResources{&resources_.lattice, resources_.textures});
+    gpu::GlDrawOptions options;
+    options.readback = {o.linear, o.depth, o.primitive, o.normal, o.world_height, o.octaves};
+    options.timer = timer_;
     gpu::GlFrameImage gl =
-        s.draw->draw(streams, params_.transform, shade, textures, plan_.camera.position.y);
-    const FrameOutputs& o = request_.outputs;
+        s.cache.draw().draw(streams, params_.transform, shade, s.cache.shading(resources_),
+                            plan_.camera.position.y, options);
+    for (gpu::GlPassTime& pass : timer_->collect()) {
+      passes_.push_back({std::move(pass.name), pass.ms, true, {}});
+    }
+    passes_.push_back({"read-back (CPU wall time)", gl.readback_ms, true, {}});
     image_.width = gl.width;
     image_.height = gl.height;
     image_.srgb = std::move(gl.srgb);
-    if (o.linear)
-      image_.linear = std::move(gl.linear);
-    if (o.depth)
-      image_.depth = std::move(gl.depth);
-    if (o.primitive)
-      image_.primitive = std::move(gl.primitive);
-    if (o.normal)
-      image_.normal = std::move(gl.normal);
-    if (o.world_height)
-      image_.world_height = std::move(gl.world_height);
-    if (o.octaves)
-      image_.octaves = std::move(gl.octaves);
+    image_.linear = std::move(gl.linear);  // each empty unless requested (GlReadback)
+    image_.depth = std::move(gl.depth);
+    image_.primitive = std::move(gl.primitive);
+    image_.normal = std::move(gl.normal);
+    image_.world_height = std::move(gl.world_height);
+    image_.octaves = std::move(gl.octaves);
   }
 
   std::unique_lock<std::mutex> lock_;
+  std::optional<GlCurrent> current_;  // after the lock, before every GL object of the frame
   const Scene& scene_;
   const SceneResources& resources_;
   FrameRequest request_;
   FramePlan plan_;
   TerrainParams<float> params_;
-  std::unique_ptr<gpu::GlTerrain> terrain_;
+  gpu::GlTerrain* terrain_ = nullptr;  // the session's; null when no terrain is visible
+  gpu::GlPassTimer* timer_ = nullptr;  // the session's
   std::unique_ptr<GridBuffers<float>> empty_grid_;
   std::unique_ptr<gpu::GlGridUpload> upload_;
   FrameImage image_;
+  std::vector<StageTime> passes_;
 };
 
 }  // namespace
@@ -259,12 +233,11 @@ bool gl_backend_built() {
 }
 
 std::string gl_renderer() {
-  GlSession& s = session();
+  GlSession& s = gl_session();
   const std::lock_guard<std::mutex> lock(s.mutex);
-  gpu::HeadlessGl& gl = current_context(s);
-  const std::string text = gl.renderer() + " (OpenGL " + gl.version() + ", " + gl.platform() + ")";
-  gl.release();
-  return text;
+  const GlCurrent current(s);
+  return current.gl().renderer() + " (OpenGL " + current.gl().version() + ", " +
+         current.gl().platform() + ")";
 }
 
 std::unique_ptr<FrameBackend> make_gl_backend(const Scene& scene, const SceneResources& resources,
@@ -274,7 +247,7 @@ std::unique_ptr<FrameBackend> make_gl_backend(const Scene& scene, const SceneRes
 
 GridBuffers<float> gl_terrain_stages(const Scene& scene, const NoiseLattice& lattice,
                                      const HeightSketch* sketch) {
-  GlSession& s = session();
+  GlSession& s = gl_session();
   const std::lock_guard<std::mutex> lock(s.mutex);
   const FramePlan plan = make_frame_plan(scene, lattice, sketch);
   const TerrainParams<float> params = make_terrain_params<float>(plan);
@@ -285,12 +258,24 @@ GridBuffers<float> gl_terrain_stages(const Scene& scene, const NoiseLattice& lat
   if (params.domain.terrain_visible == 0) {
     return grid;
   }
-  with_context(s, "terrain stages", [&] {
-    gpu::GlTerrain terrain(plan.layout, lattice, sketch);
+  const GlCurrent current(s);
+  guarded(s, "terrain stages", [&] {
+    // Its own streams (read back at once), the session's programs.
+    gpu::GlTerrain terrain(s.cache.terrain_programs(), plan.layout, lattice, sketch);
     terrain.run(params);
     terrain.read_all(grid);
   });
   return grid;
+}
+
+void forget_gl_scene() {
+  GlSession& s = gl_session();
+  const std::lock_guard<std::mutex> lock(s.mutex);
+  if (s.gl == nullptr) {
+    return;  // nothing was made
+  }
+  const GlCurrent current(s);
+  s.cache.forget_scene();
 }
 
 #else
@@ -311,6 +296,8 @@ std::unique_ptr<FrameBackend> make_gl_backend(const Scene&, const SceneResources
 GridBuffers<float> gl_terrain_stages(const Scene&, const NoiseLattice&, const HeightSketch*) {
   throw GlBackendError("this build of Relief has no GL side (configured with RELIEF_WITH_GL=OFF)");
 }
+
+void forget_gl_scene() {}
 
 #endif
 

@@ -10,8 +10,11 @@
 // lies outside the frustum, which changes no pixel), and the tiles of the software
 // rasteriser (GL rasterises). docs/gl-backend.md says how far its frames are from the CPU's.
 //
-// One process-wide context serves every GL frame, one frame at a time; it is made current on
-// whichever thread runs a stage and released after it.
+// One process-wide context serves every GL frame, one frame at a time; it is current on the
+// thread that runs a frame from the frame's start to its end. What frames keep between them
+// (programs, streams, the scene's uploads, render targets) and how a scene's resources are
+// recognised: gl_scene_cache.h. A frame reads back only the outputs its request asks for, and
+// reports each GPU pass's time from GL timer queries (FrameStats::gpu_passes).
 #pragma once
 
 #include <memory>
@@ -38,6 +41,8 @@ bool gl_backend_built();
 // EGL device)", opening the shared context if needed; throws GlBackendError when there is none.
 std::string gl_renderer();
 
+// The frame's backend (frame.cc): holds the GL session, its context current on the calling
+// thread, until destroyed, on that thread; `resources` must outlive it.
 std::unique_ptr<FrameBackend> make_gl_backend(const Scene& scene, const SceneResources& resources,
                                               const FrameRequest& request);
 
@@ -45,5 +50,10 @@ std::unique_ptr<FrameBackend> make_gl_backend(const Scene& scene, const SceneRes
 // run_terrain_stages do on the CPU): the grid's buffers read back.
 GridBuffers<float> gl_terrain_stages(const Scene& scene, const NoiseLattice& lattice,
                                      const HeightSketch* sketch = nullptr);
+
+// Drops what GL frames keep of the last scene (its uploads and the grid's streams; the compiled
+// programs stay), so that the next frame starts as a process's first does. For tests; frames
+// never need it (gl_scene_cache.h).
+void forget_gl_scene();
 
 }  // namespace relief

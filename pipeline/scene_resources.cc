@@ -1,5 +1,6 @@
 #include "pipeline/scene_resources.h"
 
+#include <atomic>
 #include <bit>
 #include <optional>
 #include <string>
@@ -129,6 +130,11 @@ void check_planet_depth(const Scene& scene, const SceneResources& resources) {
 }
 
 }  // namespace
+
+std::uint64_t ResourceSerial::next() noexcept {
+  static std::atomic<std::uint64_t> counter{0};
+  return counter.fetch_add(1, std::memory_order_relaxed) + 1;  // 0 names nothing
+}
 
 SceneResources load_scene_resources(const Scene& scene) {
   SceneResources resources;

@@ -3,6 +3,7 @@
 // checked), each with the variance-reduced mip chain of §4.2.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,6 +16,40 @@
 
 namespace relief {
 
+// A process-unique number for the contents of one SceneResources, so that what is built from
+// them (the GL backend's uploads, pipeline/gl_scene_cache.h) can be kept between frames and
+// found again: an address cannot name contents, since a SceneResources freed and another
+// allocated may share it. Every new object draws a new number from an atomic counter (never 0,
+// never reused); a copy draws its own too, since either may then be changed apart from the
+// other; a move hands the number on with the contents, and the object moved from, whose
+// contents are gone, draws a new one.
+class ResourceSerial {
+ public:
+  ResourceSerial() : value_(next()) {}
+  ResourceSerial(const ResourceSerial&) : value_(next()) {}
+  ResourceSerial& operator=(const ResourceSerial&) {
+    value_ = next();
+    return *this;
+  }
+  ResourceSerial(ResourceSerial&& other) noexcept : value_(other.value_) { other.value_ = next(); }
+  ResourceSerial& operator=(ResourceSerial&& other) noexcept {
+    value_ = other.value_;
+    other.value_ = next();
+    return *this;
+  }
+  ~ResourceSerial() = default;
+
+  std::uint64_t value() const { return value_; }
+  void renew() { value_ = next(); }
+
+ private:
+  static std::uint64_t next() noexcept;
+  std::uint64_t value_;
+};
+
+// Once a frame has used a SceneResources, its contents are treated as fixed: to change them,
+// make another object (load_scene_resources), or call contents_changed() after changing
+// them in place, which gives them a new serial. Nothing in Relief changes them after loading.
 struct SceneResources {
   NoiseLattice lattice;
   std::vector<ProtoTexture> textures;  // one per scene.shading.layers entry
@@ -25,6 +60,9 @@ struct SceneResources {
   // What loading found worth saying that is no error (an image that does not tile, a field
   // basis mode ignores); the command line prints each once on stderr.
   std::vector<std::string> notes;
+  ResourceSerial serial;  // names the contents above (ResourceSerial); copies get their own
+
+  void contents_changed() { serial.renew(); }
 
   const HeightSketch* sketch_or_null() const { return sketch ? &*sketch : nullptr; }
   const NoiseLattice* basis_or_null() const { return basis ? &*basis : nullptr; }

@@ -18,6 +18,19 @@ double median_ms(const std::vector<std::vector<StageTime>>& runs, std::size_t s)
   return median(values);
 }
 
+// The median over the runs of the GL pass `p` of the last run, over the runs that had it (every
+// run of one scene has the same passes).
+double median_pass_ms(const RenderRuns& runs, std::size_t p) {
+  const std::string& name = runs.last.gpu_passes[p].name;
+  std::vector<double> values;
+  for (const std::vector<StageTime>& run : runs.gpu_passes) {
+    if (p < run.size() && run[p].name == name) {
+      values.push_back(run[p].ms);
+    }
+  }
+  return values.empty() ? runs.last.gpu_passes[p].ms : median(values);
+}
+
 void print_medians(std::ostream& out, const std::vector<std::vector<StageTime>>& runs,
                    const char* indent) {
   for (std::size_t s = 0; s < runs.front().size(); ++s) {
@@ -31,6 +44,7 @@ void print_medians(std::ostream& out, const std::vector<std::vector<StageTime>>&
 void RenderRuns::add(const FrameStats& stats) {
   stages.push_back(stats.stages);
   parts.push_back(stats.tile_parts);
+  gpu_passes.push_back(stats.gpu_passes);
   totals.push_back(stats.total_ms);
   last = stats;
 }
@@ -59,6 +73,14 @@ void print_stage_stats(std::ostream& out, const RenderRuns& runs) {
   }
   out << "  " << std::left << std::setw(49) << "frame" << std::right << std::setw(10)
       << median(runs.totals) << "\n";
+  if (!runs.last.gpu_passes.empty()) {
+    // The GL backend's passes: GPU time from timer queries, the read-back's CPU wall time.
+    out << "  GL passes (GPU time from timer queries; ms):\n";
+    for (std::size_t p = 0; p < runs.last.gpu_passes.size(); ++p) {
+      out << "    " << std::left << std::setw(45) << runs.last.gpu_passes[p].name << std::right
+          << std::setw(10) << median_pass_ms(runs, p) << "\n";
+    }
+  }
   print_kernel_table(out, runs.last.kernels);
 }
 
@@ -93,6 +115,10 @@ nlohmann::json stage_stats_json(const Scene& scene, Backend backend, const Rende
   for (std::size_t s = 0; s < runs.last.tile_parts.size(); ++s) {
     parts.push_back({{"name", runs.last.tile_parts[s].name}, {"ms", median_ms(runs.parts, s)}});
   }
+  nlohmann::json passes = nlohmann::json::array();
+  for (std::size_t p = 0; p < runs.last.gpu_passes.size(); ++p) {
+    passes.push_back({{"name", runs.last.gpu_passes[p].name}, {"ms", median_pass_ms(runs, p)}});
+  }
   nlohmann::json kernels = nlohmann::json::array();
   for (const KernelReport& k : runs.last.kernels) {
     kernels.push_back({{"stage", k.stage},
@@ -110,6 +136,7 @@ nlohmann::json stage_stats_json(const Scene& scene, Backend backend, const Rende
           {"setup_ms", runs.setup_ms},
           {"stages", std::move(stages)},
           {"tile_parts", std::move(parts)},
+          {"gpu_passes", std::move(passes)},
           {"kernels", std::move(kernels)},
           {"raster", backend == Backend::kGl
                          // GL's own rasteriser: no software set-up pieces or bins (null).

@@ -28,12 +28,12 @@ void main() {
   precise float x = 0.0, y = 0.0, z = 0.0, drop = 0.0;
   if (RELIEF_BYTE(in_valid, k) != 0u) {
     const float dx = in_dx[k], dz = in_dz[k], height = in_height[k];
-    precise float rho = sqrt_cr(dx * dx + dz * dz);
+    precise float rho = square_root(dx * dx + dz * dz);
     precise float theta = rho * planet.inv_radius;
     float sine, cosine;
     sin_cos_det(theta, sine, cosine);
     // sinc: 1 at 0 (the limit); domain of the division: theta > 0.
-    precise float sinc = theta > 0.0 ? div_cr(sine, theta) : 1.0;
+    precise float sinc = theta > 0.0 ? divide(sine, theta) : 1.0;
     precise float half_sine = sin_det(theta * 0.5);
     precise float radius_here = planet.center_distance + height;  // R + e
     precise float scale = radius_here * planet.inv_radius * sinc;

@@ -23,7 +23,7 @@ void main() {
   }
   const int k = int(gl_GlobalInvocationID.y) * grid_pitch + i;
   const float dx = in_dx[k], dz = in_dz[k];
-  precise float rho = sqrt_cr(dx * dx + dz * dz);
+  precise float rho = square_root(dx * dx + dz * dz);
   if (RELIEF_BYTE(in_valid, k) == 0u || !(rho > 0.0)) {
     return;  // the nadir's frame is the camera's
   }
@@ -31,8 +31,8 @@ void main() {
   precise float sine = sin_det(theta);
   precise float half_sine = sin_det(theta * 0.5);
   precise float cos_minus_one = -2.0 * half_sine * half_sine;
-  precise float ux = div_cr(dx, rho);  // domain: rho > 0
-  precise float uz = div_cr(dz, rho);
+  precise float ux = divide(dx, rho);  // domain: rho > 0
+  precise float uz = divide(dz, rho);
   const float nx = io_nx[k], n_y = io_ny[k], nz = io_nz[k];
   precise float along = nx * ux + nz * uz;
   precise float delta = along * cos_minus_one + n_y * sine;  // the change of the along part

@@ -34,7 +34,7 @@ vec3 normalize_or(vec3 v, vec3 fallback) {
   if (!(length_sq > 0.0) || isinf(length_sq)) {
     return fallback;
   }
-  precise float inv = div_cr(1.0, sqrt_cr(length_sq));
+  precise float inv = divide(1.0, square_root(length_sq));
   precise vec3 r = v * inv;
   return r;
 }

@@ -49,20 +49,20 @@ Footprint planet_footprint(float x, float y, float descent) {
   // The projector has no roll: x does not change ray.y (projector.h).
   precise float ray_x = domain.rays.fx + x * domain.rays.rx + y * domain.rays.ux;
   precise float ray_z = domain.rays.fz + x * domain.rays.rz + y * domain.rays.uz;
-  precise float horizontal = sqrt_cr(ray_x * ray_x + ray_z * ray_z);
-  precise float length = sqrt_cr(horizontal * horizontal + descent * descent);
+  precise float horizontal = square_root(ray_x * ray_x + ray_z * ray_z);
+  precise float length = square_root(horizontal * horizontal + descent * descent);
   if (!(length > 0.0)) {
     return f;  // the division's domain below; never for a projector ray
   }
-  precise float cos_a = div_cr(descent, length);
-  precise float sin_a = div_cr(horizontal, length);
+  precise float cos_a = divide(descent, length);
+  precise float sin_a = divide(horizontal, length);
   precise float dc = planet.center_distance * cos_a;
   precise float disc = dc * dc - planet.grid_c;
   const bool hit = cos_a > 0.0 && disc >= 0.0;
   precise float theta_true = planet.theta_limb;
   if (hit) {
     // Domain: dc > 0 and c > 0, so the denominator is positive.
-    precise float t = div_cr(planet.grid_c, dc + sqrt_cr(disc));
+    precise float t = divide(planet.grid_c, dc + square_root(disc));
     precise float along = t * sin_a;
     precise float across = planet.center_distance - t * cos_a;
     theta_true = atan2_det(along, across);
@@ -77,7 +77,7 @@ Footprint planet_footprint(float x, float y, float descent) {
   f.valid = true;
   // Straight down the direction is undefined and theta is 0: (0, 0). Domain: horizontal > 0.
   if (horizontal > 0.0) {
-    precise float scale = div_cr(planet.radius * theta, horizontal);
+    precise float scale = divide(planet.radius * theta, horizontal);
     f.x = scale * ray_x;
     f.z = scale * ray_z;
   }
@@ -110,7 +110,7 @@ Footprint footprint(int i, int j, Row r) {
   if (!(r.descent > 0.0) || descent_sq <= bound) {
     return f;
   }
-  precise float scale = div_cr(domain.rays.height_above_plane, r.descent);
+  precise float scale = divide(domain.rays.height_above_plane, r.descent);
   precise float px = scale * ray_x;
   precise float pz = scale * ray_z;
   precise float distance_sq = px * px + pz * pz;
@@ -176,7 +176,7 @@ void main() {
         }
         dx = centre.x;
         dz = centre.z;
-        sigma = sqrt_cr(spacing_sq);
+        sigma = square_root(spacing_sq);
         valid = true;
       }
     }

@@ -61,13 +61,13 @@ float fbm_point(float dx, float dz, float nu) {
     }
     // §2.2: roughness R_n = R0 - h_n and the guarded 1/R_n (kRoughnessGuard).
     precise float roughness = fbm.roughness0 - h;
-    precise float inv_roughness = div_cr(roughness, roughness * roughness + fbm.guard_sq);
+    precise float inv_roughness = divide(roughness, roughness * roughness + fbm.guard_sq);
     // §2.2: rot_{n+1} = c1 R_n + c2 + rot_n, renormalised; kept when its length vanishes.
     precise float vx = fbm.c1x * roughness + fbm.c2x + rx;
     precise float vz = fbm.c1z * roughness + fbm.c2z + rz;
     precise float length_sq = vx * vx + vz * vz;
     if (length_sq > fbm.min_rotation_sq) {
-      precise float inv_length = div_cr(1.0, sqrt_cr(length_sq));
+      precise float inv_length = divide(1.0, square_root(length_sq));
       rx = vx * inv_length;
       rz = vz * inv_length;
     }

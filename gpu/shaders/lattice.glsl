@@ -24,7 +24,7 @@ float fade(int kind, float t) {
 // sample_lattice: locate_cell, then the lerps a + w (b - a), along x first.
 float sample_lattice(int kind, float px, float pz) {
   precise float period = float(lattice_size);
-  precise float inv_period = div_cr(1.0, period);  // exact: P is a power of two
+  precise float inv_period = divide(1.0, period);  // exact: P is a power of two
   precise float wx = wrap_period(px, period, inv_period);
   precise float wz = wrap_period(pz, period, inv_period);
   precise float fx = floor(wx);

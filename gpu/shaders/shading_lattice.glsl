@@ -19,7 +19,7 @@ struct LatticeCell {
 
 LatticeCell locate_cell(float px, float pz) {
   precise float period = float(lattice_size);
-  precise float inv_period = div_cr(1.0, period);  // exact: P is a power of two
+  precise float inv_period = divide(1.0, period);  // exact: P is a power of two
   precise float wx = wrap_period(px, period, inv_period);
   precise float wz = wrap_period(pz, period, inv_period);
   precise float fx = floor(wx);

@@ -33,10 +33,10 @@ int clamp_int(int s, int lo, int hi) {
 // bspline_weights (core/height_sketch.h).
 void bspline_weights(float t, out float w[4]) {
   precise float s = 1.0 - t;
-  precise float w0 = div_cr((s * s) * s, 6.0);
-  precise float w1 = div_cr((((t * 3.0) - 6.0) * t) * t + 4.0, 6.0);
-  precise float w2 = div_cr((((3.0 - t * 3.0) * t + 3.0) * t) + 1.0, 6.0);
-  precise float w3 = div_cr((t * t) * t, 6.0);
+  precise float w0 = divide((s * s) * s, 6.0);
+  precise float w1 = divide((((t * 3.0) - 6.0) * t) * t + 4.0, 6.0);
+  precise float w2 = divide((((3.0 - t * 3.0) * t + 3.0) * t) + 1.0, 6.0);
+  precise float w3 = divide((t * t) * t, 6.0);
   w[0] = w0;
   w[1] = w1;
   w[2] = w2;

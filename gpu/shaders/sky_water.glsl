@@ -13,12 +13,12 @@ vec3 sky_radiance(vec3 d) {
   const vec3 horizon = f3(P.horizon);
   precise vec3 color = horizon;
   if (d.y > 0.0) {
-    color = lerp3(horizon, f3(P.zenith), sqrt_cr(d.y));
+    color = lerp3(horizon, f3(P.zenith), square_root(d.y));
   }
   precise float c = dot3(d, f3(P.sun_direction));
   const float inner = P.sun_cos_inner, outer = P.sun_cos_outer;
   precise float disc =
-      inner > outer ? smooth01(div_cr(c - outer, inner - outer)) : (c >= inner ? 1.0 : 0.0);
+      inner > outer ? smooth01(divide(c - outer, inner - outer)) : (c >= inner ? 1.0 : 0.0);
   precise float halo = kHaloWeight * power_of_half_cosine(c, 5);
   precise vec3 r = color + f3(P.sun) * (20.0 * disc + halo);
   return r;
@@ -71,8 +71,8 @@ vec3 shade_water(vec3 view, float surface_distance, float depth, vec3 ground, fl
 
   precise float eta = kRelativeIndex;
   precise float k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
-  precise vec3 t = view * eta + n * (eta * cos_i - sqrt_cr(k));
-  precise float path = div_cr(depth, max_cpp(abs(t.y), kMinTransmittedCosine));
+  precise vec3 t = view * eta + n * (eta * cos_i - square_root(k));
+  precise float path = divide(depth, max_cpp(abs(t.y), kMinTransmittedCosine));
   const vec3 e = f3(P.extinction_log2);
   precise vec3 transmitted =
       vec3(exp2_det(-e.x * path), exp2_det(-e.y * path), exp2_det(-e.z * path));
@@ -86,6 +86,6 @@ vec3 shade_water(vec3 view, float surface_distance, float depth, vec3 ground, fl
 
 // The pixel's extent on the water surface (shade.cc, surface_footprint).
 float surface_footprint(float distance, vec3 view) {
-  precise float r = div_cr(distance * P.pixel_angle, max_cpp(abs(view.y), kMinGrazingSine));
+  precise float r = divide(distance * P.pixel_angle, max_cpp(abs(view.y), kMinGrazingSine));
   return r;
 }

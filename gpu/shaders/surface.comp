@@ -50,9 +50,9 @@ Tangent axis_tangent(int minus, int c, int plus) {
     precise float tz = in_dz[to] - in_dz[from];
     const float largest = abs_max3(abs(tx), abs(th), abs(tz));
     if (largest > 0.0) {
-      tx = div_cr(tx, largest);
-      th = div_cr(th, largest);
-      tz = div_cr(tz, largest);
+      tx = divide(tx, largest);
+      th = divide(th, largest);
+      tz = divide(tz, largest);
     }
     t = Tangent(tx, th, tz, true);
   }
@@ -102,16 +102,16 @@ void main() {
     }
     // Divided by the largest component first (> 0 because ny > 0), so no square overflows.
     const float largest = abs_max3(abs(nx), ny, abs(nz));
-    nx = div_cr(nx, largest);
-    ny = div_cr(ny, largest);
-    nz = div_cr(nz, largest);
+    nx = divide(nx, largest);
+    ny = divide(ny, largest);
+    nz = divide(nz, largest);
     precise float horizontal_sq = nx * nx + nz * nz;
-    precise float inv_length = div_cr(1.0, sqrt_cr(horizontal_sq + ny * ny));
+    precise float inv_length = divide(1.0, square_root(horizontal_sq + ny * ny));
     nx_out = nx * inv_length;
     ny_out = ny * inv_length;
     nz_out = nz * inv_length;
     // |g| = horizontal / ny, capped at kMaxSlope.
-    precise float gradient = div_cr(sqrt_cr(horizontal_sq), ny);
+    precise float gradient = divide(square_root(horizontal_sq), ny);
     slope = surface.max_slope < gradient ? surface.max_slope : gradient;
     if (surface.water_enabled != 0) {
       precise float below = surface.water_level - in_height[k];

@@ -15,7 +15,7 @@ float ramp_weight(Ramp ramp, float x, float dither_offset) {
   if (!(ramp.end > ramp.start)) {
     return x >= ramp.start ? 1.0 : 0.0;
   }
-  precise float t = div_cr(x - ramp.start, ramp.end - ramp.start) + dither_offset;
+  precise float t = divide(x - ramp.start, ramp.end - ramp.start) + dither_offset;
   return smooth01(t);
 }
 
@@ -38,13 +38,13 @@ void layer_weights(float height, float slope, float d, out float weights[kMaxLay
     sum = sum + w;
   }
   if (sum > kMinWeightSum) {
-    precise float inv = div_cr(1.0, sum);
+    precise float inv = divide(1.0, sum);
     for (int k = 0; k < count; ++k) {
       precise float w = weights[k] * inv;
       weights[k] = w;
     }
   } else {
-    precise float share = div_cr(1.0, float(count));
+    precise float share = divide(1.0, float(count));
     for (int k = 0; k < count; ++k) {
       weights[k] = share;
     }
@@ -81,7 +81,7 @@ vec3 layer_albedo(int layer, Attributes a, vec3 n) {
   if (w2 > 0.0 || P.skip_zero_weights == 0) {
     sum = sum + sample_layer(layer, P.nearest_mip != 0, x, y, xdx, ydx, xdy, ydy) * w2;
   }
-  precise vec3 r = sum * div_cr(1.0, used);
+  precise vec3 r = sum * divide(1.0, used);
   return r;
 }
 
@@ -122,7 +122,7 @@ vec3 terrain_radiance(Attributes a) {
   // x - 0 is x: the plane's bits are unchanged).
   precise float position_y = relative_y - a.drop;
   const vec3 position = vec3(a.dx, position_y, a.dz);
-  precise float distance = sqrt_cr(dot3(position, position));
+  precise float distance = square_root(dot3(position, position));
   const vec3 view = normalize_or(position, f3(P.camera_forward));
   const vec3 n = normalize_or(vec3(a.nx, a.ny, a.nz), vec3(0.0, 1.0, 0.0));
 
@@ -151,14 +151,14 @@ vec3 terrain_radiance(Attributes a) {
     specular = specular + P.layers[layer].specular * weights[layer];
     used = used + weights[layer];
   }
-  albedo = albedo * div_cr(1.0, used);
-  precise float shininess_weight = div_cr(specular, used);
+  albedo = albedo * divide(1.0, used);
+  precise float shininess_weight = divide(specular, used);
   precise vec3 radiance = light(albedo, facing_normal(n, view), view, shininess_weight);
 
   precise float fog_distance = distance;
   if (P.water_enabled != 0 && P.terrain_water != 0 && relative_y < P.water_level && view.y < 0.0) {
     // On a planet the water surface lies a.drop lower too (locally flat).
-    precise float surface = div_cr(P.water_level - a.drop, view.y);
+    precise float surface = divide(P.water_level - a.drop, view.y);
     vec3 water_view = view;
     if (P.planet_center_distance > 0.0LF) {  // shaded in the local frame of the point
       const float center_y = float(P.planet_center_distance);
@@ -191,7 +191,7 @@ vec3 background_radiance(int px, int py) {
   }
   if (d.y < 0.0) {
     if (P.water_enabled != 0) {
-      precise float surface = div_cr(P.water_level, d.y);
+      precise float surface = divide(P.water_level, d.y);
       const float footprint = surface_footprint(surface, d);
       const vec3 open = shade_water(d, surface, kOpenWaterDepth, vec3(0.0), footprint);
       if (P.fog_enabled == 0) {

@@ -3,12 +3,12 @@
 // Precision") requires + - * and conversions to be correctly rounded, and allows a / b and
 // 1.0 / b 2.5 ULP, inversesqrt 2 ULP and sqrt what 1.0 / inversesqrt() gives; §4.7.2's
 // `precise` forbids fusing a * b + c into one operation. Mesa's llvmpipe divides and takes
-// square roots correctly rounded (the CPU's bits); an NVIDIA GPU does not. The shaders therefore
-// divide and take square roots with div_cr and sqrt_cr (gpu/glsl_rounding.h), formed in double
-// and rounded once: the CPU's bits wherever the GL's double operations are accurate, which
-// GLSL does not promise. A test that pins the CPU's bits where a shader divides does so only
-// where gl_arithmetic() measured div_cr and sqrt_cr to give them, and otherwise checks the
-// bound the specification's allowance gives.
+// square roots correctly rounded (the CPU's bits); an NVIDIA GPU does not. The compute stages
+// therefore divide and take square roots correctly rounded (gpu/glsl_rounding.h: formed in
+// double and rounded once, the CPU's bits wherever the GL's double operations are accurate,
+// which GLSL does not promise), the draw with the GL's own. A test that pins the CPU's bits
+// where a shader divides does so only where gl_arithmetic() measured that shader's division to
+// give them, and otherwise checks the bound the specification's allowance gives.
 #pragma once
 
 #include <bit>
@@ -44,17 +44,20 @@ struct GlArithmetic {
   double division_units = 0, reciprocal_units = 0, sqrt_units = 0, inversesqrt_units = 0;
   // Whether the built-in a / b and sqrt gave the CPU's float bits on every input.
   bool divides_as_cpu = true, sqrt_as_cpu = true;
-  // Whether the shaders' div_cr (a / b and 1 / b) and sqrt_cr did.
-  bool div_cr_as_cpu = true, sqrt_cr_as_cpu = true;
+  // Whether the compute stages' divide (a / b and 1 / b) and square_root did
+  // (gpu/glsl_rounding.h; the draw's are the built-ins above).
+  bool stage_divide_as_cpu = true, stage_sqrt_as_cpu = true;
   // + - * and float(double) gave the CPU's bits on every input (GLSL: correctly rounded).
   bool basic_as_cpu = true;
   // A precise a * b + c gave float(float(a * b) + c) on every input (not fused).
   bool precise_unfused = true;
   std::size_t inputs = 0;
 
-  // The shaders' division and square roots as the CPU's: GLSL functions built of them keep
-  // the CPU's bits.
-  bool exact() const { return div_cr_as_cpu && sqrt_cr_as_cpu; }
+  // The compute stages' division and square roots as the CPU's: GLSL functions built of them
+  // keep the CPU's bits there.
+  bool exact() const { return stage_divide_as_cpu && stage_sqrt_as_cpu; }
+  // The same for the draw programs, which divide with the GL's own operations.
+  bool draw_exact() const { return divides_as_cpu && sqrt_as_cpu; }
 };
 
 namespace detail {
@@ -93,9 +96,9 @@ void main() {
   precise float difference = a - c;
   precise float product = a * b;
   precise float unfused = a * b + c;
-  precise float quotient_cr = div_cr(a, b);
-  precise float reciprocal_cr = div_cr(1.0, b);
-  precise float root_cr = sqrt_cr(abs(a));
+  precise float quotient_cr = divide(a, b);
+  precise float reciprocal_cr = divide(1.0, b);
+  precise float root_cr = square_root(abs(a));
   out_values[8u * i] = quotient;
   out_values[8u * i + 1u] = reciprocal;
   out_values[8u * i + 2u] = root;
@@ -161,8 +164,8 @@ void main() {
     const float product = a * b;
     r.precise_unfused = r.precise_unfused && same(g[7], product + c);
     const float* cr = &out[8 * count + 3 * k];
-    r.div_cr_as_cpu = r.div_cr_as_cpu && same(cr[0], a / b) && same(cr[1], 1.0f / b);
-    r.sqrt_cr_as_cpu = r.sqrt_cr_as_cpu && same(cr[2], std::sqrt(std::abs(a)));
+    r.stage_divide_as_cpu = r.stage_divide_as_cpu && same(cr[0], a / b) && same(cr[1], 1.0f / b);
+    r.stage_sqrt_as_cpu = r.stage_sqrt_as_cpu && same(cr[2], std::sqrt(std::abs(a)));
   }
   return r;
 }

@@ -17,8 +17,9 @@ TEST_CASE("thisGlRoundsWithinTheGlslSpecificationsPrecisionRules", "[gl]") {
        << a.divides_as_cpu << ", sqrt as the CPU " << a.sqrt_as_cpu);
   WARN("GL arithmetic: a / b " << a.division_ulps << " ulp, 1 / b " << a.reciprocal_ulps
                                << " ulp, sqrt " << a.sqrt_ulps << " ulp, inversesqrt "
-                               << a.inversesqrt_ulps << " ulp; div_cr, sqrt_cr as the CPU: "
-                               << a.div_cr_as_cpu << ", " << a.sqrt_cr_as_cpu);
+                               << a.inversesqrt_ulps
+                               << " ulp; the stages' divide, square_root as the CPU: "
+                               << a.stage_divide_as_cpu << ", " << a.stage_sqrt_as_cpu);
   // Correctly rounded: + - * (and the conversions the probe's literals take).
   CHECK(a.basic_as_cpu);
   // precise: a * b + c in two roundings, never one FMA.
