@@ -15,7 +15,10 @@
 // result is the IEEE 754 one, the CPU's, wherever the GL's double division and square root are
 // accurate to a few double ulps (GLSL promises double operations only single precision; the
 // tests measure it). On the H100 this made stages 1-4 bit-identical to the CPU's and cost
-// nothing measurable (0.14 ms for all of them).
+// nothing measurable (0.14 ms for all of them). The argument holds for results in float's
+// normal range: a quotient beyond it (double to float is undefined in GLSL when out of range)
+// or subnormal (which a GL may flush) is not the CPU's; the stages divide nothing of that size
+// (their domains are stated at each division), and the tests' operands stay inside it.
 //
 // The draw keeps the GL's own float division and square root: the same correctly rounded
 // functions took the H100's terrain draw from 8.3 to 30.5 ms of GPU time (fp64 in a fragment

@@ -17,11 +17,8 @@
 #include <string>
 #include <vector>
 
-#include <epoxy/gl.h>
-
-#include "gpu/gl_checks.h"
-#include "gpu/gl_program.h"
 #include "gpu/gl_shader_prelude.h"
+#include "tests/gl/gl_compute_run.h"
 #include "tests/gl/gl_test_context.h"
 #include "tests/support/hashed_draws.h"
 
@@ -34,8 +31,13 @@ inline constexpr double kFloatUnit = 0x1.0p-23;
 // GLSL 4.50 §4.7.1's allowances in kFloatUnit of the exact result.
 inline constexpr double kSpecDivisionUnits = 2.5;
 inline constexpr double kSpecInverseSqrtUnits = 2.0;
-// sqrt "inherited from 1.0 / inversesqrt()": 2 then 2.5, and their product's second order.
-inline constexpr double kSpecSqrtUnits = 4.5 + 5.0 * kFloatUnit;
+// sqrt "inherited from 1.0 / inversesqrt()": 2 then 2.5, and the second order of
+// (1 + 2.5u) / (1 - 2u) (5u^2 + 4u^2).
+inline constexpr double kSpecSqrtUnits = 4.5 + 9.0 * kFloatUnit;
+// The compute stages' division and square root are formed in double and rounded to float
+// (gpu/glsl_rounding.h); where the GL's double operations are no better than GLSL promises
+// (single precision), the rounding to float adds half a unit to the allowances above.
+inline constexpr double kConversionUnits = 0.5;
 
 struct GlArithmetic {
   // Largest error over the probe's inputs, in ulps of the exact result (0.5: correctly rounded).
@@ -77,12 +79,7 @@ inline float draw_float(HashedDraws& draws, int lo, int hi) {
 }
 
 inline GlArithmetic measure_gl_arithmetic() {
-  gl_context();
   const std::string main = R"(
-layout(local_size_x = 64) in;
-layout(std430, binding = 0) readonly buffer In { float in_values[]; };
-layout(std430, binding = 1) writeonly buffer Out { float out_values[]; };
-uniform uint u_count;
 void main() {
   const uint i = gl_GlobalInvocationID.x;
   const uint count = u_count;
@@ -122,23 +119,8 @@ void main() {
     in.push_back(draw_float(draws, -40, 40));
     in.push_back(draw_float(draws, -40, 40));
   }
-  const gpu::GlProgram program(
-      {{GL_COMPUTE_SHADER, {{"prelude", gpu::shader_prelude()}, {"probe", main}}}});
-  GLuint buffers[2];
-  glCreateBuffers(2, buffers);
-  glNamedBufferData(buffers[0], GLsizeiptr(in.size() * sizeof(float)), in.data(), GL_STATIC_DRAW);
-  std::vector<float> out(11 * count);
-  glNamedBufferData(buffers[1], GLsizeiptr(out.size() * sizeof(float)), nullptr, GL_STATIC_READ);
-  glUseProgram(program.id());
-  glProgramUniform1ui(program.id(), glGetUniformLocation(program.id(), "u_count"), GLuint(count));
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffers[0]);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, buffers[1]);
-  glDispatchCompute(GLuint((count + 63) / 64), 1, 1);
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  glGetNamedBufferSubData(buffers[1], 0, GLsizeiptr(out.size() * sizeof(float)), out.data());
-  glUseProgram(0);
-  glDeleteBuffers(2, buffers);
-  gpu::check_gl("measure_gl_arithmetic");
+  const std::vector<float> out =
+      run_compute(gpu::shader_prelude(), "", main, in, count, 11 * count);
 
   GlArithmetic r;
   r.inputs = count;

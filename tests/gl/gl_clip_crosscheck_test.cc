@@ -47,16 +47,21 @@ constexpr double kGlCoverageTolerance = 2.0 / 256;
 constexpr double kGlDepthDeviationBound = 1e-3;
 
 // A GL rasterises the triangle of its vertices snapped to its sub-pixel grid (GL_SUBPIXEL_BITS
-// b, at least 4; the OpenGL 4.5 core specification, §14.6), each moved by up to sqrt(2) 2^-(b+1)
-// px, and interpolates depth over that triangle. The snapped triangle is an affine image A of
-// the exact one; a pixel p it covers has A^-1(p) = p - sum lambda_i delta_i with lambda_i in
-// [0, 1] summing to 1, so its depth is the exact plane's at most max |delta_i| away: |grad z|
-// sqrt(2) 2^-(b+1) besides the arithmetic's deviation. (llvmpipe interpolates the unsnapped
-// plane; an NVIDIA GPU the snapped one: seen 0.0038 on the non-dyadic set.)
+// b, at least 4; the OpenGL 4.5 core specification, §14.6), each moved by less than one step
+// of it in x and in y (rounded or truncated: the specification does not say which), at most
+// sqrt(2) 2^-b px, and interpolates depth over that triangle. The snapped triangle is an
+// affine image A of the exact one; a pixel p it covers has A^-1(p) = p - sum lambda_i delta_i
+// with lambda_i in [0, 1] summing to 1, so its depth is the exact plane's at a point at most
+// max |delta_i| away: |grad z| sqrt(2) 2^-b besides the arithmetic's deviation. (llvmpipe
+// interpolates the unsnapped plane; an NVIDIA GPU the snapped one: seen 0.0038 on the
+// non-dyadic set.)
 double gl_snap_distance() {
-  GLint bits = 0;
-  glGetIntegerv(GL_SUBPIXEL_BITS, &bits);
-  return std::sqrt(2.0) * std::ldexp(1.0, -(std::max(bits, 4) + 1));
+  static const double distance = [] {
+    GLint bits = 0;
+    glGetIntegerv(GL_SUBPIXEL_BITS, &bits);
+    return std::sqrt(2.0) * std::ldexp(1.0, -std::max(bits, 4));
+  }();
+  return distance;
 }
 
 struct GlStats {
@@ -120,25 +125,6 @@ gpu::GlImage draw_one(const raster::RasterState& state, const raster::ClipVertex
 void compare_one(const raster::RasterState& state, const raster::ClipVertex v[3], int index,
                  GlStats& s, bool compare_gl = true) {
   const gpu::GlImage theirs = draw_one(state, v);
-  if (!compare_gl) {
-    const std::vector<float> ours = test::relief_pixels(state, v);
-    const test::ExactTriangle exact(v, state.viewport);
-    ++s.triangles;
-    for (int py = 0; py < state.height; ++py) {
-      for (int px = 0; px < state.width; ++px) {
-        const std::size_t k = static_cast<std::size_t>(py) * state.width + px;
-        const bool relief_covers = !std::isnan(ours[k]);
-        const double distance = double(exact.signed_distance(px + Exact(0.5), py + Exact(0.5)));
-        s.relief_covered += relief_covers;
-        if (relief_covers != (distance < 0)) {
-          ++s.relief_exact_mismatches;
-          s.relief_worst_exact_distance =
-              std::max(s.relief_worst_exact_distance, std::abs(distance));
-        }
-      }
-    }
-    return;
-  }
   const std::vector<float> ours = test::relief_pixels(state, v);
   const test::ExactTriangle exact(v, state.viewport);
   ++s.triangles;
@@ -149,15 +135,18 @@ void compare_one(const raster::RasterState& state, const raster::ClipVertex v[3]
       const bool relief_covers = !std::isnan(ours[k]);
       const Exact u = px + Exact(0.5), vv = py + Exact(0.5);
       const double distance = double(exact.signed_distance(u, vv));
-      s.gl_covered += gl_covers;
       s.relief_covered += relief_covers;
-      if (gl_covers != (distance < 0)) {
-        ++s.gl_exact_mismatches;
-        s.gl_worst_exact_distance = std::max(s.gl_worst_exact_distance, std::abs(distance));
-      }
       if (relief_covers != (distance < 0)) {
         ++s.relief_exact_mismatches;
         s.relief_worst_exact_distance = std::max(s.relief_worst_exact_distance, std::abs(distance));
+      }
+      if (!compare_gl) {
+        continue;
+      }
+      s.gl_covered += gl_covers;
+      if (gl_covers != (distance < 0)) {
+        ++s.gl_exact_mismatches;
+        s.gl_worst_exact_distance = std::max(s.gl_worst_exact_distance, std::abs(distance));
       }
       if (gl_covers != relief_covers) {
         ++s.mismatches;

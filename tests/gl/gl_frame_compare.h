@@ -89,14 +89,17 @@ inline double linear_slope(const FrameImage& cpu, std::size_t k, int c) {
 }
 
 // Under GL_LINEAR_MIPMAP_NEAREST (shading.texture_filter = bilinear) a texture's level is
-// round(lambda), a step, and GL computes lambda its own way: the OpenGL 4.5 core
-// specification (§8.14.1) lets an implementation approximate the scale factor rho (and the
-// derivatives it comes from are GL's own, GLSL 4.50 §8.14.1). Where lambda lies near n + 1/2 a
-// GL may therefore take the other level, and the colour jumps by |L(n+1) - L(n)|. The CPU's
-// frame with trilinear filtering sizes that jump, as relief crosscheck does (tools/crosscheck.h):
-// |trilinear - bilinear| = min(f, 1 - f) |L(n+1) - L(n)| with f = frac(lambda), and a pixel
-// within 1/16 level of the switch has min(f, 1 - f) >= 7/16, so |L(n+1) - L(n)| <=
-// |trilinear - bilinear| / (7/16) there: the envelope added to each channel's tolerance.
+// round(lambda), a step. The shader computes lambda itself from the dFdxFine / dFdyFine of the
+// interpolated texture coordinates (gl-shading.md, "Derivatives"), so a GL whose interpolants
+// differ from the CPU's within their bound (its sub-pixel snapping) differs in lambda too, and
+// where lambda lies near n + 1/2 it may take the other level: the colour jumps by
+// |L(n+1) - L(n)|. The CPU's frame with trilinear filtering sizes that jump, as relief
+// crosscheck does (tools/crosscheck.h): |trilinear - bilinear| = min(f, 1 - f) |L(n+1) - L(n)|
+// with f = frac(lambda), and a pixel within crosscheck's margin of 1/16 level of the switch
+// (lambda measured within 4e-4 of the CPU's on llvmpipe) has min(f, 1 - f) >= 7/16, so
+// |L(n+1) - L(n)| <= |trilinear - bilinear| / (7/16) there: the envelope added to each
+// channel's tolerance, on a GL whose draw does not round as the CPU does (where it does, as on
+// llvmpipe, the level is the CPU's and the test keeps the strict bound).
 inline std::vector<double> level_switch_envelope(const FrameImage& bilinear,
                                                  const FrameImage& trilinear) {
   std::vector<double> envelope(bilinear.linear.size());

@@ -226,6 +226,19 @@ TEST_CASE("glFramesReportTheGpuTimeOfEveryPass", "[gl]") {
     names.push_back(pass.name);
   }
   CHECK(names == kPlanePasses);
+  // The GPU passes run inside the frame, one after another: together no longer than it (the
+  // read-back is the CPU's wall time, waiting included). Stage 3 does work: its time is not 0,
+  // so swapped or unread queries (which read as 0) show.
+  double gpu_ms = 0;
+  for (const StageTime& pass : frame.stats.gpu_passes) {
+    if (pass.name.find("read-back") == std::string::npos) {
+      gpu_ms += pass.ms;
+    }
+    if (pass.name.find("fbm.comp") != std::string::npos) {
+      CHECK(pass.ms > 0.0);
+    }
+  }
+  CHECK(gpu_ms <= frame.stats.total_ms);
   // A CPU frame has none.
   FrameRequest cpu;
   cpu.backend = Backend::kSimd;

@@ -16,7 +16,7 @@
 #include "pipeline/scene_resources.h"
 #include "tests/gl/gl_arithmetic.h"
 #include "tests/gl/gl_test_context.h"
-#include "tests/oracles/gl_interpolation_bound.h"
+#include "tests/oracles/gl_interpolation_bound.h"  // float_ulp
 
 namespace relief::test {
 
@@ -89,16 +89,20 @@ void check_stages(const GlTerrainRun& run, bool gl_exact, const std::string& wha
   // the plane's one division stand. The bend on the same inputs: a square root and a
   // division (sinc) before its products: 8 units of the bent position's size. The normals'
   // rotation adds a few roundings of a unit vector: 8 units of angle.
-  // On a GL that uses GLSL 4.50's allowance (tests/gl/gl_arithmetic.h): each square root
-  // 4.5 + 0.5 (the CPU's) units, each division 2.5 + 0.5, each atan2_det 7 ulp of the angle and
-  // 2 (t + |u|) <= 2 (1.27 + 1) units of it more (tests/gl/gl_glsl_functions_test.cc), about 12
-  // units: 2 * 5 + 2 * 3 + 2 * 12 + the products' 2: 42 units on a planet (measured on an
-  // NVIDIA H100: 26); the plane's one division 2.5 + 0.5 and its product: still 4.
+  // On a GL whose double operations are no better than GLSL promises (tests/gl/gl_arithmetic.h;
+  // the stages form each division and square root in double and round it to float): each
+  // square root 4.5 + 0.5 + 0.5 (the CPU's) units, each division 2.5 + 0.5 + 0.5, each
+  // atan2_det 7 ulp of the angle and 2.5 (t + |u|) <= 2.5 (1.27 + 1) units of it more
+  // (tests/gl/gl_glsl_functions_test.cc), about 13: passed on with a gain of 1, a first-order
+  // count (not a derivation with the condition numbers: at grazing rays dc + sqrt(disc) may
+  // amplify more), 2 * 5.5 + 2 * 3.5 + 2 * 13 + the products' 2: 46 units on a planet
+  // (measured on an NVIDIA H100 with its built-in float division: 26); the plane's one
+  // division 3.5 and its product: 4.5.
   const bool planet = !gl.bent_x.empty();
-  const double domain_units = planet ? (gl_exact ? 16 : 42) : 4;
+  const double domain_units = planet ? (gl_exact ? 16 : 46) : (gl_exact ? 4 : 4.5);
   // Stage 3's sketch (height_sketch.h) divides each B-spline weight by 6: on such a GL the
-  // weights lie within 2.5 + 0.5 units of the CPU's, which moves the sketch's weighted sum of
-  // 16 texels (weights >= 0, summing to 1) by 2 * 3 units of the largest texel H; both sides'
+  // weights lie within 3 + 0.5 units of the CPU's, which moves the sketch's weighted sum of
+  // 16 texels (weights >= 0, summing to 1) by 2 * 3.5 units of the largest texel H; both sides'
   // float sums (8 roundings of half a unit each, first order) add 2 * 4 units; the height's
   // last addition an ulp. Without a sketch, or where the GL divides as the CPU: exact.
   double sketch_units_of = 0;
@@ -107,7 +111,7 @@ void check_stages(const GlTerrainRun& run, bool gl_exact, const std::string& wha
       sketch_units_of = std::max(sketch_units_of, std::abs(double(texel)));
     }
   }
-  const double sketch_bound = 14.01 * kUnit * sketch_units_of;
+  const double sketch_bound = 15.01 * kUnit * sketch_units_of;
   std::size_t vertices = 0, mismatched = 0;
   double gl_max = 0, gl_sq = 0, float_max = 0, float_sq = 0;
   for (int j = 0; j < l.height; ++j) {
