@@ -134,6 +134,19 @@ void GlTerrainDraw::build_indices(const GlGridStreams& grid, std::uint32_t trian
   glMemoryBarrier(GL_ELEMENT_ARRAY_BARRIER_BIT);
 }
 
+void GlTerrainDraw::release_frame_objects() {
+  glDeleteRenderbuffers(6, targets_);
+  for (GLuint& target : targets_) {
+    target = 0;
+  }
+  target_width_ = 0;
+  target_height_ = 0;
+  glDeleteBuffers(1, &index_buffer_);
+  index_buffer_ = 0;
+  index_triangles_ = 0;
+  std::vector<std::uint8_t>().swap(srgb_staging_);
+}
+
 void GlTerrainDraw::set_up_targets(int width, int height, const GlReadback& readback) {
   if (width != target_width_ || height != target_height_) {
     target_width_ = 0;  // none until they are complete

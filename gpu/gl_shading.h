@@ -75,6 +75,10 @@ class GlTerrainDraw {
                     const ShadeParams<float>& shade, const GlShadeResources& resources,
                     double camera_y, const GlDrawOptions& options = {});
 
+  // Frees what draw() keeps for the next frame of the same size (the render targets, the
+  // index buffer, the read-back's staging bytes): the next draw makes them again.
+  void release_frame_objects();
+
   // The members of the blocks that mirror the C++ structs, as the linked programs lay them
   // out: ShadeParamsBlock (std430 storage block of the fragment shaders) and TransformBlock
   // (std140 uniform block of the vertex shader).

@@ -1,5 +1,6 @@
 #include "pipeline/gl_backend.h"
 
+#include <cstdint>
 #include <mutex>
 #include <optional>
 #include <utility>
@@ -209,7 +210,22 @@ class GlBackend final : public FrameBackend {
     image_.normal = std::move(gl.normal);
     image_.world_height = std::move(gl.world_height);
     image_.octaves = std::move(gl.octaves);
+    // What the session keeps for the next frame lies outside every later frame's memory
+    // estimate (job_memory.h), a CPU frame's included, and under llvmpipe it is host memory: a
+    // large frame's targets (52 bytes a pixel, the staging 4 more) and grid (the streams' 44
+    // bytes a vertex, the indices' 24 a cell) are freed when it ends, so that at most
+    // kKeptFrameBytes of each stays between frames.
+    const std::uintmax_t pixels = std::uintmax_t(gl.width) * std::uintmax_t(gl.height);
+    if (pixels * 56 > kKeptFrameBytes) {
+      s.cache.draw().release_frame_objects();
+    }
+    if (std::uintmax_t(plan_.layout.size()) * (44 + 24) > kKeptFrameBytes) {
+      s.cache.forget_scene();
+    }
   }
+
+  // The most each of a frame's targets and grid the session keeps after it (draw).
+  static constexpr std::uintmax_t kKeptFrameBytes = std::uintmax_t{256} << 20;
 
   std::unique_lock<std::mutex> lock_;
   std::optional<GlCurrent> current_;  // after the lock, before every GL object of the frame

@@ -98,8 +98,9 @@ inline double linear_slope(const FrameImage& cpu, std::size_t k, int c) {
 // with f = frac(lambda), and a pixel within crosscheck's margin of 1/16 level of the switch
 // (lambda measured within 4e-4 of the CPU's on llvmpipe) has min(f, 1 - f) >= 7/16, so
 // |L(n+1) - L(n)| <= |trilinear - bilinear| / (7/16) there: the envelope added to each
-// channel's tolerance, on a GL whose draw does not round as the CPU does (where it does, as on
-// llvmpipe, the level is the CPU's and the test keeps the strict bound).
+// channel's tolerance, on every GL: llvmpipe's interpolants lie within their bound of the
+// CPU's too, not on its bits, and it takes the other level at a few channels of the presets at
+// 1280 x 1024 (glFramesAtTheReadmeSize; relief crosscheck, docs/gl-backend.md).
 inline std::vector<double> level_switch_envelope(const FrameImage& bilinear,
                                                  const FrameImage& trilinear) {
   std::vector<double> envelope(bilinear.linear.size());

@@ -2,6 +2,7 @@
 // drawn from kept programs, streams and uploads has the bytes of a process's first frame, after
 // any other scene and after a SceneResources was freed and another made in its place. A frame
 // reads back only the outputs it asks for, and reports each GPU pass's time (--stats).
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <optional>
@@ -15,6 +16,7 @@
 #include "core/scene/scene_json.h"
 #include "pipeline/frame.h"
 #include "pipeline/gl_backend.h"
+#include "pipeline/gl_scene_cache.h"
 #include "pipeline/scene_resources.h"
 #include "tests/support/cli_support.h"
 #include "tests/support/test_support.h"
@@ -160,12 +162,19 @@ TEST_CASE("glFramesNeverDrawTheUploadsOfAFreedSceneResources", "[gl]") {
   }
   CHECK_FALSE(same_bytes(frames[0].srgb, frames[1].srgb));  // the seeds do change the frame
   CHECK_FALSE(same_bytes(frames[1].srgb, frames[2].srgb));
-  // Contents changed in place and said so: uploaded again.
+  // Contents changed in place, in the same arrays (same addresses and sizes: the key's guard
+  // cannot see it), and said so: uploaded again by the serial alone.
   SceneResources changed = load_scene_resources(scene);
   const FrameImage before = frame(scene, changed);
+  const GlResourceKey key_before = terrain_resource_key(changed);
   const Scene other = resolve_scene("default", small({"terrain.seed=2"}));
-  changed.lattice = load_scene_resources(other).lattice;
+  const SceneResources other_resources = load_scene_resources(other);
+  REQUIRE(other_resources.lattice.values.size() == changed.lattice.values.size());
+  std::copy(other_resources.lattice.values.begin(), other_resources.lattice.values.end(),
+            changed.lattice.values.begin());
   changed.contents_changed();
+  CHECK(terrain_resource_key(changed).shape == key_before.shape);
+  CHECK(terrain_resource_key(changed).serial != key_before.serial);
   CHECK(same_image(frame(scene, changed), fresh_frame(scene, changed)));
   CHECK_FALSE(same_bytes(frame(scene, changed).srgb, before.srgb));
 }

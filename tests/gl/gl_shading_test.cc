@@ -22,7 +22,6 @@
 #include "pipeline/scene_resources.h"
 #include "raster/rasterize.h"
 #include "raster/topology.h"
-#include "tests/gl/gl_arithmetic.h"
 #include "tests/gl/gl_frame_compare.h"
 #include "tests/gl/gl_presets.h"
 #include "tests/gl/gl_test_context.h"
@@ -202,8 +201,7 @@ void check_preset(const std::string& preset, const std::vector<std::string>& siz
   const gpu::GlFrameImage gl = draw_with_gl(in, resources);
   // Bilinear filtering's level step, sized by the CPU's trilinear frame (level_switch_envelope).
   std::vector<double> envelope;
-  if (scene.shading.texture_filter == TextureFilter::kBilinear &&
-      !test::gl_arithmetic().draw_exact()) {
+  if (scene.shading.texture_filter == TextureFilter::kBilinear) {
     Scene trilinear = scene;
     trilinear.shading.texture_filter = TextureFilter::kTrilinear;
     envelope =
