@@ -91,6 +91,20 @@ def test_set_validates_like_the_command_line():
         relief.render(scene, max_memory="lots")
 
 
+def test_a_field_set_between_frames_renders_what_a_fresh_scene_renders():
+    # Resources are kept across set() unless a terrain or shading field changes: the frame after
+    # each set() must be a fresh scene's of the same fields, whichever field it was.
+    scene = relief.Scene("default", SMALL)
+    relief.render(scene)
+    applied = []
+    for key, value in [("camera.yaw_deg", 50.0), ("terrain.seed", 9),
+                       ("shading.texture_size", 32), ("lighting.sun_elevation_deg", 40.0)]:
+        scene.set(key, value)
+        applied.append("%s=%s" % (key, json.dumps(value)))
+        fresh = relief.Scene("default", SMALL + applied)
+        assert np.array_equal(relief.render(scene)["image"], relief.render(fresh)["image"]), key
+
+
 def test_the_image_array_is_the_png_relief_writes():
     scene = relief.Scene("default", SMALL)
     frame = relief.render(scene)
