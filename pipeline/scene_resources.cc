@@ -151,4 +151,10 @@ SceneResources load_scene_resources(const Scene& scene) {
   return resources;
 }
 
+bool same_resource_inputs(const Scene& a, const Scene& b) {
+  // The settings as relief scene prints them: every field, compared by value.
+  const nlohmann::json ja = scene_to_json(a), jb = scene_to_json(b);
+  return ja.at("terrain") == jb.at("terrain") && ja.at("shading") == jb.at("shading");
+}
+
 }  // namespace relief

@@ -77,6 +77,12 @@ struct SceneResources {
 // field of a basis image refused by load_basis_grid (basis_resources.h).
 SceneResources load_scene_resources(const Scene& scene);
 
+// Whether load_scene_resources gives `a` and `b` the same resources: it reads their terrain and
+// shading settings alone (the files they name are read again only by a new load). A caller that
+// keeps resources across scene changes (the Python module's Scene.set) keeps them where this
+// holds.
+bool same_resource_inputs(const Scene& a, const Scene& b);
+
 // terrain.sketch's texels (nullopt when the scene has none), with load_scene_resources' checks.
 std::optional<HeightSketch> load_height_sketch(const Scene& scene);
 

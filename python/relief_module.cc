@@ -64,14 +64,13 @@ void set_field(PyScene& s, const std::string& key, const py::handle& value) {
   const std::string assignment = key + "=" + python_to_json(value);
   apply_scene_layer(scene, parse_override(assignment), "relief.Scene.set(" + key + ")");
   validate_scene(scene);
-  s.scene = std::move(scene);
-  // The resources are built from terrain.* and shading.* alone (load_scene_resources): a
-  // camera, viewport, lighting, grid or output field keeps them, and with them what the GL
-  // backend keeps uploaded between frames (pipeline/gl_scene_cache.h), so that an animation
-  // moving the camera loads and uploads nothing again.
-  if (key.rfind("terrain", 0) == 0 || key.rfind("shading", 0) == 0) {
+  // Kept where the new scene loads the same resources (a camera, viewport, lighting, grid or
+  // output field), and with them what the GL backend keeps uploaded between frames
+  // (pipeline/gl_scene_cache.h): an animation moving the camera loads and uploads nothing again.
+  if (!same_resource_inputs(s.scene, scene)) {
     s.resources.reset();
   }
+  s.scene = std::move(scene);
 }
 
 py::object get_field(const PyScene& s, const std::string& key) {

@@ -66,11 +66,16 @@ HWY_INLINE V Dot3(const V3<V>& a, const V3<V>& b) {
   return hn::Add(hn::Add(hn::Mul(a.x, b.x), hn::Mul(a.y, b.y)), hn::Mul(a.z, b.z));
 }
 
+// mix (vec3.h): a + t (b - a), one channel.
+template <class V>
+HWY_INLINE V Mix(V a, V b, V t) {
+  return hn::Add(a, hn::Mul(t, hn::Sub(b, a)));
+}
+
 // mix (vec3.h): a + t (b - a) per channel.
 template <class V>
 HWY_INLINE V3<V> Mix3(const V3<V>& a, const V3<V>& b, V t) {
-  return {hn::Add(a.x, hn::Mul(t, hn::Sub(b.x, a.x))), hn::Add(a.y, hn::Mul(t, hn::Sub(b.y, a.y))),
-          hn::Add(a.z, hn::Mul(t, hn::Sub(b.z, a.z)))};
+  return {Mix(a.x, b.x, t), Mix(a.y, b.y, t), Mix(a.z, b.z, t)};
 }
 
 template <class M, class V>

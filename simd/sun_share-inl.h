@@ -2,7 +2,8 @@
 // vector of pixels of one row. Each lane does the scalar code's operations for its pixel in
 // the scalar code's order; its branches become masks (both sides computed, the scalar's side
 // selected: the discarded side's values, even NaN, never reach a lane), its table reads
-// gathers; lanes not covered are zeroed first and gather index 0.
+// gathers; lanes not covered are zeroed first and gather index 0. The scalar lerp, a + (b - a) f,
+// is shade_vec3-inl.h's Mix, a + f (b - a): a product rounds alike in either order.
 #if defined(RELIEF_SIMD_SUN_SHARE_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef RELIEF_SIMD_SUN_SHARE_INL_H_
 #undef RELIEF_SIMD_SUN_SHARE_INL_H_
@@ -24,12 +25,6 @@ namespace relief::simd {
 namespace HWY_NAMESPACE {
 
 namespace hn = hwy::HWY_NAMESPACE;
-
-// lerp (sun_visibility.cc): a + (b - a) f.
-template <class V>
-HWY_INLINE V Lerp(V a, V b, V f) {
-  return hn::Add(a, hn::Mul(hn::Sub(b, a), f));
-}
 
 // disc_share (sun_visibility.cc).
 template <class D, class V = hn::Vec<D>>
@@ -88,14 +83,14 @@ HWY_INLINE V LevelShare(D d, const ShadowParams<float>& p, const SunHorizonCache
   const float* heights = c.height.data();
   const V h00 = hn::GatherIndex(d, heights, at), h10 = hn::GatherIndex(d, heights, at10);
   const V h01 = hn::GatherIndex(d, heights, at01), h11 = hn::GatherIndex(d, heights, at11);
-  const V surface = Lerp(Lerp(h00, h10, f), Lerp(h01, h11, f), g);
+  const V surface = Mix(Mix(h00, h10, f), Mix(h01, h11, f), g);
   const V lift = StdMax(hn::Zero(d), hn::Sub(height, surface));
   const float* inv = c.inv_distance.data();
   const V s00 = DiscShare(d, p, hn::Sub(t00, hn::Mul(lift, hn::GatherIndex(d, inv, at))));
   const V s10 = DiscShare(d, p, hn::Sub(t10, hn::Mul(lift, hn::GatherIndex(d, inv, at10))));
   const V s01 = DiscShare(d, p, hn::Sub(t01, hn::Mul(lift, hn::GatherIndex(d, inv, at01))));
   const V s11 = DiscShare(d, p, hn::Sub(t11, hn::Mul(lift, hn::GatherIndex(d, inv, at11))));
-  return hn::IfThenElse(proven, one, Lerp(Lerp(s00, s10, f), Lerp(s01, s11, f), g));
+  return hn::IfThenElse(proven, one, Mix(Mix(s00, s10, f), Mix(s01, s11, f), g));
 }
 
 // sun_visibility for the lanes of `covered`; the others' results are not used.
@@ -161,7 +156,7 @@ HWY_INLINE V SunShareVector(D d, const ShadowParams<float>& p, const SunHorizonC
       M coarse_proven;
       const V coarse = LevelShare(d, p, c, entry, a, b, height, band, coarse_proven);
       share = hn::IfThenElse(
-          band, Lerp(coarse, share, hn::Mul(edge, hn::Set(d, p.inv_blend_samples))), share);
+          band, Mix(coarse, share, hn::Mul(edge, hn::Set(d, p.inv_blend_samples))), share);
       proven = hn::Or(hn::AndNot(band, proven), hn::And(band, hn::And(proven, coarse_proven)));
     }
   }

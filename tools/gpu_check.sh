@@ -8,6 +8,7 @@
 #   RELIEF_BIN_DIR=DIR tools/gpu_check.sh  use DIR's relief and relief_gl_tests instead
 #   RELIEF_PRESETS, RELIEF_GL_TESTS (a Catch2 test spec), RELIEF_REPEAT: fewer for a quick look
 #   RELIEF_SET="viewport.width=160 viewport.height=128": --set assignments for every render
+#     (split at spaces: an assignment whose value holds a space cannot be given here)
 #
 # OUT_DIR (default gpu-check/, relative to the repository's root) receives gl_tests.txt (the
 # console report) and gl_tests.xml (JUnit), one crosscheck folder per preset (both images,

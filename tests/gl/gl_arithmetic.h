@@ -64,7 +64,10 @@ struct GlArithmetic {
 
 namespace detail {
 
-inline double ulp_of(double exact) {
+// The ulp of the binade of a real result (not tests/oracles' float_ulp, the spacing above the
+// float nearest it, twice as large where the result rounds up to a power of two): what
+// GLSL's "ULP" of a result is measured in.
+inline double binade_ulp(double exact) {
   int exponent = 0;
   std::frexp(std::abs(exact), &exponent);  // |exact| in [2^(exponent-1), 2^exponent)
   return std::ldexp(1.0, std::max(exponent - 1, -126) - 23);
@@ -129,7 +132,7 @@ void main() {
   };
   const auto record = [](double gl, double exact, double& ulps, double& units) {
     const double error = std::abs(gl - exact);
-    ulps = std::max(ulps, error / ulp_of(exact));
+    ulps = std::max(ulps, error / binade_ulp(exact));
     units = std::max(units, error / (std::abs(exact) * kFloatUnit));
   };
   for (std::size_t k = 0; k < count; ++k) {

@@ -179,6 +179,21 @@ TEST_CASE("glFramesNeverDrawTheUploadsOfAFreedSceneResources", "[gl]") {
   CHECK_FALSE(same_bytes(frame(scene, changed).srgb, before.srgb));
 }
 
+// A frame whose targets exceed what the session keeps (pipeline/gl_backend.cc: 256 MiB, 56 bytes a
+// pixel) frees them when it ends: the frames after it, of its size and of another, are the
+// frames of a process that never drew it (and the sanitizer build sees no use of what was freed).
+TEST_CASE("glFramesAfterOneTooLargeToKeepAreUnchanged", "[gl]") {
+  const Prepared a = prepare("default", {});
+  const FrameImage a_first = fresh_frame(a.scene, a.resources, gl_request(false));
+  // 2300^2 pixels x 56 bytes = 296 MB; a small grid keeps llvmpipe's work to the background.
+  const Prepared large = prepare("default", {"viewport.width=2300", "viewport.height=2300",
+                                             "grid.width=16", "grid.height=16"});
+  const FrameImage large_first = frame(large.scene, large.resources, gl_request(false));
+  CHECK(same_image(frame(a.scene, a.resources, gl_request(false)), a_first));
+  CHECK(same_image(frame(large.scene, large.resources, gl_request(false)), large_first));
+  CHECK(same_image(fresh_frame(large.scene, large.resources, gl_request(false)), large_first));
+}
+
 TEST_CASE("glFramesReadBackOnlyTheOutputsTheyAskFor", "[gl]") {
   const Prepared p = prepare("lake", {});  // water, fog: every target holds something
   const FrameImage every = frame(p.scene, p.resources);

@@ -22,14 +22,16 @@
 #include "tests/gl/gl_arithmetic.h"
 #include "tests/gl/gl_compute_run.h"
 #include "tests/gl/gl_test_context.h"
+#include "tests/oracles/gl_interpolation_bound.h"
 
 namespace relief {
 namespace {
 
 using test::kFloatUnit;
 
+// A float result's ulp (tests/oracles/gl_interpolation_bound.h).
 double ulp(double x) {
-  return test::detail::ulp_of(x);
+  return test::float_ulp(x);
 }
 
 // Which GLSL library the test shader is built with.

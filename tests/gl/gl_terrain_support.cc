@@ -22,7 +22,7 @@ namespace relief::test {
 
 namespace {
 
-constexpr double kUnit = 0x1.0p-23;  // the largest relative spacing of floats, 2 ulp(1)/2
+constexpr double kUnit = kFloatUnit;  // the largest relative spacing of floats (gl_arithmetic.h)
 
 // The sine of the angle between vertex k's two tangents (x, h, z), as stage 4 forms them
 // from `g`'s streams (central, one-sided next to invalid vertices); 1 where there are not

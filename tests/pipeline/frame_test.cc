@@ -148,5 +148,34 @@ TEST_CASE("backendNamesRoundTrip", "[frame]") {
   CHECK_FALSE(backend_from_name("Reference").has_value());
 }
 
+// Resources depend on the terrain and shading settings alone: every other field keeps them (the
+// Python module's Scene.set relies on it), and a field of either, its value changed, does not;
+// each verdict checked against what load_scene_resources loads.
+TEST_CASE("sameResourceInputsMeansTheSameLoadedResources", "[frame]") {
+  const Scene base = resolve_scene("default", {"shading.texture_size=16"});
+  const SceneResources loaded = load_scene_resources(base);
+  for (const auto& [assignment, same] :
+       std::vector<std::pair<std::string, bool>>{{"camera.yaw_deg=50", true},
+                                                 {"viewport.width=77", true},
+                                                 {"lighting.sun_elevation_deg=3", true},
+                                                 {"grid.width=40", true},
+                                                 {"output.image=\"x.png\"", true},
+                                                 {"terrain.seed=8", false},
+                                                 {"terrain.lattice_size=128", false},
+                                                 {"shading.texture_size=32", false},
+                                                 {"shading.mip_blend=0.5", false}}) {
+    INFO(assignment);
+    const Scene changed = resolve_scene("default", {"shading.texture_size=16", assignment});
+    CHECK(same_resource_inputs(base, changed) == same);
+    const SceneResources other = load_scene_resources(changed);
+    bool equal = other.lattice.values == loaded.lattice.values &&
+                 other.textures.size() == loaded.textures.size();
+    for (std::size_t k = 0; equal && k < loaded.textures.size(); ++k) {
+      equal = other.textures[k].texels == loaded.textures[k].texels;
+    }
+    CHECK(equal == same);
+  }
+}
+
 }  // namespace
 }  // namespace relief
