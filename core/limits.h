@@ -100,6 +100,9 @@ inline constexpr std::size_t kMaxMaterialLayers = 8;
 // Loaded proto-textures: square powers of two (the mip chain halves them exactly).
 inline constexpr int kMinTextureSize = 4;
 inline constexpr int kMaxTextureSize = 4096;
+// A skybox's faces (sky.skybox): squares like the textures', at most 2048 a side: six faces of
+// float RGB are then 288 MiB (a 4096 side would be 1.1 GiB for the background alone).
+inline constexpr int kMaxSkyboxSize = 2048;
 // §3's height sketch (terrain.sketch): at least 2 texels a side (the interpolation blends two),
 // at most 4096 (64 MiB of float heights; a sketch is the coarse part of the terrain, the
 // fractal the detail). Its file obeys kMaxTextureFileBytes (a 4096^2 16-bit grey PNG stored

@@ -127,8 +127,8 @@ Vec3<Real> planet_background(const ShadeParams<Real>& p, const ShadeResources& r
       const Vec3<Real> view = to_local_frame(d, up);
       const Real surface = Real(t);
       const Real footprint = surface_footprint(p, surface, view);
-      const Vec3<Real> open =
-          shade_water(p, *r.lattice, view, surface, Real(1e6), Vec3<Real>{0, 0, 0}, footprint);
+      const Vec3<Real> open = shade_water(p, *r.lattice, r.skybox, view, surface, Real(1e6),
+                                          Vec3<Real>{0, 0, 0}, footprint);
       ++work.water_pixels;
       if (!p.fog_enabled) {
         return open;
@@ -144,7 +144,7 @@ Vec3<Real> planet_background(const ShadeParams<Real>& p, const ShadeResources& r
   if (ground) {
     return fog_color(p, d);
   }
-  return sky_radiance(p, planet_sky_direction<Real>(unit, p.planet_limb_angle));
+  return sky_radiance(p, r.skybox, planet_sky_direction<Real>(unit, p.planet_limb_angle));
 }
 
 }  // namespace
@@ -223,8 +223,8 @@ Vec3<Real> terrain_radiance(const ShadeParams<Real>& p, const ShadeResources& r,
       water_view = to_local_frame(view, up);
     }
     const Real footprint = surface_footprint(p, surface, water_view);
-    radiance = shade_water(p, *r.lattice, water_view, surface, std::max(Real(0), a.water_depth),
-                           radiance, footprint);
+    radiance = shade_water(p, *r.lattice, r.skybox, water_view, surface,
+                           std::max(Real(0), a.water_depth), radiance, footprint);
     fog_distance = surface;
     ++work.water_pixels;
   }
@@ -258,8 +258,8 @@ Vec3<Real> background_radiance(const ShadeParams<Real>& p, const ShadeResources&
     if (p.water_enabled) {
       const Real surface = p.water_level / d.y;
       const Real footprint = surface_footprint(p, surface, d);
-      const Vec3<Real> open =
-          shade_water(p, *r.lattice, d, surface, Real(1e6), Vec3<Real>{0, 0, 0}, footprint);
+      const Vec3<Real> open = shade_water(p, *r.lattice, r.skybox, d, surface, Real(1e6),
+                                          Vec3<Real>{0, 0, 0}, footprint);
       ++work.water_pixels;
       if (!p.fog_enabled) {
         return open;
@@ -269,7 +269,7 @@ Vec3<Real> background_radiance(const ShadeParams<Real>& p, const ShadeResources&
     }
     return fog_color(p, d);
   }
-  return sky_radiance(p, d);
+  return sky_radiance(p, r.skybox, d);
 }
 
 template <class Real>

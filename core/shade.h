@@ -17,6 +17,7 @@
 #include "core/grid_buffers.h"
 #include "core/lattice.h"
 #include "core/proto_texture.h"
+#include "core/skybox.h"
 #include "core/stage_params.h"
 #include "core/vec3.h"
 
@@ -27,6 +28,7 @@ namespace relief {
 struct ShadeResources {
   const NoiseLattice* lattice = nullptr;
   std::span<const ProtoTexture> textures;
+  const Skybox* skybox = nullptr;  // sky.skybox's faces; null without one
 };
 
 // What stage 8 reads at one covered pixel: the attributes stage 7 resolved there.

@@ -82,6 +82,8 @@ ShadingPlan make_shading_plan(const Scene& scene, const FramePlan& frame, int la
   plan.sky.sun_cos_inner = std::cos(scene.sky.sun_disc_deg * kDegree);
   plan.sky.sun_cos_outer = std::cos(scene.sky.sun_disc_deg * 1.25 * kDegree);
   plan.sky.fog_density_log2 = scene.sky.fog_density / M_LN2;
+  plan.sky.skybox = scene.sky.skybox.has_value();
+  plan.sky.skybox_sun = !scene.sky.skybox || scene.sky.skybox->sun_disc;
 
   const WaterSettings& w = scene.water;
   WaterPlan& water = plan.water;

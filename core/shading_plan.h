@@ -43,6 +43,8 @@ struct SkyPlan {
   glm::dvec3 zenith, horizon;
   double sun_cos_inner = 1, sun_cos_outer = 1;  // the disc's smooth edge
   double fog_density_log2 = 0;                  // density / ln 2, for exp2
+  bool skybox = false;                          // sky.skybox given (core/skybox.h)
+  bool skybox_sun = true;                       // its sun_disc
 };
 
 inline constexpr int kWaveOctaves = 3;

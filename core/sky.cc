@@ -18,22 +18,32 @@ Real power_of_half_cosine(Real c, int squarings) {
   return x;
 }
 
+// The sun disc (20 x the sun) with its smooth edge and the halo around it, in direction d.
+template <class Real>
+Vec3<Real> sun_light(const ShadeParams<Real>& p, const Vec3<Real>& d) {
+  const Vec3<Real>& sun = p.sun;
+  const Real c = dot(d, p.sun_direction);
+  const Real inner = p.sun_cos_inner, outer = p.sun_cos_outer;
+  const Real disc = inner > outer ? smooth01((c - outer) / (inner - outer)) : Real(c >= inner);
+  const Real halo = Real(0.06) * power_of_half_cosine(c, 5);
+  return sun * (Real(20) * disc + halo);
+}
+
 }  // namespace
 
 template <class Real>
-Vec3<Real> sky_radiance(const ShadeParams<Real>& p, const Vec3<Real>& d) {
+Vec3<Real> sky_radiance(const ShadeParams<Real>& p, const Skybox* skybox, const Vec3<Real>& d) {
+  if (p.skybox != 0 && skybox != nullptr) {
+    const Vec3<Real> color = skybox_radiance(*skybox, d);
+    return p.skybox_sun != 0 ? color + sun_light(p, d) : color;
+  }
   const Vec3<Real>& zenith = p.zenith;
   const Vec3<Real>& horizon = p.horizon;
   Vec3<Real> color = horizon;
   if (d.y > Real(0)) {
     color = mix(horizon, zenith, std::sqrt(d.y));  // domain: d.y > 0
   }
-  const Vec3<Real>& sun = p.sun;
-  const Real c = dot(d, p.sun_direction);
-  const Real inner = p.sun_cos_inner, outer = p.sun_cos_outer;
-  const Real disc = inner > outer ? smooth01((c - outer) / (inner - outer)) : Real(c >= inner);
-  const Real halo = Real(0.06) * power_of_half_cosine(c, 5);
-  return color + sun * (Real(20) * disc + halo);
+  return color + sun_light(p, d);
 }
 
 template <class Real>
@@ -52,8 +62,10 @@ Vec3<Real> apply_fog(const ShadeParams<Real>& p, const Vec3<Real>& radiance, con
   return mix(fog_color(p, d), radiance, clear);
 }
 
-template Vec3<float> sky_radiance<float>(const ShadeParams<float>&, const Vec3<float>&);
-template Vec3<double> sky_radiance<double>(const ShadeParams<double>&, const Vec3<double>&);
+template Vec3<float> sky_radiance<float>(const ShadeParams<float>&, const Skybox*,
+                                         const Vec3<float>&);
+template Vec3<double> sky_radiance<double>(const ShadeParams<double>&, const Skybox*,
+                                           const Vec3<double>&);
 template Vec3<float> fog_color<float>(const ShadeParams<float>&, const Vec3<float>&);
 template Vec3<double> fog_color<double>(const ShadeParams<double>&, const Vec3<double>&);
 template Vec3<float> apply_fog<float>(const ShadeParams<float>&, const Vec3<float>&,

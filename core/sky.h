@@ -2,16 +2,19 @@
 // no terrain covers the pixel, and fog toward the horizon colour over every surface.
 #pragma once
 
+#include "core/skybox.h"
 #include "core/stage_params.h"
 #include "core/vec3.h"
 
 namespace relief {
 
 // Radiance of the sky in unit direction `d`: the gradient by elevation (horizon colour below
-// the horizon, sqrt-shaped toward the zenith above it), the sun disc with a smooth edge
-// (20 x the sun's radiance), and a halo ((1 + cos)/2)^32 around it.
+// the horizon, sqrt-shaped toward the zenith above it), or where params.skybox is set the
+// skybox's faces (skybox.h; `skybox` must then be given), plus the sun disc with a smooth edge
+// (20 x the sun's radiance) and a halo ((1 + cos)/2)^32 around it (over a skybox only where
+// params.skybox_sun is set).
 template <class Real>
-Vec3<Real> sky_radiance(const ShadeParams<Real>& params, const Vec3<Real>& d);
+Vec3<Real> sky_radiance(const ShadeParams<Real>& params, const Skybox* skybox, const Vec3<Real>& d);
 
 // The fog colour seen along unit direction `d`: the horizon, warmer toward the sun.
 template <class Real>

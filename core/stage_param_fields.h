@@ -168,9 +168,11 @@
   F(std::int32_t, always_specular, 0) E                                                         \
   F(std::int32_t, skip_zero_weights, 1) E                                                       \
   F(std::int32_t, nearest_mip, 0) E /* 1: GL_LINEAR_MIPMAP_NEAREST (nearest_mip_lod) */         \
+  /* The skybox (core/skybox.h) in place of the gradient, and the sun drawn over it. */       \
+  F(std::int32_t, skybox, 0) F(std::int32_t, skybox_sun, 1) E                                   \
   /* Unused: keeps the float struct's size a multiple of 16 bytes, the size GL gives the     \
      std430 block that mirrors it (gpu/shaders/shade_params.glsl.in). */                        \
-  A(std::int32_t, reserved, [3], {}) E                                                          \
+  A(std::int32_t, reserved, [1], {}) E                                                          \
   F(Vec3<Real>, camera_forward, {}) E                                                           \
   /* The background's view ray per pixel is formed in double (it is the sky's direction to   \
      a thousandth of a pixel at any field of view) and rounded once: these stay double. */     \

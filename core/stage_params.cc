@@ -157,6 +157,8 @@ ShadeParams<Real> make_shade_params(const ShadingPlan& plan) {
   p.sun_cos_inner = Real(plan.sky.sun_cos_inner);
   p.sun_cos_outer = Real(plan.sky.sun_cos_outer);
   p.fog_density_log2 = Real(plan.sky.fog_density_log2);
+  p.skybox = plan.sky.skybox ? 1 : 0;
+  p.skybox_sun = plan.sky.skybox_sun ? 1 : 0;
   const WaterPlan& w = plan.water;
   p.water_enabled = w.enabled ? 1 : 0;
   p.terrain_water = p.water_enabled;  // until the frame knows the heights it draws

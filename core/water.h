@@ -15,6 +15,7 @@
 #pragma once
 
 #include "core/lattice.h"
+#include "core/skybox.h"
 #include "core/stage_params.h"
 #include "core/vec3.h"
 
@@ -27,8 +28,8 @@ namespace relief {
 // `lattice`: the terrain's noise lattice, which the waves reuse.
 template <class Real>
 Vec3<Real> shade_water(const ShadeParams<Real>& params, const NoiseLattice& lattice,
-                       const Vec3<Real>& view, Real surface_distance, Real depth,
-                       const Vec3<Real>& ground, Real footprint);
+                       const Skybox* skybox, const Vec3<Real>& view, Real surface_distance,
+                       Real depth, const Vec3<Real>& ground, Real footprint);
 
 // The wave normal at camera-relative surface position (x, z), for bump strength `strength`.
 template <class Real>

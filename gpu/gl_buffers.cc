@@ -90,6 +90,7 @@ GlShadeResources::GlShadeResources(const ShadeResources& resources) {
   } catch (...) {
     glDeleteBuffers(1, &lattice_);
     glDeleteTextures(static_cast<GLsizei>(textures_.size()), textures_.data());
+    glDeleteTextures(1, &skybox_);
     throw;
   }
 }
@@ -125,12 +126,27 @@ void GlShadeResources::upload(const ShadeResources& resources) {
     glTextureParameteri(name, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
     glTextureParameteri(name, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   }
+  if (resources.skybox != nullptr) {
+    const Skybox& box = *resources.skybox;
+    if (box.size < 1 || box.texels.size() != 18 * std::size_t(box.size) * std::size_t(box.size)) {
+      throw std::invalid_argument("gpu: the skybox needs six faces of size x size texels");
+    }
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &skybox_);
+    glTextureStorage3D(skybox_, 1, GL_RGB32F, box.size, box.size, 6);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage3D(skybox_, 0, 0, 0, 0, box.size, box.size, 6, GL_RGB, GL_FLOAT,
+                        box.texels.data());
+    // Only texelFetch reads it (sky_water.glsl).
+    glTextureParameteri(skybox_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(skybox_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  }
   check_gl("shading resources upload");
 }
 
 GlShadeResources::~GlShadeResources() {
   glDeleteBuffers(1, &lattice_);
   glDeleteTextures(static_cast<GLsizei>(textures_.size()), textures_.data());
+  glDeleteTextures(1, &skybox_);
 }
 
 }  // namespace relief::gpu

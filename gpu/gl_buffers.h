@@ -56,9 +56,10 @@ class GlGridUpload {
   std::vector<std::uint32_t> owned_;
 };
 
-// The noise lattice (a storage buffer: P, P - 1, two pad words, then the values) and one
+// The noise lattice (a storage buffer: P, P - 1, two pad words, then the values), one
 // GL_RGB32F texture per material layer holding the CPU's mip chain level by level (§4.2's
-// variance-reduced mipmap is the CPU's own, not GL's glGenerateMipmap).
+// variance-reduced mipmap is the CPU's own, not GL's glGenerateMipmap), and the skybox's six
+// faces as the layers of one GL_RGB32F array texture (0 without a skybox).
 class GlShadeResources {
  public:
   explicit GlShadeResources(const ShadeResources& resources);
@@ -69,6 +70,7 @@ class GlShadeResources {
   std::uint32_t lattice() const { return lattice_; }
   std::span<const std::uint32_t> textures() const { return textures_; }
   std::span<const std::int32_t> texture_sizes() const { return sizes_; }  // level 0's side
+  std::uint32_t skybox() const { return skybox_; }
 
  private:
   void upload(const ShadeResources& resources);
@@ -76,6 +78,7 @@ class GlShadeResources {
   std::uint32_t lattice_ = 0;
   std::vector<std::uint32_t> textures_;
   std::vector<std::int32_t> sizes_;
+  std::uint32_t skybox_ = 0;
 };
 
 }  // namespace relief::gpu

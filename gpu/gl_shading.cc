@@ -22,8 +22,10 @@ constexpr GLuint kMaxGroups = 65535;  // GL 4.5's least GL_MAX_COMPUTE_WORK_GROU
 
 // Binding points of the shaders' blocks (shaders/*.glsl).
 constexpr GLuint kShadeBinding = 0, kLatticeBinding = 1, kSrgbBinding = 2;  // storage
-constexpr GLuint kTransformBinding = 0;                                     // uniform
-constexpr GLuint kValidBinding = 0, kNeedBinding = 1, kIndexBinding = 2;    // triangles.comp
+// The skybox's texture unit, after the layers' (the prelude's RELIEF_SKYBOX_UNIT).
+constexpr GLuint kSkyboxUnit = limits::kMaxMaterialLayers;
+constexpr GLuint kTransformBinding = 0;                                   // uniform
+constexpr GLuint kValidBinding = 0, kNeedBinding = 1, kIndexBinding = 2;  // triangles.comp
 
 // Vertex attributes of terrain.vert: the float streams at 0-8, valid at 9, need at 10, the
 // y that stage 5 transforms at 11 and a planet's drop at 12.
@@ -240,6 +242,9 @@ GlFrameImage GlTerrainDraw::draw(const GlGridStreams& grid, const TransformParam
                                 "; there are " + std::to_string(resources.textures().size()) +
                                 " proto-textures");
   }
+  if (shade.skybox != 0 && resources.skybox() == 0) {
+    throw std::invalid_argument("gpu: shade.skybox is set; the resources hold no skybox");
+  }
   const int largest = max_renderbuffer_size_;
   if (shade.width < 1 || shade.height < 1 || shade.width > largest || shade.height > largest) {
     throw std::invalid_argument("gpu: the image is " + std::to_string(shade.width) + " x " +
@@ -268,6 +273,7 @@ GlFrameImage GlTerrainDraw::draw(const GlGridStreams& grid, const TransformParam
   for (std::size_t k = 0; k < resources.textures().size(); ++k) {
     glBindTextureUnit(static_cast<GLuint>(k), resources.textures()[k]);
   }
+  glBindTextureUnit(kSkyboxUnit, resources.skybox());
   const GLuint program = terrain_.id();
   glProgramUniform1iv(program, glGetUniformLocation(program, "u_texture_size"),
                       static_cast<GLsizei>(resources.texture_sizes().size()),

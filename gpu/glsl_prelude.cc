@@ -100,6 +100,8 @@ std::string glsl_prelude() {
   using Bits = det_math_detail::FloatBits<float>;
   std::string out = "#version 450 core\n";
   out += "const int kMaxLayers = " + std::to_string(limits::kMaxMaterialLayers) + ";\n";
+  // The skybox's texture unit: after the layers' (gl_shading.h, kSkyboxUnit).
+  out += "#define RELIEF_SKYBOX_UNIT " + std::to_string(limits::kMaxMaterialLayers) + "\n";
   out += "const int kWaveOctaves = " + std::to_string(kWaveOctaves) + ";\n";
   // det_math.h, exp2_det<float>.
   const int exp2_terms = det_math_detail::Exp2Terms<float>::kTerms;

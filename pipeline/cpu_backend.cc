@@ -32,11 +32,13 @@ raster::RasterState frame_raster_state(const Scene& scene) {
 template <class Real>
 CpuBackend<Real>::CpuBackend(const Scene& scene, const NoiseLattice& lattice,
                              std::span<const ProtoTexture> textures, const FrameRequest& request,
-                             const HeightSketch* sketch, const NoiseLattice* terrain_values)
+                             const HeightSketch* sketch, const NoiseLattice* terrain_values,
+                             const Skybox* skybox)
     : scene_(scene),
       lattice_(lattice),
       terrain_values_(terrain_values ? *terrain_values : lattice),
       textures_(textures),
+      skybox_(skybox),
       request_(request),
       plan_(make_frame_plan(scene, terrain_values_, sketch)),
       params_(make_terrain_params<Real>(plan_)),
@@ -301,7 +303,7 @@ void CpuBackend<Real>::prepare(StageId id) {
           grid_.nu,
           bent ? std::span<const Real>(grid_.bent_drop) : std::span<const Real>{}};
       tile_pass_ = std::make_unique<TilePass<Real>>(
-          state_, triangles(), streams, shade_, ShadeResources{&lattice_, textures_}, o,
+          state_, triangles(), streams, shade_, ShadeResources{&lattice_, textures_, skybox_}, o,
           plan_.camera.position.y, image_, kernels_.tiles, band_rows_ < 0 ? 0 : band_first_row_,
           shadow_.enabled != 0 ? TileShadows<Real>{&shadow_, &horizons_} : TileShadows<Real>{});
       return;

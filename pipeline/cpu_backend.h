@@ -40,7 +40,8 @@ class CpuBackend final : public FrameBackend {
   // stage 3 when it is not `lattice` (terrain.basis's composed grid; null: the lattice).
   CpuBackend(const Scene& scene, const NoiseLattice& lattice,
              std::span<const ProtoTexture> textures, const FrameRequest& request,
-             const HeightSketch* sketch = nullptr, const NoiseLattice* terrain_values = nullptr);
+             const HeightSketch* sketch = nullptr, const NoiseLattice* terrain_values = nullptr,
+             const Skybox* skybox = nullptr);
 
   void prepare(StageId id) override;
   std::size_t units(StageId id) const override;
@@ -80,6 +81,7 @@ class CpuBackend final : public FrameBackend {
   const NoiseLattice& lattice_;         // the shading's noise (dithering, waves)
   const NoiseLattice& terrain_values_;  // stage 3's S: the lattice or the basis grid
   std::span<const ProtoTexture> textures_;
+  const Skybox* skybox_;  // sky.skybox's faces, or null
   FrameRequest request_;
   FramePlan plan_;
   TerrainParams<Real> params_;

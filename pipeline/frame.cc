@@ -59,9 +59,9 @@ Frame render_with(const Scene& scene, const SceneResources& resources,
   if (request.backend == Backend::kGl) {
     backend = make_gl_backend(scene, resources, request);
   } else {
-    backend =
-        std::make_unique<CpuBackend<Real>>(scene, resources.lattice, resources.textures, request,
-                                           resources.sketch_or_null(), resources.basis_or_null());
+    backend = std::make_unique<CpuBackend<Real>>(
+        scene, resources.lattice, resources.textures, request, resources.sketch_or_null(),
+        resources.basis_or_null(), resources.skybox_or_null());
   }
   Frame frame;
   frame.stats.stages.push_back({"frame plan", milliseconds_since(start), true, {}});
@@ -118,7 +118,8 @@ FrameStats render_bands_with(const Scene& scene, const SceneResources& resources
                              const std::function<void(const FrameImage&, int)>& consume) {
   const Clock::time_point start = Clock::now();
   CpuBackend<Real> backend(scene, resources.lattice, resources.textures, request,
-                           resources.sketch_or_null(), resources.basis_or_null());
+                           resources.sketch_or_null(), resources.basis_or_null(),
+                           resources.skybox_or_null());
   FrameStats stats;
   stats.stages.push_back({"frame plan", milliseconds_since(start), true, {}});
   run_table(backend, StageId::kBinning, stats.stages);

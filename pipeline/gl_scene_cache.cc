@@ -45,6 +45,12 @@ GlResourceKey shading_resource_key(const SceneResources& resources) {
     add_array(key, texture.texels.data(), texture.texels.size());
     key.shape.push_back(texture.levels.size());
   }
+  if (resources.skybox) {
+    add_array(key, resources.skybox->texels.data(), resources.skybox->texels.size());
+    key.shape.push_back(std::size_t(resources.skybox->size));
+  } else {
+    key.shape.push_back(0);  // no skybox: a shape no face size gives
+  }
   return key;
 }
 
@@ -89,8 +95,7 @@ const gpu::GlShadeResources& GlSceneCache::shading(const SceneResources& resourc
   if (shading_ == nullptr || !(shading_key_ == key)) {
     shading_.reset();
     shading_key_ = {};
-    shading_ = std::make_unique<gpu::GlShadeResources>(
-        ShadeResources{&resources.lattice, resources.textures});
+    shading_ = std::make_unique<gpu::GlShadeResources>(resources.shading());
     shading_key_ = std::move(key);
   }
   return *shading_;

@@ -99,6 +99,15 @@ void add_resources(const Scene& scene, MemoryEstimate& estimate) {
   if (scene.terrain.sketch) {
     estimate.add("height sketch", sketch_bytes(*scene.terrain.sketch));
   }
+  if (scene.sky.skybox) {
+    // Each face as a layer's texture: its file, decoded bytes and float texels (no mip chain,
+    // so this counts a third more than the faces keep).
+    std::uintmax_t faces = 0;
+    for (const std::string& face : scene.sky.skybox->faces) {
+      faces += png_layer_bytes(face).value_or(0);
+    }
+    estimate.add("skybox faces", faces);
+  }
   if (scene.terrain.basis) {
     estimate.add("basis images and their composed grid", basis_memory_bytes(scene));
   }

@@ -4,6 +4,7 @@
 #include <bit>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <stb_image.h>
@@ -96,6 +97,50 @@ RgbImage load_layer_texture(const MaterialLayer& layer, int builtin_size, const 
   return decode_texture_png(bytes, field, path);
 }
 
+std::optional<Skybox> load_skybox(const Scene& scene) {
+  if (!scene.sky.skybox) {
+    return std::nullopt;
+  }
+  const SkyboxSettings& settings = *scene.sky.skybox;
+  Skybox box;
+  std::string first_field;
+  for (std::size_t face = 0; face < settings.faces.size(); ++face) {
+    const std::string path = "sky.skybox.faces[" + std::to_string(face) + "]";
+    const std::string field = path + " = \"" + brief_text(settings.faces[face]) + "\"";
+    const auto check_header = [&](const std::vector<unsigned char>& header) {
+      check_texture_header(header, field, path);
+      const std::uint32_t side = png_header_or_throw(header, field, path).width;
+      if (side > std::uint32_t(limits::kMaxSkyboxSize)) {
+        throw SceneError(path, "scene: " + field + " is " + std::to_string(side) + "x" +
+                                   std::to_string(side) +
+                                   " pixels; allowed: square, a power of two from " +
+                                   std::to_string(limits::kMinTextureSize) + " to " +
+                                   std::to_string(limits::kMaxSkyboxSize));
+      }
+      if (face > 0 && side != std::uint32_t(box.size)) {
+        throw SceneError(path, "scene: " + field + " is " + std::to_string(side) + "x" +
+                                   std::to_string(side) + " pixels, " + first_field + " is " +
+                                   std::to_string(box.size) + "x" + std::to_string(box.size) +
+                                   "; allowed: six faces of one size");
+      }
+    };
+    const std::vector<unsigned char> bytes =
+        read_png_file(settings.faces[face], field, path, check_header);
+    const RgbImage image = decode_texture_png(bytes, field, path);
+    if (face == 0) {
+      box.size = image.size;
+      first_field = field;
+      box.texels.resize(settings.faces.size() * image.rgb.size());
+    }
+    // Rows as the file stores them, top first: t = 0 is a GL cube face's first row.
+    float* out = box.texels.data() + face * image.rgb.size();
+    for (std::size_t k = 0; k < image.rgb.size(); ++k) {
+      out[k] = static_cast<float>(double(image.rgb[k]) * settings.intensity);
+    }
+  }
+  return box;
+}
+
 namespace {
 
 // §4.1: the bend maps elevation e to radius R + e, which must stay positive: terrain that can
@@ -147,6 +192,7 @@ SceneResources load_scene_resources(const Scene& scene) {
   }
   resources.sketch = load_height_sketch(scene);
   resources.basis = load_basis_grid(scene, &resources.notes);
+  resources.skybox = load_skybox(scene);
   check_planet_depth(scene, resources);
   return resources;
 }
@@ -154,7 +200,13 @@ SceneResources load_scene_resources(const Scene& scene) {
 bool same_resource_inputs(const Scene& a, const Scene& b) {
   // The settings as relief scene prints them: every field, compared by value.
   const nlohmann::json ja = scene_to_json(a), jb = scene_to_json(b);
-  return ja.at("terrain") == jb.at("terrain") && ja.at("shading") == jb.at("shading");
+  // The skybox's texels: its faces and intensity (sun_disc is a parameter of the frame).
+  const auto texels = [](const Scene& s) {
+    return s.sky.skybox ? std::optional(std::pair(s.sky.skybox->faces, s.sky.skybox->intensity))
+                        : std::nullopt;
+  };
+  return ja.at("terrain") == jb.at("terrain") && ja.at("shading") == jb.at("shading") &&
+         texels(a) == texels(b);
 }
 
 }  // namespace relief

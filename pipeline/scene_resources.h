@@ -12,6 +12,8 @@
 #include "core/lattice.h"
 #include "core/proto_texture.h"
 #include "core/scene/scene.h"
+#include "core/shade.h"
+#include "core/skybox.h"
 #include "pipeline/basis_resources.h"
 
 namespace relief {
@@ -57,6 +59,7 @@ struct SceneResources {
   // terrain.basis's composed grid (§3 Eq. 2, core/basis_images.h), when the scene has one: it
   // replaces `lattice` in stage 3 alone; the shading's noise keeps the lattice.
   std::optional<NoiseLattice> basis;
+  std::optional<Skybox> skybox;  // sky.skybox's faces (core/skybox.h), when the scene has one
   // What loading found worth saying that is no error (an image that does not tile, a field
   // basis mode ignores); the command line prints each once on stderr.
   std::vector<std::string> notes;
@@ -66,6 +69,9 @@ struct SceneResources {
 
   const HeightSketch* sketch_or_null() const { return sketch ? &*sketch : nullptr; }
   const NoiseLattice* basis_or_null() const { return basis ? &*basis : nullptr; }
+  const Skybox* skybox_or_null() const { return skybox ? &*skybox : nullptr; }
+  // What stage 8 samples.
+  ShadeResources shading() const { return {&lattice, textures, skybox_or_null()}; }
   // Stage 3's grid: the basis grid, or the noise lattice.
   const NoiseLattice& terrain_values() const { return basis ? *basis : lattice; }
 };
@@ -77,10 +83,15 @@ struct SceneResources {
 // field of a basis image refused by load_basis_grid (basis_resources.h).
 SceneResources load_scene_resources(const Scene& scene);
 
+// sky.skybox's faces (nullopt without one): each file checked as a layer's texture is
+// (decode_texture_png) but at most kMaxSkyboxSize a side, all six of one size, else a
+// SceneError naming the face (`sky.skybox.faces[3] = "down.png"`).
+std::optional<Skybox> load_skybox(const Scene& scene);
+
 // Whether load_scene_resources gives `a` and `b` the same resources: it reads their terrain and
-// shading settings alone (the files they name are read again only by a new load). A caller that
-// keeps resources across scene changes (the Python module's Scene.set) keeps them where this
-// holds.
+// shading settings and sky.skybox's faces and intensity alone (the files they name are read again only by a new load). A
+// caller that keeps resources across scene changes (the Python module's Scene.set) keeps them where
+// this holds.
 bool same_resource_inputs(const Scene& a, const Scene& b);
 
 // terrain.sketch's texels (nullopt when the scene has none), with load_scene_resources' checks.

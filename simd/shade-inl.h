@@ -48,6 +48,7 @@ constexpr int kShadeFields = 15, kDepthField = 13, kSunField = 14;
 struct ShadeContext {
   const ShadeParams<float>* p = nullptr;
   LatticeView lattice{};
+  SkyboxView skybox{};
   TextureView textures[limits::kMaxMaterialLayers];
 };
 
@@ -241,8 +242,8 @@ HWY_INLINE V3<V> TerrainRadiance(D d, const ShadeContext& ctx, const AttributeVe
     if (count != 0) {
       const V surface = hn::Div(level, view.y);
       const V footprint = SurfaceFootprint(d, p, surface, view.y);
-      const V3<V> water = ShadeWater(d, p, ctx.lattice, view, surface, StdMax(zero, a.water_depth),
-                                     radiance, footprint, under_water);
+      const V3<V> water = ShadeWater(d, p, ctx.lattice, ctx.skybox, view, surface,
+                                     StdMax(zero, a.water_depth), radiance, footprint, under_water);
       radiance = Select3(under_water, water, radiance);
       fog_distance = hn::IfThenElse(under_water, surface, distance);
       work.water_pixels += count;
@@ -267,7 +268,7 @@ HWY_INLINE V3<V> BackgroundRadiance(D d, const ShadeContext& ctx, int px0, int p
   const M below_lanes = hn::And(background, below);
   V3<V> result{zero, zero, zero};
   if (!hn::AllFalse(d, hn::AndNot(below, background))) {
-    result = SkyRadiance(d, p, dir);
+    result = SkyRadiance(d, p, ctx.skybox, dir);
   }
   const std::size_t count = hn::CountTrue(d, below_lanes);
   if (count == 0) {
@@ -277,8 +278,8 @@ HWY_INLINE V3<V> BackgroundRadiance(D d, const ShadeContext& ctx, int px0, int p
   if (p.water_enabled) {
     const V surface = hn::Div(hn::Set(d, p.water_level), dir.y);
     const V footprint = SurfaceFootprint(d, p, surface, dir.y);
-    ground = ShadeWater(d, p, ctx.lattice, dir, surface, hn::Set(d, 1e6f), V3<V>{zero, zero, zero},
-                        footprint, below_lanes);
+    ground = ShadeWater(d, p, ctx.lattice, ctx.skybox, dir, surface, hn::Set(d, 1e6f),
+                        V3<V>{zero, zero, zero}, footprint, below_lanes);
     work.water_pixels += count;
     if (p.fog_enabled) {
       work.fogged_pixels += count;
@@ -332,6 +333,7 @@ void ShadeRect(const ShadeParams<float>& p, const ShadeResources& r, const Shadi
   for (int layer = 0; layer < p.layer_count; ++layer) {
     ctx.textures[layer] = texture_view_of(r.textures[layer]);
   }
+  ctx.skybox = skybox_view_of(r.skybox);
   const std::span<const float> spans[kShadeFields] = {
       in.dx,     in.dz,     in.height,     in.dx_ddx,      in.dx_ddy,
       in.dz_ddx, in.dz_ddy, in.height_ddx, in.height_ddy,  in.nx,

@@ -14,6 +14,7 @@
 #include "core/stage_params.h"
 #include "simd/det_math-inl.h"
 #include "simd/shade_vec3-inl.h"
+#include "simd/skybox-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace relief::simd {
@@ -31,16 +32,9 @@ HWY_INLINE V PowerOfHalfCosine(D d, V c, int squarings) {
   return x;
 }
 
-// sky_radiance (sky.cc) of unit directions `dir`.
+// sun_light (sky.cc): the sun disc and its halo in directions `dir`.
 template <class D, class V = hn::Vec<D>>
-HWY_INLINE V3<V> SkyRadiance(D d, const ShadeParams<float>& p, const V3<V>& dir) {
-  const V3<V> horizon = Set3(d, p.horizon);
-  V3<V> color = horizon;
-  const auto above = hn::Gt(dir.y, hn::Zero(d));
-  if (!hn::AllFalse(d, above)) {
-    // sqrt's domain is the lanes above the horizon; the others' result is discarded.
-    color = Select3(above, Mix3(horizon, Set3(d, p.zenith), hn::Sqrt(dir.y)), horizon);
-  }
+HWY_INLINE V3<V> SunLight(D d, const ShadeParams<float>& p, const V3<V>& dir) {
   const V c = Dot3(dir, Set3(d, p.sun_direction));
   const float inner = p.sun_cos_inner, outer = p.sun_cos_outer;
   V disc;
@@ -51,7 +45,26 @@ HWY_INLINE V3<V> SkyRadiance(D d, const ShadeParams<float>& p, const V3<V>& dir)
   }
   const V halo = hn::Mul(hn::Set(d, float(0.06)), PowerOfHalfCosine(d, c, 5));
   const V k = hn::Add(hn::Mul(hn::Set(d, 20.0f), disc), halo);
-  return Add3(color, Scale3(Set3(d, p.sun), k));
+  return Scale3(Set3(d, p.sun), k);
+}
+
+// sky_radiance (sky.cc) of unit directions `dir`: the skybox where p.skybox is set and `box`
+// holds its faces, else the gradient; plus the sun.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE V3<V> SkyRadiance(D d, const ShadeParams<float>& p, const SkyboxView& box,
+                             const V3<V>& dir) {
+  if (p.skybox != 0 && box.texels != nullptr) {
+    const V3<V> color = SkyboxRadiance(d, box, dir);
+    return p.skybox_sun != 0 ? Add3(color, SunLight(d, p, dir)) : color;
+  }
+  const V3<V> horizon = Set3(d, p.horizon);
+  V3<V> color = horizon;
+  const auto above = hn::Gt(dir.y, hn::Zero(d));
+  if (!hn::AllFalse(d, above)) {
+    // sqrt's domain is the lanes above the horizon; the others' result is discarded.
+    color = Select3(above, Mix3(horizon, Set3(d, p.zenith), hn::Sqrt(dir.y)), horizon);
+  }
+  return Add3(color, SunLight(d, p, dir));
 }
 
 // fog_color (sky.cc): the horizon plus the sun's glow.

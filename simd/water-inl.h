@@ -92,8 +92,8 @@ HWY_INLINE V3<V> WaveNormal(D d, const ShadeParams<float>& p, const LatticeView&
 // shade_water (water.cc) for the lanes of `active` (the others' results are unspecified).
 template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
 HWY_INLINE V3<V> ShadeWater(D d, const ShadeParams<float>& p, const LatticeView& lattice,
-                            const V3<V>& view, V surface_distance, V depth, const V3<V>& ground,
-                            V footprint, M active) {
+                            const SkyboxView& skybox, const V3<V>& view, V surface_distance,
+                            V depth, const V3<V>& ground, V footprint, M active) {
   constexpr double kFresnelF0 = 0.02;             // water.cc
   constexpr double kRelativeIndex = 1.0 / 1.333;  // water.cc
   constexpr double kMinTransmittedCosine = 0.1;   // water.cc
@@ -111,7 +111,7 @@ HWY_INLINE V3<V> ShadeWater(D d, const ShadeParams<float>& p, const LatticeView&
                                     hn::Mul(hn::Mul(hn::Mul(hn::Mul(m, m), m), m), m)));
   V3<V> reflected = Sub3(view, Scale3(n, hn::Mul(hn::Set(d, 2.0f), view_n)));
   reflected.y = hn::Abs(reflected.y);
-  const V3<V> sky = SkyRadiance(d, p, reflected);
+  const V3<V> sky = SkyRadiance(d, p, skybox, reflected);
 
   const float eta = float(kRelativeIndex);
   const V eta_v = hn::Set(d, eta);

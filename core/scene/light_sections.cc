@@ -11,6 +11,37 @@ namespace {
 constexpr Range kRadiance{0.0, limits::kMaxRadiance};
 constexpr Range kShadingLength{limits::kMinInverseScaleLength, limits::kMaxShadingLength};
 
+// sky.skybox.faces: six paths, +x, -x, +y, -y, +z, -z, each made absolute like a texture's.
+Field<SkyboxSettings> faces_field() {
+  return {{"faces",
+           "an array of 6 file paths (relative to the scene file)",
+           {"", "the cube's faces +x, −x, +y, −y, +z, −z (GL's order and orientation)",
+            "PNG: square, 8-bit, a power of two 4…2048, all six of one size"}},
+          [](const LayerContext& cx, const json& v, const std::string& p, SkyboxSettings& s) {
+            if (!v.is_array() || v.size() != s.faces.size()) {
+              cx.in.fail(p, p + " = " + brief(v) +
+                                " is not an array of 6 paths; allowed: [+x, -x, +y, -y, +z, -z]");
+            }
+            for (std::size_t k = 0; k < s.faces.size(); ++k) {
+              const std::string item = p + "[" + std::to_string(k) + "]";
+              s.faces[k] = resolve_scene_path(cx.in.string(v[k], item), cx.base_dir);
+            }
+          },
+          [](const SkyboxSettings& s) -> std::optional<json> { return json(s.faces); }};
+}
+
+const Schema<SkyboxSettings>& skybox_schema() {
+  using S = SkyboxSettings;
+  static const Schema<S> schema({
+      faces_field(),
+      number_field("intensity", &S::intensity, kRadiance,
+                   {"", "linear radiance of a white texel (faces are sRGB-decoded)"}),
+      boolean_field("sun_disc", &S::sun_disc,
+                    {"", "the sun's disc and halo drawn over the faces (off: the faces' own sun)"}),
+  });
+  return schema;
+}
+
 }  // namespace
 
 const Schema<LightingSettings>& lighting_schema() {
@@ -77,6 +108,11 @@ const Schema<SkySettings>& sky_schema() {
                    {"degrees", "angular radius of the sun disc"}),
       number_field("fog_density", &S::fog_density, Range{0.0, limits::kMaxFogDensity},
                    {"per world unit", "fog = 1 − exp(−density · distance)"}),
+      optional_section_field("skybox", &S::skybox, skybox_schema(), "faces", "\"faces\"",
+                             {"",
+                              "six images in place of the gradient above the horizon and in "
+                              "the water's reflection (docs/stages.md, \"Skybox\"); `null`: the "
+                              "gradient"}),
   });
   return schema;
 }

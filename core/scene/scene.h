@@ -206,11 +206,22 @@ struct WaterSettings {
   double wave_speed = 1.2;                  // world units per second
 };
 
+// A skybox (Mekala): six square PNG faces in place of the sky gradient, sampled as GL samples a
+// cube map (core/skybox.h).
+struct SkyboxSettings {
+  // +x, -x, +y, -y, +z, -z: GL's cube-map faces in their order, each a path like a layer's
+  // texture (square, 8-bit, a power of two from 4 to kMaxSkyboxSize, all six of one size).
+  std::array<std::string, 6> faces;
+  double intensity = 1.0;  // linear radiance of a white texel
+  bool sun_disc = true;    // the sun's disc and halo drawn over the faces
+};
+
 struct SkySettings {
   Vec3d zenith_color = {0.17, 0.33, 0.70};
   Vec3d horizon_color = {0.66, 0.75, 0.86};
-  double sun_disc_deg = 0.6;    // angular radius of the sun disc
-  double fog_density = 2.2e-5;  // per world unit: fog = 1 - exp(-density distance)
+  double sun_disc_deg = 0.6;             // angular radius of the sun disc
+  double fog_density = 2.2e-5;           // per world unit: fog = 1 - exp(-density distance)
+  std::optional<SkyboxSettings> skybox;  // nullopt: the gradient
 };
 
 struct OutputSettings {

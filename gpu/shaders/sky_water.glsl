@@ -9,18 +9,88 @@ float power_of_half_cosine(float c, int squarings) {
   return x;
 }
 
-vec3 sky_radiance(vec3 d) {
-  const vec3 horizon = f3(P.horizon);
-  precise vec3 color = horizon;
-  if (d.y > 0.0) {
-    color = lerp3(horizon, f3(P.zenith), square_root(d.y));
+// The skybox's faces (core/skybox.h): layer f of a GL_RGB32F array texture holds face f
+// (+x, -x, +y, -y, +z, -z), row 0 its image's top row; filtered by hand like the proto-textures
+// (texelFetch of the CPU's own texels), not by GL's cube-map sampler, whose filter weights have
+// an unspecified precision.
+layout(binding = RELIEF_SKYBOX_UNIT) uniform sampler2DArray skybox_faces;
+
+// skybox.cc: cube_face_coordinate (Table 8.19, ties to x then y), then skybox_radiance.
+vec3 skybox_radiance(vec3 d) {
+  precise float ax = abs(d.x), ay = abs(d.y), az = abs(d.z);
+  int face;
+  precise float sc, tc, major;
+  if (ax >= ay && ax >= az) {
+    face = d.x < 0.0 ? 1 : 0;
+    sc = face == 0 ? -d.z : d.z;
+    tc = -d.y;
+    major = ax;
+  } else if (ay >= az) {
+    face = d.y < 0.0 ? 3 : 2;
+    sc = d.x;
+    tc = face == 2 ? d.z : -d.z;
+    major = ay;
+  } else {
+    face = d.z < 0.0 ? 5 : 4;
+    sc = face == 4 ? d.x : -d.x;
+    tc = -d.y;
+    major = az;
   }
+  // skybox.cc's domain; infinities and NaNs do not reach here (d is a unit vector), and GLSL
+  // need not honour them.
+  if (!(major > 0.0 && abs(sc) <= major && abs(tc) <= major)) {
+    face = 0;
+    sc = 0.0;
+    tc = 0.0;
+    major = 1.0;
+  }
+  precise float s = (divide(sc, major) + 1.0) * 0.5;
+  precise float t = (divide(tc, major) + 1.0) * 0.5;
+  const int size = textureSize(skybox_faces, 0).x;
+  precise float n = float(size);
+  precise float x = s * n - 0.5, y = t * n - 0.5;
+  precise float fx = floor(x), fy = floor(y);
+  precise float a = x - fx, b = y - fy;
+  // A division that is not correctly rounded may put s a little outside [0, 1]: the clamp
+  // keeps every fetch on the face.
+  const int i0 = clamp(int(fx), 0, size - 1), i1 = clamp(int(fx) + 1, 0, size - 1);
+  const int j0 = clamp(int(fy), 0, size - 1), j1 = clamp(int(fy) + 1, 0, size - 1);
+  const vec3 p00 = texelFetch(skybox_faces, ivec3(i0, j0, face), 0).rgb;
+  const vec3 p10 = texelFetch(skybox_faces, ivec3(i1, j0, face), 0).rgb;
+  const vec3 p01 = texelFetch(skybox_faces, ivec3(i0, j1, face), 0).rgb;
+  const vec3 p11 = texelFetch(skybox_faces, ivec3(i1, j1, face), 0).rgb;
+  precise vec3 bottom = p00 + a * (p10 - p00);
+  precise vec3 top = p01 + a * (p11 - p01);
+  precise vec3 r = bottom + b * (top - bottom);
+  return r;
+}
+
+// sky.cc, sun_light: the disc and its halo.
+vec3 sun_light(vec3 d) {
   precise float c = dot3(d, f3(P.sun_direction));
   const float inner = P.sun_cos_inner, outer = P.sun_cos_outer;
   precise float disc =
       inner > outer ? smooth01(divide(c - outer, inner - outer)) : (c >= inner ? 1.0 : 0.0);
   precise float halo = kHaloWeight * power_of_half_cosine(c, 5);
-  precise vec3 r = color + f3(P.sun) * (20.0 * disc + halo);
+  precise vec3 r = f3(P.sun) * (20.0 * disc + halo);
+  return r;
+}
+
+vec3 sky_radiance(vec3 d) {
+  if (P.skybox != 0) {
+    const vec3 color = skybox_radiance(d);
+    if (P.skybox_sun == 0) {
+      return color;
+    }
+    precise vec3 lit = color + sun_light(d);
+    return lit;
+  }
+  const vec3 horizon = f3(P.horizon);
+  precise vec3 color = horizon;
+  if (d.y > 0.0) {
+    color = lerp3(horizon, f3(P.zenith), square_root(d.y));
+  }
+  precise vec3 r = color + sun_light(d);
   return r;
 }
 

@@ -103,6 +103,8 @@ Offsets<ShadeParams<float>> shade_offsets() {
   o.add("always_specular", &p.always_specular);
   o.add("skip_zero_weights", &p.skip_zero_weights);
   o.add("nearest_mip", &p.nearest_mip);
+  o.add("skybox", &p.skybox);
+  o.add("skybox_sun", &p.skybox_sun);
   o.add("reserved[0]", &p.reserved[0], sizeof(std::int32_t));
   o.add3("camera_forward", p.camera_forward);
   o.add("forward[0]", &p.forward[0], sizeof(double));
