@@ -14,7 +14,8 @@
 
 namespace relief {
 
-// The faces' texels: linear RGB times sky.skybox.intensity, rounded once to float. Face f
+// The faces' texels: linear RGB (the sRGB decode rounded to float) times sky.skybox.intensity,
+// rounded to float again. Face f
 // (+x, -x, +y, -y, +z, -z), row r (0: the image's top row, t = 0), column c (s = 0) at
 // texels[3 ((f size + r) size + c)].
 struct Skybox {

@@ -1,6 +1,7 @@
 #include "pipeline/cpu_backend.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <type_traits>
 
 #include "core/det_math.h"
@@ -302,6 +303,10 @@ void CpuBackend<Real>::prepare(StageId id) {
           grid_.water_depth,
           grid_.nu,
           bent ? std::span<const Real>(grid_.bent_drop) : std::span<const Real>{}};
+      if (shade_.skybox != 0 && skybox_ == nullptr) {
+        // The sky would fall back to the gradient without a word (GL refuses it too).
+        throw std::invalid_argument("cpu backend: sky.skybox is set; no faces were loaded");
+      }
       tile_pass_ = std::make_unique<TilePass<Real>>(
           state_, triangles(), streams, shade_, ShadeResources{&lattice_, textures_, skybox_}, o,
           plan_.camera.position.y, image_, kernels_.tiles, band_rows_ < 0 ? 0 : band_first_row_,

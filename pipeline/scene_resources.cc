@@ -29,16 +29,15 @@ namespace {
 
 // Refuses, from its first bytes alone, a file that is no PNG or a PNG Relief cannot use.
 void check_texture_header(const std::vector<unsigned char>& bytes, const std::string& field,
-                          const std::string& path) {
+                          const std::string& path, int max_side = limits::kMaxTextureSize) {
   const PngHeader png = png_header_or_throw(bytes, field, path);
   const std::uint32_t side = png.width;
   if (png.width != png.height || side < std::uint32_t(limits::kMinTextureSize) ||
-      side > std::uint32_t(limits::kMaxTextureSize) || !std::has_single_bit(side)) {
-    throw SceneError(path, "scene: " + field + " is " + std::to_string(png.width) + "x" +
-                               std::to_string(png.height) +
-                               " pixels; allowed: square, a power of two from " +
-                               std::to_string(limits::kMinTextureSize) + " to " +
-                               std::to_string(limits::kMaxTextureSize));
+      side > std::uint32_t(max_side) || !std::has_single_bit(side)) {
+    throw SceneError(
+        path, "scene: " + field + " is " + std::to_string(png.width) + "x" +
+                  std::to_string(png.height) + " pixels; allowed: square, a power of two from " +
+                  std::to_string(limits::kMinTextureSize) + " to " + std::to_string(max_side));
   }
   if (png.bit_depth > 8) {
     throw SceneError(path, "scene: " + field + " has " + std::to_string(png.bit_depth) +
@@ -108,15 +107,8 @@ std::optional<Skybox> load_skybox(const Scene& scene) {
     const std::string path = "sky.skybox.faces[" + std::to_string(face) + "]";
     const std::string field = path + " = \"" + brief_text(settings.faces[face]) + "\"";
     const auto check_header = [&](const std::vector<unsigned char>& header) {
-      check_texture_header(header, field, path);
+      check_texture_header(header, field, path, limits::kMaxSkyboxSize);
       const std::uint32_t side = png_header_or_throw(header, field, path).width;
-      if (side > std::uint32_t(limits::kMaxSkyboxSize)) {
-        throw SceneError(path, "scene: " + field + " is " + std::to_string(side) + "x" +
-                                   std::to_string(side) +
-                                   " pixels; allowed: square, a power of two from " +
-                                   std::to_string(limits::kMinTextureSize) + " to " +
-                                   std::to_string(limits::kMaxSkyboxSize));
-      }
       if (face > 0 && side != std::uint32_t(box.size)) {
         throw SceneError(path, "scene: " + field + " is " + std::to_string(side) + "x" +
                                    std::to_string(side) + " pixels, " + first_field + " is " +

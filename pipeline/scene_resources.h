@@ -89,9 +89,9 @@ SceneResources load_scene_resources(const Scene& scene);
 std::optional<Skybox> load_skybox(const Scene& scene);
 
 // Whether load_scene_resources gives `a` and `b` the same resources: it reads their terrain and
-// shading settings and sky.skybox's faces and intensity alone (the files they name are read again only by a new load). A
-// caller that keeps resources across scene changes (the Python module's Scene.set) keeps them where
-// this holds.
+// shading settings and sky.skybox's faces and intensity alone (the files they name are read again
+// only by a new load). A caller that keeps resources across scene changes (the Python module's
+// Scene.set) keeps them where this holds.
 bool same_resource_inputs(const Scene& a, const Scene& b);
 
 // terrain.sketch's texels (nullopt when the scene has none), with load_scene_resources' checks.

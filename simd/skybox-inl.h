@@ -15,6 +15,7 @@
 
 #include <hwy/highway.h>
 
+#include "core/limits.h"
 #include "core/skybox.h"
 #include "simd/shade_vec3-inl.h"
 
@@ -24,11 +25,13 @@ namespace HWY_NAMESPACE {
 
 namespace hn = hwy::HWY_NAMESPACE;
 
+static_assert(18LL * limits::kMaxSkyboxSize * limits::kMaxSkyboxSize < (1LL << 31),
+              "the faces' indices fit int32");
+
 // A Skybox as the kernels read it; texels null without one.
 struct SkyboxView {
   const float* texels = nullptr;
   int size = 0;
-  int shift = 0;  // log2(size): the side is a power of two
 };
 
 inline SkyboxView skybox_view_of(const Skybox* box) {
@@ -36,9 +39,6 @@ inline SkyboxView skybox_view_of(const Skybox* box) {
   if (box != nullptr && box->size > 0) {
     v.texels = box->texels.data();
     v.size = box->size;
-    while ((1 << v.shift) < box->size) {
-      ++v.shift;
-    }
   }
   return v;
 }
@@ -87,12 +87,12 @@ HWY_INLINE V3<V> SkyboxRadiance(D d, const SkyboxView& box, const V3<V>& dir) {
   const VI x0 = hn::ConvertTo(di, fx), y0 = hn::ConvertTo(di, fy);
   const VI i0 = clamp(x0), i1 = clamp(hn::Add(x0, step));
   const VI j0 = clamp(y0), j1 = clamp(hn::Add(y0, step));
-  // 3 ((face n + row) n + column): the texel's red; n = 2^shift.
-  const VI shift = hn::Set(di, box.shift);
+  // 3 ((face n + row) n + column): the texel's red (below 18 n^2 <= 2^31 - 1, static_assert
+  // above), for any side n.
+  const VI side = hn::Set(di, box.size);
   const auto times3 = [](VI v) { return hn::Add(hn::ShiftLeft<1>(v), v); };
-  const VI face_start = hn::Shl(face, hn::Add(shift, shift));
-  const VI row0 = hn::Add(face_start, hn::Shl(j0, shift));
-  const VI row1 = hn::Add(face_start, hn::Shl(j1, shift));
+  const VI row0 = hn::Mul(hn::Add(hn::Mul(face, side), j0), side);
+  const VI row1 = hn::Mul(hn::Add(hn::Mul(face, side), j1), side);
   const VI k00 = times3(hn::Add(row0, i0)), k10 = times3(hn::Add(row0, i1));
   const VI k01 = times3(hn::Add(row1, i0)), k11 = times3(hn::Add(row1, i1));
   V out[3];

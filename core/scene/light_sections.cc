@@ -24,7 +24,13 @@ Field<SkyboxSettings> faces_field() {
             }
             for (std::size_t k = 0; k < s.faces.size(); ++k) {
               const std::string item = p + "[" + std::to_string(k) + "]";
-              s.faces[k] = resolve_scene_path(cx.in.string(v[k], item), cx.base_dir);
+              const std::string name = cx.in.string(v[k], item);
+              if (name.empty() || name.starts_with("builtin:")) {
+                cx.in.fail(item, item + " = " + brief(v[k]) +
+                                     " names no file; allowed: a PNG file's path (there are no "
+                                     "built-in faces)");
+              }
+              s.faces[k] = resolve_scene_path(name, cx.base_dir);
             }
           },
           [](const SkyboxSettings& s) -> std::optional<json> { return json(s.faces); }};

@@ -36,9 +36,9 @@ vec3 skybox_radiance(vec3 d) {
     tc = -d.y;
     major = az;
   }
-  // skybox.cc's domain; infinities and NaNs do not reach here (d is a unit vector), and GLSL
-  // need not honour them.
-  if (!(major > 0.0 && abs(sc) <= major && abs(tc) <= major)) {
+  // skybox.cc's domain (0 < major <= FLT_MAX, |sc|, |tc| <= major); infinities and NaNs do not
+  // reach here (d is a unit vector), and GLSL need not honour them.
+  if (!(major > 0.0 && major <= 3.4028234663852886e38 && abs(sc) <= major && abs(tc) <= major)) {
     face = 0;
     sc = 0.0;
     tc = 0.0;

@@ -83,7 +83,11 @@ std::string reported_path(std::string path) {
 // The SceneError path when `value` is applied at `path` onto the field's base scene; nullopt
 // when it is accepted.
 std::optional<std::string> error_path(const std::string& path, const json& value) {
-  Scene scene = resolve_scene(base_scene_for(path), {});
+  // sky.skybox's fields need a skybox to patch: its faces are only read when a frame loads.
+  const std::vector<std::string> skybox = {
+      R"(sky.skybox={"faces": ["a.png", "b.png", "c.png", "d.png", "e.png", "f.png"]})"};
+  Scene scene = resolve_scene(
+      base_scene_for(path), path.starts_with("sky.skybox.") ? skybox : std::vector<std::string>{});
   try {
     apply_scene_layer(scene, layer_at(path, value), "test");
   } catch (const SceneError& e) {

@@ -98,7 +98,9 @@ TEST_CASE("skyboxFilesThatCannotServeAreRefusedNamingTheFace", "[skybox][cli]") 
     auto f = faces;
     const auto png = test::checker_face_png(0, 12, 4);  // not a power of two
     f[0] = test::write_file(dir.path() / "twelve.png", std::string(png.begin(), png.end()));
-    refused(f, "sky.skybox.faces[0]");
+    refused(f, "sky.skybox.faces[0] = \"" + f[0] +
+                   "\" is 12x12 pixels; allowed: square, a power "
+                   "of two from 4 to 2048");
   }
   {
     auto f = faces;
@@ -121,6 +123,13 @@ TEST_CASE("skyboxFilesThatCannotServeAreRefusedNamingTheFace", "[skybox][cli]") 
   std::vector<std::string> five = kSmall;
   five.push_back("sky.skybox={\"faces\": [\"a.png\", \"b.png\", \"c.png\", \"d.png\", \"e.png\"]}");
   test::require_refused(test::render_preset("default", five, out), "sky.skybox.faces", out);
+  {
+    auto f = faces;
+    f[2] = "";
+    refused(f, "sky.skybox.faces[2] is empty");
+    f[2] = "builtin:sky";
+    refused(f, "sky.skybox.faces[2] = \"builtin:sky\" names no file");
+  }
   std::vector<std::string> none = kSmall;
   none.push_back("sky.skybox={\"intensity\": 2}");
   test::require_refused(test::render_preset("default", none, out), "\"faces\"", out);
