@@ -72,7 +72,9 @@ TEST_CASE("theSkyboxKernelGivesTheScalarBitsForEveryDirectionOnEveryTarget", "[s
         simd::skybox_radiances(box, std::span(x).first(count), std::span(y).first(count),
                                std::span(z).first(count), got);
         INFO(target << ", side " << n << ", " << count << " directions");
-        REQUIRE(std::memcmp(got.data(), expected.data(), got.size() * sizeof(float)) == 0);
+        // memcmp is not handed the null pointer of an empty vector.
+        REQUIRE((got.empty() ||
+                 std::memcmp(got.data(), expected.data(), got.size() * sizeof(float)) == 0));
       }
     }
   }
