@@ -1,5 +1,7 @@
 #include "core/texture_synthesis.h"
 
+#include "core/tiling_noise.h"
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -11,42 +13,6 @@
 namespace relief {
 
 namespace {
-
-// fBm that tiles over the texture: octave o uses a lattice of (first_cells << o) cells across
-// the texture, so each octave repeats exactly once per texture. Values have a standard
-// deviation of about 1.
-class TilingNoise {
- public:
-  TilingNoise(std::uint64_t seed, int texture_size, int first_cells, int octaves, double gain)
-      : size_(texture_size), gain_(gain) {
-    for (int o = 0; o < octaves; ++o) {
-      const int cells = std::min(first_cells << o, texture_size);
-      lattices_.push_back(make_noise_lattice(mix64(seed + std::uint64_t(o)), cells));
-    }
-    double norm = 0, a = 1;
-    for (int o = 0; o < octaves; ++o, a *= gain) {
-      norm += a * a;
-    }
-    normalisation_ = 1.0 / std::sqrt(norm);
-  }
-
-  double operator()(int i, int j) const {
-    double sum = 0, amplitude = 1;
-    for (const NoiseLattice& l : lattices_) {
-      const double scale = double(l.size) / size_;
-      sum += amplitude *
-             sample_lattice<double>(l, Interpolant::kQuintic, (i + 0.5) * scale, (j + 0.5) * scale);
-      amplitude *= gain_;
-    }
-    return sum * normalisation_;
-  }
-
- private:
-  int size_;
-  double gain_;
-  double normalisation_ = 1;
-  std::vector<NoiseLattice> lattices_;
-};
 
 struct Color {
   double r, g, b;

@@ -2,12 +2,14 @@
 
 #include <atomic>
 #include <bit>
+#include <exception>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <stb_image.h>
+#include <tbb/parallel_for.h>
 
 #include "core/basis_images.h"
 #include "core/height_bounds.h"
@@ -176,11 +178,25 @@ std::uint64_t ResourceSerial::next() noexcept {
 SceneResources load_scene_resources(const Scene& scene) {
   SceneResources resources;
   resources.lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
-  for (std::size_t k = 0; k < scene.shading.layers.size(); ++k) {
-    const std::string path = "shading.layers[" + std::to_string(k) + "].texture";
-    resources.textures.push_back(build_proto_texture(
-        load_layer_texture(scene.shading.layers[k], scene.shading.texture_size, path),
-        scene.shading.mip_blend));
+  // The layers' textures are independent: built side by side (each one's bits are its own
+  // inputs'), and a failure reported as the first failing layer's whatever the threads' order.
+  const std::size_t layers = scene.shading.layers.size();
+  resources.textures.resize(layers);
+  std::vector<std::exception_ptr> failures(layers);
+  tbb::parallel_for(std::size_t(0), layers, [&](std::size_t k) {
+    try {
+      const std::string path = "shading.layers[" + std::to_string(k) + "].texture";
+      resources.textures[k] = build_proto_texture(
+          load_layer_texture(scene.shading.layers[k], scene.shading.texture_size, path),
+          scene.shading.mip_blend);
+    } catch (...) {
+      failures[k] = std::current_exception();
+    }
+  });
+  for (const std::exception_ptr& failure : failures) {
+    if (failure) {
+      std::rethrow_exception(failure);
+    }
   }
   resources.sketch = load_height_sketch(scene);
   resources.basis = load_basis_grid(scene, &resources.notes);
