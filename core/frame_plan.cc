@@ -68,7 +68,7 @@ TerrainPlan make_terrain_plan(const TerrainSettings& settings, const NoiseLattic
 }
 
 FramePlan make_frame_plan(const Scene& scene, const NoiseLattice& lattice,
-                          const HeightSketch* sketch) {
+                          const HeightSketch* sketch, const ParallelRows& parallel) {
   if (scene.terrain.sketch && sketch == nullptr) {
     throw std::invalid_argument(
         "make_frame_plan: the scene has a terrain.sketch but no sketch was loaded for it");
@@ -85,8 +85,8 @@ FramePlan make_frame_plan(const Scene& scene, const NoiseLattice& lattice,
         make_planet_projector(plan.camera, plan.bounds, scene.terrain.base_height, plan.planet);
   } else {
     // After the terrain plan: the projector refines the slab by its regional height bound.
-    plan.projector =
-        make_projector(plan.camera, plan.bounds, scene.terrain.base_height, &plan.terrain);
+    plan.projector = make_projector(plan.camera, plan.bounds, scene.terrain.base_height,
+                                    &plan.terrain, parallel);
   }
   plan.screen = make_screen_grid(scene.grid, plan.projector);
   plan.clip = make_clip_transform(plan.camera);

@@ -76,9 +76,10 @@ struct FramePlan {
 // images (core/basis_images.h), whose side and tile_size then set the period and the cell; `sketch`
 // was loaded from scene.terrain.sketch (pipeline/scene_resources.h). Throws std::invalid_argument
 // when the scene has a sketch and `sketch` is null (a caller that forgot it would otherwise render
-// another terrain).
+// another terrain). `parallel` runs the projector's refinement (projector.h), the same plan
+// whoever runs it.
 FramePlan make_frame_plan(const Scene& scene, const NoiseLattice& lattice,
-                          const HeightSketch* sketch = nullptr);
+                          const HeightSketch* sketch = nullptr, const ParallelRows& parallel = {});
 
 TerrainPlan make_terrain_plan(const TerrainSettings& terrain, const NoiseLattice& lattice,
                               const Vec3d& camera_position, const HeightSketch* sketch = nullptr);

@@ -103,7 +103,8 @@ Projector fit_projector(const CameraFrame& camera, const std::vector<glm::dvec3>
 // some cell corner's ray does not descend clearly (a coverage box touching the horizon): the
 // caller keeps the global polytope.
 bool refined_vertices(const CameraFrame& camera, const Projector& global,
-                      const RegionalHeightBound& regional, std::vector<glm::dvec3>& out) {
+                      const RegionalHeightBound& regional, const ParallelRows& parallel,
+                      std::vector<glm::dvec3>& out) {
   const ImageBox& box = global.coverage;
   constexpr int n = kRefineCells;
   // Footprints of the cell corners on the projection plane, camera-relative (x, z).
@@ -123,7 +124,10 @@ bool refined_vertices(const CameraFrame& camera, const Projector& global,
   }
   const ConvexPolytope frustum = frustum_polytope(camera);
   const ValueRange slab = regional.global();
-  for (int b = 0; b < n; ++b) {
+  // Each row of cells appends to its own list (read-only inputs: foot, frustum, regional).
+  std::vector<std::vector<glm::dvec3>> rows(static_cast<std::size_t>(n));
+  const auto row_cells = [&](int b) {
+    std::vector<glm::dvec3>& row = rows[static_cast<std::size_t>(b)];
     for (int a = 0; a < n; ++a) {
       const auto at = [&](int i, int j) { return foot[static_cast<std::size_t>(j * (n + 1) + i)]; };
       const std::array<glm::dvec2, 4> quad = {at(a, b), at(a + 1, b), at(a + 1, b + 1),
@@ -147,12 +151,22 @@ bool refined_vertices(const CameraFrame& camera, const Projector& global,
         continue;
       }
       if (contains(frustum, slab_prism)) {
-        out.insert(out.end(), slab_prism.vertices.begin(), slab_prism.vertices.begin() + 4);
+        row.insert(row.end(), slab_prism.vertices.begin(), slab_prism.vertices.begin() + 4);
         continue;
       }
       const ValueRange h = regional.bound(x0 - grow, x1 + grow, z0 - grow, z1 + grow);
-      append_intersection_vertices(frustum, prism_polytope(quad, h.lo, h.hi), out);
+      append_intersection_vertices(frustum, prism_polytope(quad, h.lo, h.hi), row);
     }
+  };
+  if (parallel) {
+    parallel(n, row_cells);
+  } else {
+    for (int b = 0; b < n; ++b) {
+      row_cells(b);
+    }
+  }
+  for (const std::vector<glm::dvec3>& row : rows) {  // row order: the serial loop's
+    out.insert(out.end(), row.begin(), row.end());
   }
   return true;
 }
@@ -160,7 +174,7 @@ bool refined_vertices(const CameraFrame& camera, const Projector& global,
 }  // namespace
 
 Projector make_projector(const CameraFrame& camera, const HeightBounds& bounds, double base_height,
-                         const TerrainPlan* terrain) {
+                         const TerrainPlan* terrain, const ParallelRows& parallel) {
   const double y_lo = bounds.world_min - camera.position.y;
   const double y_hi = bounds.world_max - camera.position.y;
   const std::vector<glm::dvec3> vertices = frustum_slab_vertices(camera, y_lo, y_hi);
@@ -182,7 +196,7 @@ Projector make_projector(const CameraFrame& camera, const HeightBounds& bounds, 
   Projector projector = global;
   for (int pass = 0; pass < kRefinePasses; ++pass) {
     std::vector<glm::dvec3> refined;
-    if (!refined_vertices(camera, projector, regional, refined)) {
+    if (!refined_vertices(camera, projector, regional, parallel, refined)) {
       return projector;
     }
     if (refined.empty()) {

@@ -31,6 +31,7 @@
 // neighbouring rows (screen_grid.h), so few columns land left or right of what can be seen.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -61,7 +62,8 @@ struct Projector {
 
 // Cells per side of the projector-image tiling the polytope is refined over (header), and the
 // passes: the second tiles the first's coverage, finer where it matters. Two passes of 24^2
-// cells take 2 ms a frame and set up 46% of the default frame's triangles; one pass of 32^2,
+// cells take 2 ms a frame on one thread (rows of cells run through ParallelRows) and set up
+// 46% of the default frame's triangles; one pass of 32^2,
 // 46%; 64^2 cells, about 49% for 20 ms.
 inline constexpr int kRefineCells = 24;
 inline constexpr int kRefinePasses = 2;
@@ -70,10 +72,17 @@ inline constexpr int kRefinePasses = 2;
 // y_lo <= y <= y_hi; positions relative to the camera, slab heights relative to the camera.
 std::vector<glm::dvec3> frustum_slab_vertices(const CameraFrame& camera, double y_lo, double y_hi);
 
+// Runs body(0) ... body(count - 1), each exactly once, in any order and possibly at once; each
+// call writes only its own outputs. The core knows no threads: the pipeline hands in its
+// thread pool's loop (pipeline/cpu_backend.cc); empty: a plain loop. The result never depends
+// on the order.
+using ParallelRows = std::function<void(int count, const std::function<void(int)>& body)>;
+
 // `terrain`: refine the polytope by the regional height bound of this terrain (header); null
-// takes the global slab alone.
+// takes the global slab alone. The refinement's rows of cells run through `parallel`; their
+// vertices are joined in row order, so the projector is the same bits however they ran.
 Projector make_projector(const CameraFrame& camera, const HeightBounds& bounds, double base_height,
-                         const TerrainPlan* terrain = nullptr);
+                         const TerrainPlan* terrain = nullptr, const ParallelRows& parallel = {});
 
 // make_projector's last step: the projector fitted to camera-relative points (its pitch
 // bisects their footprints' depression angles), the projection plane `height_above_plane`

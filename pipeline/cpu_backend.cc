@@ -16,6 +16,7 @@
 #include "core/terrain_stages.h"
 #include "core/vertex_transform.h"
 #include "pipeline/memory_budget.h"
+#include "pipeline/parallel_rows.h"
 
 namespace relief {
 
@@ -41,7 +42,7 @@ CpuBackend<Real>::CpuBackend(const Scene& scene, const NoiseLattice& lattice,
       textures_(textures),
       skybox_(skybox),
       request_(request),
-      plan_(make_frame_plan(scene, terrain_values_, sketch)),
+      plan_(make_frame_plan(scene, terrain_values_, sketch, thread_pool_rows())),
       params_(make_terrain_params<Real>(plan_)),
       kernels_(cpu_kernels<Real>(request.backend, params_.planet.enabled != 0)),
       grid_(plan_.layout),

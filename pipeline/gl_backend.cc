@@ -10,6 +10,7 @@
 #include "core/shading_plan.h"
 #include "core/stage_params.h"
 #include "pipeline/frame_skips.h"
+#include "pipeline/parallel_rows.h"
 #include "pipeline/stage_table.h"
 #include "raster/topology.h"
 
@@ -62,7 +63,8 @@ class GlBackend final : public FrameBackend {
         scene_(scene),
         resources_(resources),
         request_(request),
-        plan_(make_frame_plan(scene, resources.terrain_values(), resources.sketch_or_null())),
+        plan_(make_frame_plan(scene, resources.terrain_values(), resources.sketch_or_null(),
+                              thread_pool_rows())),
         params_(make_terrain_params<float>(plan_)) {
     // Cast shadows have no GLSL twin yet (stage_table.h, kGlHasNoShadows): refused rather than
     // drawn without them, which a cross-check would report as the GL side's error.

@@ -2,8 +2,11 @@
 // regional height bound it rests on is never exceeded, the grid's triangles mostly reach the
 // image, and the refinement loses no terrain the global slab's projector drew.
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <functional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -217,6 +220,49 @@ TEST_CASE("refinedProjectorDrawsTheTerrainWhereTheGlobalSlabsProjectorDid", "[pr
     CHECK(bottom_lost == 0);
     CHECK(std::abs(covered_a - covered_b) <= a.width * a.height / 100);
   }
+}
+
+// The refinement's rows run in any order, on any thread (core/projector.h, ParallelRows): its
+// vertices are joined in row order, so the projector has the serial loop's bits.
+TEST_CASE("theRefinedProjectorIsTheSameWhateverOrderItsRowsRunIn", "[projector]") {
+  const auto same = [](const Projector& a, const Projector& b) {
+    const auto bits = [](const glm::dvec3& v) { return std::array<double, 3>{v.x, v.y, v.z}; };
+    bool hull = a.hull.size() == b.hull.size();
+    for (std::size_t k = 0; hull && k < a.hull.size(); ++k) {
+      hull = a.hull[k] == b.hull[k];
+    }
+    return a.terrain_visible == b.terrain_visible && bits(a.forward) == bits(b.forward) &&
+           bits(a.right) == bits(b.right) && bits(a.up) == bits(b.up) &&
+           a.height_above_plane == b.height_above_plane && a.coverage.x0 == b.coverage.x0 &&
+           a.coverage.x1 == b.coverage.x1 && a.coverage.y0 == b.coverage.y0 &&
+           a.coverage.y1 == b.coverage.y1 && hull &&
+           a.max_footprint_distance == b.max_footprint_distance;
+  };
+  int rows_seen = 0;
+  const ParallelRows backwards = [&](int count, const std::function<void(int)>& body) {
+    for (int row = count - 1; row >= 0; --row) {
+      body(row);
+      ++rows_seen;
+    }
+  };
+  const ParallelRows threads = [](int count, const std::function<void(int)>& body) {
+    std::vector<std::thread> pool;
+    for (int row = 0; row < count; ++row) {
+      pool.emplace_back([&body, row] { body(row); });
+    }
+    for (std::thread& t : pool) {
+      t.join();
+    }
+  };
+  for (const Variant& v : camera_variants()) {
+    const Scene scene = resolve_scene(v.preset, v.overrides);
+    const NoiseLattice lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
+    const FramePlan serial = make_frame_plan(scene, lattice);
+    INFO(v.preset << " " << v.overrides.back());
+    CHECK(same(make_frame_plan(scene, lattice, nullptr, backwards).projector, serial.projector));
+    CHECK(same(make_frame_plan(scene, lattice, nullptr, threads).projector, serial.projector));
+  }
+  CHECK(rows_seen > 0);  // the hook ran: the refinement's rows went through it
 }
 
 }  // namespace
