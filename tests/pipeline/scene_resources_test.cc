@@ -1,6 +1,7 @@
 // Loading a scene's resources (pipeline/scene_resources.h): the layers' textures, built side by
 // side, have the bits of one built alone at any thread count, and of all failing layers the
-// first is the one reported, whatever order the threads finished in.
+// first is the one reported, whatever order the threads finished in; so of failing resources
+// of every kind.
 #include <string>
 #include <vector>
 
@@ -53,6 +54,29 @@ TEST_CASE("ofSeveralFailingLayersTheFirstIsReported", "[resources]") {
     } catch (const SceneError& e) {
       CHECK(e.path() == "shading.layers[1].texture");
     }
+  }
+}
+
+TEST_CASE("ofFailingResourcesOfEveryKindTheFirstInLoadingOrderIsReported", "[resources]") {
+  const test::TempDir dir("resources-order");
+  const std::string bad = test::write_file(dir.path() / "bad.png", "not a png");
+  Scene scene = resolve_scene("default", {});
+  scene.terrain.sketch = SketchSettings{bad};
+  scene.sky.skybox = SkyboxSettings{{bad, bad, bad, bad, bad, bad}};
+  const auto reported = [&] {
+    try {
+      (void)load_scene_resources(scene);
+    } catch (const SceneError& e) {
+      return e.path();
+    }
+    return std::string("nothing");
+  };
+  for (int run = 0; run < 10; ++run) {
+    CHECK(reported() == "terrain.sketch.image");  // before the skybox, whichever ends first
+  }
+  scene.shading.layers[2].texture = bad;
+  for (int run = 0; run < 10; ++run) {
+    CHECK(reported() == "shading.layers[2].texture");  // the layers before the sketch
   }
 }
 
