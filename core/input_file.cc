@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <system_error>
 
 namespace relief {
 
@@ -29,11 +30,12 @@ InputFile::InputFile(const std::filesystem::path& path, std::uintmax_t max_bytes
   // O_NONBLOCK: opening a FIFO must not wait for a writer; it is refused just below.
   fd_ = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd_ < 0) {
-    throw InputFileError(std::string("cannot be opened: ") + std::strerror(errno));
+    throw InputFileError(std::string("cannot be opened: ") +
+                         std::generic_category().message(errno));
   }
   struct stat status {};
   if (::fstat(fd_, &status) != 0) {
-    const std::string reason = std::strerror(errno);
+    const std::string reason = std::generic_category().message(errno);
     ::close(fd_);
     throw InputFileError("cannot be examined: " + reason);
   }
@@ -64,7 +66,8 @@ std::size_t InputFile::read(void* data, std::size_t count) {
       continue;
     }
     if (n < 0) {
-      throw InputFileError(std::string("cannot be read: ") + std::strerror(errno));
+      throw InputFileError(std::string("cannot be read: ") +
+                           std::generic_category().message(errno));
     }
     if (n == 0) {
       break;

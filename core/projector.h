@@ -74,8 +74,8 @@ std::vector<glm::dvec3> frustum_slab_vertices(const CameraFrame& camera, double 
 
 // Runs body(0) ... body(count - 1), each exactly once, in any order and possibly at once; each
 // call writes only its own outputs. The core knows no threads: the pipeline hands in its
-// thread pool's loop (pipeline/cpu_backend.cc); empty: a plain loop. The result never depends
-// on the order.
+// thread pool's loop (pipeline/parallel_rows.h, for the CPU and GL backends' frame plans);
+// empty: a plain loop. The result never depends on the order.
 using ParallelRows = std::function<void(int count, const std::function<void(int)>& body)>;
 
 // `terrain`: refine the polytope by the regional height bound of this terrain (header); null

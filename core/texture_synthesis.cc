@@ -1,7 +1,5 @@
 #include "core/texture_synthesis.h"
 
-#include "core/tiling_noise.h"
-
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -9,6 +7,7 @@
 #include "core/counter_hash.h"
 #include "core/interpolant.h"
 #include "core/lattice.h"
+#include "core/tiling_noise.h"
 
 namespace relief {
 

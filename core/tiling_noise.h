@@ -44,7 +44,7 @@ class TilingNoise {
 
   // The sum of the octaves' sample_lattice<kQuintic, double> at texel centre (i, j), each
   // octave's corners and weights taken from the axis tables: the same operations in the same
-  // order, so the same bits, without locating the cell twice per texel.
+  // order, so the same bits, without locating any cell per texel.
   double operator()(int i, int j) const {
     double sum = 0, amplitude = 1;
     for (std::size_t o = 0; o < lattices_.size(); ++o) {

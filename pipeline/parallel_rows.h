@@ -6,8 +6,9 @@
 
 namespace relief {
 
-// One task per row of the projector's refinement, on the calling thread's arena (so a
-// tbb::global_control limit or a task_arena bounds it like every stage).
+// The projector's refinement's rows as a tbb::parallel_for (its partitioner groups them into
+// tasks) on the calling thread's arena, isolated (a thread waiting in it takes no outside
+// task), so a tbb::global_control limit or a task_arena bounds it like every stage.
 ParallelRows thread_pool_rows();
 
 }  // namespace relief

@@ -222,17 +222,21 @@ TEST_CASE("refinedProjectorDrawsTheTerrainWhereTheGlobalSlabsProjectorDid", "[pr
   }
 }
 
-// The refinement's rows run in any order, on any thread (core/projector.h, ParallelRows): its
-// vertices are joined in row order, so the projector has the serial loop's bits.
+// The refinement's rows run in any order, on any thread (core/projector.h, ParallelRows), and
+// the projector equals the serial loop's, member by member (the fit reads extremes and a
+// sorted hull, so this checks the rows' outputs and their isolation, not their join order).
 TEST_CASE("theRefinedProjectorIsTheSameWhateverOrderItsRowsRunIn", "[projector]") {
   const auto same = [](const Projector& a, const Projector& b) {
-    const auto bits = [](const glm::dvec3& v) { return std::array<double, 3>{v.x, v.y, v.z}; };
+    const auto components = [](const glm::dvec3& v) {
+      return std::array<double, 3>{v.x, v.y, v.z};
+    };
     bool hull = a.hull.size() == b.hull.size();
     for (std::size_t k = 0; hull && k < a.hull.size(); ++k) {
       hull = a.hull[k] == b.hull[k];
     }
-    return a.terrain_visible == b.terrain_visible && bits(a.forward) == bits(b.forward) &&
-           bits(a.right) == bits(b.right) && bits(a.up) == bits(b.up) &&
+    return a.terrain_visible == b.terrain_visible &&
+           components(a.forward) == components(b.forward) &&
+           components(a.right) == components(b.right) && components(a.up) == components(b.up) &&
            a.height_above_plane == b.height_above_plane && a.coverage.x0 == b.coverage.x0 &&
            a.coverage.x1 == b.coverage.x1 && a.coverage.y0 == b.coverage.y0 &&
            a.coverage.y1 == b.coverage.y1 && hull &&
