@@ -8,7 +8,6 @@
 #include <string>
 #include <vector>
 
-#include <tbb/global_control.h>
 #include <catch2/catch.hpp>
 
 #include "core/lattice.h"
@@ -216,21 +215,17 @@ TEST_CASE("planetFramesAreBitIdenticalOnTheSimdBackendOnEveryTargetAndThreadCoun
     request.outputs = {true, true, true, true, true, true};
     const Frame reference = render_frame(scene, resources, request);
     request.backend = Backend::kSimd;
-    for (const std::string& target : targets.runnable()) {
-      simd::force_target(target);
-      for (const int threads : {1, 2}) {
-        const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-        const FrameImage got = render_frame(scene, resources, request).image;
-        INFO("altitude " << altitude << ", " << target << ", " << threads << " threads");
-        REQUIRE(got.srgb == reference.image.srgb);
-        REQUIRE(same_bits(got.linear, reference.image.linear));
-        REQUIRE(same_bits(got.depth, reference.image.depth));
-        REQUIRE(got.primitive == reference.image.primitive);
-        REQUIRE(same_bits(got.normal, reference.image.normal));
-        REQUIRE(same_bits(got.world_height, reference.image.world_height));
-        REQUIRE(same_bits(got.octaves, reference.image.octaves));
-      }
-    }
+    targets.each_with_threads({1, 2}, [&](const std::string& target, int threads) {
+      const FrameImage got = render_frame(scene, resources, request).image;
+      INFO("altitude " << altitude << ", " << target << ", " << threads << " threads");
+      REQUIRE(got.srgb == reference.image.srgb);
+      REQUIRE(same_bits(got.linear, reference.image.linear));
+      REQUIRE(same_bits(got.depth, reference.image.depth));
+      REQUIRE(got.primitive == reference.image.primitive);
+      REQUIRE(same_bits(got.normal, reference.image.normal));
+      REQUIRE(same_bits(got.world_height, reference.image.world_height));
+      REQUIRE(same_bits(got.octaves, reference.image.octaves));
+    });
   }
 }
 

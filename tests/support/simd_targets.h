@@ -3,8 +3,11 @@
 // without AVX-512 says AVX3 was not checked there.
 #pragma once
 
+#include <initializer_list>
 #include <string>
 #include <vector>
+
+#include <tbb/global_control.h>
 
 #include "simd/targets.h"
 
@@ -27,6 +30,19 @@ class EachTarget {
   EachTarget& operator=(const EachTarget&) = delete;
 
   const std::vector<std::string>& runnable() const { return runnable_; }
+
+  // body(target, threads) for every runnable target, forced, and each thread count, the pool
+  // limited to it (whole-frame bit-identity checks).
+  template <class Body>
+  void each_with_threads(std::initializer_list<int> thread_counts, const Body& body) const {
+    for (const std::string& target : runnable_) {
+      simd::force_target(target);
+      for (const int threads : thread_counts) {
+        const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+        body(target, threads);
+      }
+    }
+  }
   const std::string& skipped() const { return skipped_; }
 
  private:
