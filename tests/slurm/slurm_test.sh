@@ -24,22 +24,40 @@ started=$(date +%s)
 "$slurm/local_cluster.sh" start "$work/cluster"
 export SLURM_CONF="$work/cluster/slurm.conf"
 
-# Waits for job $1 to end; fails with its state and output unless it COMPLETED.
+# Waits for stitch job $1 (of array $2) to end; fails unless it COMPLETED, with the state of
+# each of the array's tasks and the output of those that did not complete (a stitch job is
+# cancelled when a task fails: --kill-on-invalid-dep).
 wait_for_job() {
-  local id=$1 state=""
+  local id=$1 array=$2 state=""
   for _ in $(seq 1800); do
     state=$(scontrol show job "$id" -o 2>/dev/null | grep -o 'JobState=[A-Z_]*' | cut -d= -f2)
     case "$state" in
       COMPLETED) return 0 ;;
       FAILED | CANCELLED | TIMEOUT | NODE_FAIL | OUT_OF_MEMORY | PREEMPTED | BOOT_FAIL | DEADLINE)
         echo "slurm_test: job $id ended $state" >&2
-        cat "$work"/*/slurm-*.out >&2 2>/dev/null || true
+        report_tasks "$array"
+        cat "$work"/*/slurm-stitch-"$id".out >&2 2>/dev/null || true
         return 1 ;;
     esac
     sleep 0.5
   done
   echo "slurm_test: job $id still ${state:-unknown} after 900 s" >&2
+  report_tasks "$array"
   return 1
+}
+
+# The state and exit code of each task of array $1, and the last lines of the output of each
+# task that did not complete.
+report_tasks() {
+  local line task state
+  scontrol show job "$1" -o 2>/dev/null | while read -r line; do
+    task=$(grep -o 'ArrayTaskId=[0-9]*' <<<"$line" | cut -d= -f2)
+    state=$(grep -o 'JobState=[A-Z_]*' <<<"$line" | cut -d= -f2)
+    echo "slurm_test: array $1 task ${task:-?}: $state ($(grep -o 'ExitCode=[0-9:]*' <<<"$line"))" >&2
+    if [[ "$state" != COMPLETED && -n "$task" ]]; then
+      tail -n 40 "$work"/*/slurm-"$1"_"$task".out >&2 2>/dev/null || true
+    fi
+  done
 }
 
 image=(default --set "viewport.width=$side" --set "viewport.height=$side")
@@ -72,14 +90,14 @@ echo "slurm_test: submitted arrays $image_array, $path_array, $extras_array and"
 
 passed=0
 failed=0
-wait_for_job "$image_stitch"
+wait_for_job "$image_stitch" "$image_array"
 if cmp "$work/one.png" "$work/stitched.png"; then
   echo "slurm_test: ${side}x${side} image from 4 tasks: identical ($(md5sum < "$work/one.png" | cut -c1-32))"
   passed=$((passed + 1))
 else
   failed=$((failed + 1))
 fi
-wait_for_job "$path_stitch"
+wait_for_job "$path_stitch" "$path_array"
 different=0
 for frame in "$work"/one-path/frame_*.png; do
   cmp -s "$frame" "$work/stitched-path/$(basename "$frame")" || different=$((different + 1))
@@ -105,10 +123,10 @@ same_files() {
   echo "slurm_test: $what from 4 tasks: identical"
   passed=$((passed + 1))
 }
-wait_for_job "$extras_stitch"
+wait_for_job "$extras_stitch" "$extras_array"
 same_files "320x256 image with its float, depth and primitive outputs" extras.png \
   extras.float.exr extras.depth.exr extras.primitive.bin
-wait_for_job "$reference_stitch"
+wait_for_job "$reference_stitch" "$reference_array"
 same_files "320x256 ground truth (2x2 samples) with its float image" reference.png reference.exr
 echo "slurm_test: $(($(date +%s) - started)) s"
 echo "$passed passed, $failed failed"
