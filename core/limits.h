@@ -296,5 +296,13 @@ inline constexpr double kMinTangentSine = 1e-6;
 // Slope |grad h| is reported up to 1e6 (89.99994 degrees): steeper cells are vertical walls
 // for every consumer, and the cap keeps |g| finite for cells of vanishing base-plane area.
 inline constexpr double kMaxSlope = 1e6;
+// A side of a vertex whose patch faces the eye less than this (the cosine between its upward
+// normal and the direction to the eye) weighs less in the vertex's difference, in proportion,
+// and nothing once hidden (core/surface.h, "Visible sides"). A power of two's inverse: the
+// weight is one exact product.
+inline constexpr double kSilhouetteFacing = 0.25;
+// The least weight of a side (core/surface.h, "Visible sides"): a hidden side keeps this
+// share, so a vertex hidden from both sides gets the central difference, continuously.
+inline constexpr double kHiddenSideWeight = 1.0 / 32;
 
 }  // namespace relief::limits

@@ -113,6 +113,8 @@ TerrainParams<Real> make_terrain_params(const FramePlan& plan) {
   s.water_level = Real(plan.relative_water_level);
   s.min_sine_sq = Real(limits::kMinTangentSine * limits::kMinTangentSine);
   s.max_slope = Real(limits::kMaxSlope);
+  s.inv_silhouette_facing = Real(1.0 / limits::kSilhouetteFacing);
+  s.hidden_side_weight = Real(limits::kHiddenSideWeight);
   TransformParams<Real>& t = p.transform;
   for (int c = 0; c < 3; ++c) {
     t.row_x[c] = Real(plan.clip.row_x[c]);

@@ -16,6 +16,18 @@ struct Tangent {
   bool present = false;
 };
 
+// Scales (x, h, z) by the positive 1 / max(|x|, |h|, |z|) where that is > 0: the direction is
+// kept, every component is at most 1 in magnitude.
+template <class Real>
+void scale_to_unit_max(Real& x, Real& h, Real& z) {
+  const Real largest = std::max({std::abs(x), std::abs(h), std::abs(z)});
+  if (largest > Real(0)) {
+    x = x / largest;
+    h = h / largest;
+    z = z / largest;
+  }
+}
+
 // Difference across vertex c along one grid axis: central where both neighbours are valid,
 // one-sided otherwise. `minus`/`plus` are buffer indices or -1 outside the grid.
 template <class Real>
@@ -35,14 +47,61 @@ Tangent<Real> axis_tangent(const SurfaceInputs<Real>& in, std::ptrdiff_t minus, 
     // not change, but the products of four tangent components below stay near 1 whatever the
     // grid spacing (a scene scaled down to spacings of 1e-11 would underflow them to zero),
     // and no component exceeds 1. Division domain: largest > 0; a zero tangent stays zero.
-    const Real largest = std::max({std::abs(t.x), std::abs(t.h), std::abs(t.z)});
-    if (largest > Real(0)) {
-      t.x = t.x / largest;
-      t.h = t.h / largest;
-      t.z = t.z / largest;
-    }
+    scale_to_unit_max(t.x, t.h, t.z);
   }
   return t;
+}
+
+// p[to] - p[from], scaled to a largest component of 1.
+template <class Real>
+Tangent<Real> side_difference(const SurfaceInputs<Real>& in, std::size_t from, std::size_t to) {
+  Tangent<Real> t;
+  t.x = in.dx[to] - in.dx[from];
+  t.h = in.height[to] - in.height[from];
+  t.z = in.dz[to] - in.dz[from];
+  scale_to_unit_max(t.x, t.h, t.z);
+  t.present = true;
+  return t;
+}
+
+// The direction from the eye to the vertex (camera-relative position, scaled) and its length.
+template <class Real>
+struct EyeRay {
+  Real x = 0, h = 0, z = 0, length = 0;
+};
+
+// How much the patch spanned by u (along the grid's i axis) and w (along j) faces the eye:
+// min(max(cos / kSilhouetteFacing, kHiddenSideWeight), 1), cos between its upward normal and the
+// direction to the eye (docs/architecture.md, "Stage 4, operation by operation"). 1 where the
+// cosine is undefined (a patch or ray of zero length). Division domain: n_length * ray.length > 0.
+template <class Real>
+Real facing_weight(const Tangent<Real>& u, const Tangent<Real>& w, const EyeRay<Real>& ray,
+                   Real inv_facing, Real least) {
+  const Real nx = -(u.h * w.z - u.z * w.h);
+  const Real ny = u.x * w.z - u.z * w.x;
+  const Real nz = -(u.x * w.h - u.h * w.x);
+  const Real sign = ny > Real(0) ? Real(1) : Real(-1);  // upward, as the vertex's normal
+  const Real facing = -((nx * ray.x + ny * ray.h) + nz * ray.z) * sign;
+  const Real length = std::sqrt((nx * nx + ny * ny) + nz * nz) * ray.length;
+  if (!(length > Real(0))) {
+    return Real(1);
+  }
+  const Real weight = (facing / length) * inv_facing;
+  return weight < least ? least : (weight > Real(1) ? Real(1) : weight);
+}
+
+// A central difference's two halves weighted by their sides' facing weights (each in
+// [kHiddenSideWeight, 1]); unchanged where both weigh 1 (the plain central difference).
+template <class Real>
+void weigh_sides(Tangent<Real>& t, const Tangent<Real>& minus, Real w_minus,
+                 const Tangent<Real>& plus, Real w_plus) {
+  if (w_minus == Real(1) && w_plus == Real(1)) {
+    return;
+  }
+  t.x = w_minus * minus.x + w_plus * plus.x;
+  t.h = w_minus * minus.h + w_plus * plus.h;
+  t.z = w_minus * minus.z + w_plus * plus.z;
+  scale_to_unit_max(t.x, t.h, t.z);
 }
 
 }  // namespace
@@ -71,8 +130,41 @@ void surface_pass(const SurfaceParams<Real>& p, RowRange rows, SurfaceInputs<Rea
         }
         return static_cast<std::ptrdiff_t>(layout.index(ii, jj));
       };
-      const Tangent<Real> a = axis_tangent(in, index_or_none(i - 1, j), k, index_or_none(i + 1, j));
-      const Tangent<Real> b = axis_tangent(in, index_or_none(i, j - 1), k, index_or_none(i, j + 1));
+      const std::ptrdiff_t left = index_or_none(i - 1, j), right = index_or_none(i + 1, j);
+      const std::ptrdiff_t below = index_or_none(i, j - 1), above = index_or_none(i, j + 1);
+      Tangent<Real> a = axis_tangent(in, left, k, right);
+      Tangent<Real> b = axis_tangent(in, below, k, above);
+      // Visible sides: each half of a central difference weighted by how much its side faces
+      // the eye, both weights formed from the central tangents.
+      const auto is_valid = [&](std::ptrdiff_t n) {
+        return n >= 0 && in.valid[static_cast<std::size_t>(n)] != 0;
+      };
+      const bool a_central = is_valid(left) && is_valid(right);
+      const bool b_central = is_valid(below) && is_valid(above);
+      EyeRay<Real> ray{in.dx[k], in.height[k], in.dz[k]};
+      scale_to_unit_max(ray.x, ray.h, ray.z);
+      ray.length = std::sqrt((ray.x * ray.x + ray.h * ray.h) + ray.z * ray.z);
+      if ((a_central || b_central) && ray.length > Real(0)) {
+        Tangent<Real> weighed_a = a, weighed_b = b;
+        if (a_central) {
+          const auto minus = side_difference(in, static_cast<std::size_t>(left), k);
+          const auto plus = side_difference(in, k, static_cast<std::size_t>(right));
+          weigh_sides(weighed_a, minus,
+                      facing_weight(minus, b, ray, p.inv_silhouette_facing, p.hidden_side_weight),
+                      plus,
+                      facing_weight(plus, b, ray, p.inv_silhouette_facing, p.hidden_side_weight));
+        }
+        if (b_central) {
+          const auto minus = side_difference(in, static_cast<std::size_t>(below), k);
+          const auto plus = side_difference(in, k, static_cast<std::size_t>(above));
+          weigh_sides(weighed_b, minus,
+                      facing_weight(a, minus, ray, p.inv_silhouette_facing, p.hidden_side_weight),
+                      plus,
+                      facing_weight(a, plus, ray, p.inv_silhouette_facing, p.hidden_side_weight));
+        }
+        a = weighed_a;
+        b = weighed_b;
+      }
       // Unnormalised normal (-gx, 1, -gz) scaled by a positive factor: by |det| for the 2x2
       // solve (no division), by |a|^2 for the one-axis least-norm gradient.
       const Real a_sq = a.x * a.x + a.z * a.z;

@@ -37,6 +37,17 @@ struct RowView {
   const float* height;
 };
 
+// (x, h, z) scaled by 1 / max(|x|, |h|, |z|) where that is > 0 (core/surface.cc,
+// scale_to_unit_max).
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE void ScaleToUnitMax(D d, V& x, V& h, V& z) {
+  const V largest = hn::Max(hn::Max(hn::Abs(x), hn::Abs(h)), hn::Abs(z));
+  const auto scale = hn::Gt(largest, hn::Zero(d));
+  x = hn::IfThenElse(scale, hn::Div(x, largest), x);
+  h = hn::IfThenElse(scale, hn::Div(h, largest), h);
+  z = hn::IfThenElse(scale, hn::Div(z, largest), z);
+}
+
 // Tangent along one axis from the values at the vertex (c) and its neighbours (minus, plus),
 // each neighbour used where `has_*` holds (core/surface.cc, axis_tangent).
 template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
@@ -48,13 +59,57 @@ HWY_INLINE LaneTangent<D> AxisTangent(D d, const V centre[3], const V minus[3], 
     const V to = hn::IfThenElse(has_plus, plus[c], centre[c]);
     t[c] = hn::Sub(to, from);
   }
-  // std::max({|x|, |h|, |z|}) of values >= 0; then the division where it is > 0.
-  const V largest = hn::Max(hn::Max(hn::Abs(t[0]), hn::Abs(t[1])), hn::Abs(t[2]));
-  const M scale = hn::Gt(largest, hn::Zero(d));
-  for (int c = 0; c < 3; ++c) {
-    t[c] = hn::IfThenElse(scale, hn::Div(t[c], largest), t[c]);
-  }
+  ScaleToUnitMax(d, t[0], t[1], t[2]);
   return {t[0], t[1], t[2], hn::Or(has_minus, has_plus)};
+}
+
+// to - from, scaled (core/surface.cc, side_difference).
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE LaneTangent<D> SideDifference(D d, const V from[3], const V to[3]) {
+  LaneTangent<D> t{hn::Sub(to[0], from[0]), hn::Sub(to[1], from[1]), hn::Sub(to[2], from[2]),
+                   hn::FirstN(d, 0)};
+  ScaleToUnitMax(d, t.x, t.h, t.z);
+  return t;
+}
+
+// core/surface.cc, facing_weight: u along i, w along j; ray scaled, with its length.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE V FacingWeight(D d, const LaneTangent<D>& u, const LaneTangent<D>& w, const V ray[3],
+                          V ray_length, V inv_facing, V least) {
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+  const V nx = hn::Neg(hn::Sub(hn::Mul(u.h, w.z), hn::Mul(u.z, w.h)));
+  const V ny = hn::Sub(hn::Mul(u.x, w.z), hn::Mul(u.z, w.x));
+  const V nz = hn::Neg(hn::Sub(hn::Mul(u.x, w.h), hn::Mul(u.h, w.x)));
+  const V sign = hn::IfThenElse(hn::Gt(ny, zero), one, hn::Set(d, -1.0f));
+  const V dot = hn::Add(hn::Add(hn::Mul(nx, ray[0]), hn::Mul(ny, ray[1])), hn::Mul(nz, ray[2]));
+  const V facing = hn::Mul(hn::Neg(dot), sign);
+  const V n_sq = hn::Add(hn::Add(hn::Mul(nx, nx), hn::Mul(ny, ny)), hn::Mul(nz, nz));
+  const V length = hn::Mul(hn::Sqrt(n_sq), ray_length);
+  const auto defined = hn::Gt(length, zero);
+  // Lanes without a cosine divide by 1 instead and are replaced by 1 below.
+  const V weight = hn::Mul(hn::Div(facing, hn::IfThenElse(defined, length, one)), inv_facing);
+  const V clamped = hn::IfThenElse(hn::Lt(weight, least), least,
+                                   hn::IfThenElse(hn::Gt(weight, one), one, weight));
+  return hn::IfThenElse(defined, clamped, one);
+}
+
+// core/surface.cc, weigh_sides, where `central` holds.
+template <class D, class M = hn::Mask<D>, class V = hn::Vec<D>>
+HWY_INLINE void WeighSides(D d, M central, LaneTangent<D>& t, const LaneTangent<D>& minus,
+                           V w_minus, const LaneTangent<D>& plus, V w_plus) {
+  const V one = hn::Set(d, 1.0f);
+  const M unchanged = hn::And(hn::Eq(w_minus, one), hn::Eq(w_plus, one));
+  const M change = hn::AndNot(unchanged, central);
+  if (hn::AllFalse(d, change)) {
+    return;
+  }
+  V x = hn::Add(hn::Mul(w_minus, minus.x), hn::Mul(w_plus, plus.x));
+  V h = hn::Add(hn::Mul(w_minus, minus.h), hn::Mul(w_plus, plus.h));
+  V z = hn::Add(hn::Mul(w_minus, minus.z), hn::Mul(w_plus, plus.z));
+  ScaleToUnitMax(d, x, h, z);
+  t.x = hn::IfThenElse(change, x, t.x);
+  t.h = hn::IfThenElse(change, h, t.h);
+  t.z = hn::IfThenElse(change, z, t.z);
 }
 
 void SurfaceRows(const SurfaceParams<float>& p, RowRange rows, SurfaceInputs<float> in,
@@ -92,6 +147,8 @@ void SurfaceRows(const SurfaceParams<float>& p, RowRange rows, SurfaceInputs<flo
   const V min_sine_sq = hn::Set(d, p.min_sine_sq);
   const V max_slope = hn::Set(d, p.max_slope);
   const V water_level = hn::Set(d, p.water_level);
+  const V inv_facing = hn::Set(d, p.inv_silhouette_facing);
+  const V least = hn::Set(d, p.hidden_side_weight);
   const auto draw_bit = hn::Set(di, kDraw);
   for (int j = rows.begin; j < rows.end; ++j) {
     for (int i = 0; i < p.pitch; i += lanes) {
@@ -127,8 +184,34 @@ void SurfaceRows(const SurfaceParams<float>& p, RowRange rows, SurfaceInputs<flo
         } else {
           values_at(k, above);
         }
-        const auto a = AxisTangent(d, centre, left, right, has_left, has_right);
-        const auto b = AxisTangent(d, centre, below, above, has_below, has_above);
+        auto a = AxisTangent(d, centre, left, right, has_left, has_right);
+        auto b = AxisTangent(d, centre, below, above, has_below, has_above);
+        {  // Visible sides (core/surface.cc): weights from the central tangents.
+          V ray[3] = {centre[0], centre[1], centre[2]};
+          ScaleToUnitMax(d, ray[0], ray[1], ray[2]);
+          const V ray_length = hn::Sqrt(hn::Add(
+              hn::Add(hn::Mul(ray[0], ray[0]), hn::Mul(ray[1], ray[1])), hn::Mul(ray[2], ray[2])));
+          const M seen = hn::Gt(ray_length, zero);
+          const M a_central = hn::And(seen, hn::And(has_left, has_right));
+          const M b_central = hn::And(seen, hn::And(has_below, has_above));
+          auto weighed_a = a, weighed_b = b;
+          if (!hn::AllFalse(d, a_central)) {
+            const auto minus = SideDifference(d, left, centre);
+            const auto plus = SideDifference(d, centre, right);
+            WeighSides(d, a_central, weighed_a, minus,
+                       FacingWeight(d, minus, b, ray, ray_length, inv_facing, least), plus,
+                       FacingWeight(d, plus, b, ray, ray_length, inv_facing, least));
+          }
+          if (!hn::AllFalse(d, b_central)) {
+            const auto minus = SideDifference(d, below, centre);
+            const auto plus = SideDifference(d, centre, above);
+            WeighSides(d, b_central, weighed_b, minus,
+                       FacingWeight(d, a, minus, ray, ray_length, inv_facing, least), plus,
+                       FacingWeight(d, a, plus, ray, ray_length, inv_facing, least));
+          }
+          a = weighed_a;
+          b = weighed_b;
+        }
         const V a_sq = hn::Add(hn::Mul(a.x, a.x), hn::Mul(a.z, a.z));
         const V b_sq = hn::Add(hn::Mul(b.x, b.x), hn::Mul(b.z, b.z));
         const V det = hn::Sub(hn::Mul(a.x, b.z), hn::Mul(a.z, b.x));

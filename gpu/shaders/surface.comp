@@ -59,6 +59,56 @@ Tangent axis_tangent(int minus, int c, int plus) {
   return t;
 }
 
+// (x, h, z) scaled by 1 / max(|x|, |h|, |z|) where that is > 0.
+void scale_to_unit_max(inout float x, inout float h, inout float z) {
+  const float largest = abs_max3(abs(x), abs(h), abs(z));
+  if (largest > 0.0) {
+    x = divide(x, largest);
+    h = divide(h, largest);
+    z = divide(z, largest);
+  }
+}
+
+// p[to] - p[from], scaled (core/surface.cc, side_difference).
+Tangent side_difference(int from, int to) {
+  precise float x = in_dx[to] - in_dx[from];
+  precise float h = in_height[to] - in_height[from];
+  precise float z = in_dz[to] - in_dz[from];
+  scale_to_unit_max(x, h, z);
+  return Tangent(x, h, z, true);
+}
+
+// How much the patch of u (along i) and w (along j) faces the eye, along `ray` (scaled) of
+// length ray_length (core/surface.cc, facing_weight).
+float facing_weight(Tangent u, Tangent w, vec3 ray, float ray_length) {
+  precise float nx = -(u.h * w.z - u.z * w.h);
+  precise float ny = u.x * w.z - u.z * w.x;
+  precise float nz = -(u.x * w.h - u.h * w.x);
+  precise float up = ny > 0.0 ? 1.0 : -1.0;
+  precise float facing = -((nx * ray.x + ny * ray.y) + nz * ray.z) * up;
+  precise float length = square_root((nx * nx + ny * ny) + nz * nz) * ray_length;
+  if (!(length > 0.0)) {
+    return 1.0;
+  }
+  precise float weight = divide(facing, length) * surface.inv_silhouette_facing;
+  const float least = surface.hidden_side_weight;
+  return weight < least ? least : (weight > 1.0 ? 1.0 : weight);
+}
+
+// core/surface.cc, weigh_sides.
+Tangent weigh_sides(Tangent t, Tangent minus, float w_minus, Tangent plus, float w_plus) {
+  if (w_minus == 1.0 && w_plus == 1.0) {
+    return t;
+  }
+  precise float x = w_minus * minus.x + w_plus * plus.x;
+  precise float h = w_minus * minus.h + w_plus * plus.h;
+  precise float z = w_minus * minus.z + w_plus * plus.z;
+  scale_to_unit_max(x, h, z);
+  return Tangent(x, h, z, t.present);
+}
+
+bool valid_at(int n) { return n >= 0 && RELIEF_BYTE(in_valid, n) != 0u; }
+
 int index_or_none(int i, int j) {
   if (i < 0 || i >= surface.width || j < 0 || j >= surface.height) {
     return -1;
@@ -76,8 +126,31 @@ void main() {
   precise float nx_out = 0.0, ny_out = 1.0, nz_out = 0.0, slope = 0.0, water_depth = 0.0;
   const bool drawn = use_need == 0 || (RELIEF_BYTE(in_need, k) & RELIEF_NEED_DRAW) != 0u;
   if (i < surface.width && RELIEF_BYTE(in_valid, k) != 0u && drawn) {
-    const Tangent a = axis_tangent(index_or_none(i - 1, j), k, index_or_none(i + 1, j));
-    const Tangent b = axis_tangent(index_or_none(i, j - 1), k, index_or_none(i, j + 1));
+    const int left = index_or_none(i - 1, j), right = index_or_none(i + 1, j);
+    const int below = index_or_none(i, j - 1), above = index_or_none(i, j + 1);
+    Tangent a = axis_tangent(left, k, right);
+    Tangent b = axis_tangent(below, k, above);
+    // Visible sides (core/surface.cc): each half of a central difference weighted by how much
+    // its side faces the eye, the weights formed from the central tangents.
+    float ray_x = in_dx[k], ray_h = in_height[k], ray_z = in_dz[k];
+    scale_to_unit_max(ray_x, ray_h, ray_z);
+    const vec3 ray = vec3(ray_x, ray_h, ray_z);
+    precise float ray_length = square_root((ray_x * ray_x + ray_h * ray_h) + ray_z * ray_z);
+    if (ray_length > 0.0) {
+      Tangent weighed_a = a, weighed_b = b;
+      if (valid_at(left) && valid_at(right)) {
+        const Tangent minus = side_difference(left, k), plus = side_difference(k, right);
+        weighed_a = weigh_sides(a, minus, facing_weight(minus, b, ray, ray_length), plus,
+                                facing_weight(plus, b, ray, ray_length));
+      }
+      if (valid_at(below) && valid_at(above)) {
+        const Tangent minus = side_difference(below, k), plus = side_difference(k, above);
+        weighed_b = weigh_sides(b, minus, facing_weight(a, minus, ray, ray_length), plus,
+                                facing_weight(a, plus, ray, ray_length));
+      }
+      a = weighed_a;
+      b = weighed_b;
+    }
     // Unnormalised normal (-gx, 1, -gz) scaled by a positive factor: |det| for the 2x2 solve
     // (no division), |a|^2 for the one-axis least-norm gradient.
     precise float a_sq = a.x * a.x + a.z * a.z;

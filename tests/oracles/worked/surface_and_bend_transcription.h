@@ -1,6 +1,7 @@
 // Stage 4's normal and the planet's bend re-implemented from the text of the docs, not from the
 // code: docs/architecture.md, "Stage 4, operation by operation" (the branch of a vertex with
-// four valid neighbours: both tangents central), and docs/planet.md, "The bend and the normals'
+// four valid neighbours, each side facing the eye by at least 1/4 so that "Visible sides"
+// leaves both tangents central), and docs/planet.md, "The bend and the normals'
 // rotation, operation by operation" (bend_vertices of a valid vertex, bend_normals off the
 // nadir). tests/oracles/worked/worked_numbers.cc traces them to print those sections' worked
 // numbers and compares them bit for bit with relief::surface_pass, relief::bend_vertices and

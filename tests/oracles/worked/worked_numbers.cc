@@ -218,6 +218,11 @@ void normal_case(const char* title) {
   p.water_level = 0;
   p.min_sine_sq = Real(1e-6 * 1e-6);
   p.max_slope = Real(1e6);
+  // Visible sides (docs/architecture.md): w_facing = 4, w_least = 1/32. Seen from 650 units
+  // above, every side of this vertex faces the eye by far more than 1/4: all weights are 1
+  // and the difference is the plain central one that spec_normal transcribes.
+  p.inv_silhouette_facing = Real(4);
+  p.hidden_side_weight = Real(1.0 / 32);
   surface_pass<Real>(p, RowRange{0, H}, SurfaceInputs<Real>{g.dx, g.dz, g.height, g.valid, {}},
                      g.surface());
   const std::size_t c = layout.index(1, 1);
