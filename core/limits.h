@@ -298,7 +298,7 @@ inline constexpr double kMinTangentSine = 1e-6;
 inline constexpr double kMaxSlope = 1e6;
 // A side of a vertex whose patch faces the eye less than this (the cosine between its upward
 // normal and the direction to the eye) weighs less in the vertex's difference, in proportion,
-// and nothing once hidden (core/surface.h, "Visible sides"). A power of two's inverse: the
+// down to kHiddenSideWeight once hidden (core/surface.h, "Visible sides"). 1 / 4: the
 // weight is one exact product.
 inline constexpr double kSilhouetteFacing = 0.25;
 // The least weight of a side (core/surface.h, "Visible sides"): a hidden side keeps this

@@ -111,8 +111,8 @@
   F(Real, water_level, 0) E /* camera-relative */                                               \
   F(Real, min_sine_sq, 0) E /* kMinTangentSine^2 */                                             \
   F(Real, max_slope, 0) E /* kMaxSlope */                                                       \
-  F(Real, inv_silhouette_facing, 0) E /* 1 / kSilhouetteFacing */                               \
-  F(Real, hidden_side_weight, 0) E /* kHiddenSideWeight */
+  F(Real, inv_silhouette_facing, 4) E /* 1 / kSilhouetteFacing */                               \
+  F(Real, hidden_side_weight, 0.03125) E /* kHiddenSideWeight */
 
 // TransformParams<Real>, stage 5: the rows of the view-projection matrix.
 #define RELIEF_TRANSFORM_PARAMS_FIELDS(F, A, E)                                                 \

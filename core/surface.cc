@@ -52,16 +52,24 @@ Tangent<Real> axis_tangent(const SurfaceInputs<Real>& in, std::ptrdiff_t minus, 
   return t;
 }
 
-// p[to] - p[from], scaled to a largest component of 1.
+// p[to] - p[from] as it is (for the weighted sum) and scaled to a largest component of 1 (for
+// its side's facing weight, whatever the grid's spacing).
 template <class Real>
-Tangent<Real> side_difference(const SurfaceInputs<Real>& in, std::size_t from, std::size_t to) {
-  Tangent<Real> t;
-  t.x = in.dx[to] - in.dx[from];
-  t.h = in.height[to] - in.height[from];
-  t.z = in.dz[to] - in.dz[from];
-  scale_to_unit_max(t.x, t.h, t.z);
-  t.present = true;
-  return t;
+struct SideDifference {
+  Tangent<Real> raw, scaled;
+};
+
+template <class Real>
+SideDifference<Real> side_difference(const SurfaceInputs<Real>& in, std::size_t from,
+                                     std::size_t to) {
+  SideDifference<Real> d;
+  d.raw.x = in.dx[to] - in.dx[from];
+  d.raw.h = in.height[to] - in.height[from];
+  d.raw.z = in.dz[to] - in.dz[from];
+  d.raw.present = true;
+  d.scaled = d.raw;
+  scale_to_unit_max(d.scaled.x, d.scaled.h, d.scaled.z);
+  return d;
 }
 
 // The direction from the eye to the vertex (camera-relative position, scaled) and its length.
@@ -91,17 +99,35 @@ Real facing_weight(const Tangent<Real>& u, const Tangent<Real>& w, const EyeRay<
 }
 
 // A central difference's two halves weighted by their sides' facing weights (each in
-// [kHiddenSideWeight, 1]); unchanged where both weigh 1 (the plain central difference).
+// [kHiddenSideWeight, 1]) and summed as they are, then scaled: equal weights give the central
+// difference's direction, so the result is continuous in the weights; unchanged where both
+// weigh 1 (the plain central difference, bit for bit).
 template <class Real>
-void weigh_sides(Tangent<Real>& t, const Tangent<Real>& minus, Real w_minus,
-                 const Tangent<Real>& plus, Real w_plus) {
+void weigh_sides(Tangent<Real>& t, const SideDifference<Real>& minus, Real w_minus,
+                 const SideDifference<Real>& plus, Real w_plus) {
   if (w_minus == Real(1) && w_plus == Real(1)) {
     return;
   }
-  t.x = w_minus * minus.x + w_plus * plus.x;
-  t.h = w_minus * minus.h + w_plus * plus.h;
-  t.z = w_minus * minus.z + w_plus * plus.z;
+  t.x = w_minus * minus.raw.x + w_plus * plus.raw.x;
+  t.h = w_minus * minus.raw.h + w_plus * plus.raw.h;
+  t.z = w_minus * minus.raw.z + w_plus * plus.raw.z;
   scale_to_unit_max(t.x, t.h, t.z);
+}
+
+// The visible sides of one axis: `t` reweighted from the vertices before and after c along
+// it. `other` is the other axis's central tangent; the patch of a side is (side, other) along
+// i and (other, side) along j.
+template <class Real>
+void weigh_axis(const SurfaceParams<Real>& p, const SurfaceInputs<Real>& in, std::size_t before,
+                std::size_t c, std::size_t after, const Tangent<Real>& other, bool along_i,
+                const EyeRay<Real>& ray, Tangent<Real>& t) {
+  const SideDifference<Real> minus = side_difference(in, before, c);
+  const SideDifference<Real> plus = side_difference(in, c, after);
+  const auto weight = [&](const Tangent<Real>& side) {
+    return along_i ? facing_weight(side, other, ray, p.inv_silhouette_facing, p.hidden_side_weight)
+                   : facing_weight(other, side, ray, p.inv_silhouette_facing, p.hidden_side_weight);
+  };
+  weigh_sides(t, minus, weight(minus.scaled), plus, weight(plus.scaled));
 }
 
 }  // namespace
@@ -145,25 +171,17 @@ void surface_pass(const SurfaceParams<Real>& p, RowRange rows, SurfaceInputs<Rea
       scale_to_unit_max(ray.x, ray.h, ray.z);
       ray.length = std::sqrt((ray.x * ray.x + ray.h * ray.h) + ray.z * ray.z);
       if ((a_central || b_central) && ray.length > Real(0)) {
-        Tangent<Real> weighed_a = a, weighed_b = b;
+        Tangent<Real> weighted_a = a, weighted_b = b;
         if (a_central) {
-          const auto minus = side_difference(in, static_cast<std::size_t>(left), k);
-          const auto plus = side_difference(in, k, static_cast<std::size_t>(right));
-          weigh_sides(weighed_a, minus,
-                      facing_weight(minus, b, ray, p.inv_silhouette_facing, p.hidden_side_weight),
-                      plus,
-                      facing_weight(plus, b, ray, p.inv_silhouette_facing, p.hidden_side_weight));
+          weigh_axis(p, in, static_cast<std::size_t>(left), k, static_cast<std::size_t>(right), b,
+                     true, ray, weighted_a);
         }
         if (b_central) {
-          const auto minus = side_difference(in, static_cast<std::size_t>(below), k);
-          const auto plus = side_difference(in, k, static_cast<std::size_t>(above));
-          weigh_sides(weighed_b, minus,
-                      facing_weight(a, minus, ray, p.inv_silhouette_facing, p.hidden_side_weight),
-                      plus,
-                      facing_weight(a, plus, ray, p.inv_silhouette_facing, p.hidden_side_weight));
+          weigh_axis(p, in, static_cast<std::size_t>(below), k, static_cast<std::size_t>(above), a,
+                     false, ray, weighted_b);
         }
-        a = weighed_a;
-        b = weighed_b;
+        a = weighted_a;
+        b = weighted_b;
       }
       // Unnormalised normal (-gx, 1, -gz) scaled by a positive factor: by |det| for the 2x2
       // solve (no division), by |a|^2 for the one-axis least-norm gradient.

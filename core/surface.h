@@ -14,7 +14,7 @@
 // cross product of a regular grid (same normal, plus the slope directly).
 // Visible sides: where one side of a vertex faces the eye by a cosine below kSilhouetteFacing
 // (a crest seen against what lies behind it), that side's half of the central difference
-// weighs in proportion, and nothing once hidden; otherwise a silhouette's normal leans towards
+// weighs in proportion, and 1/32 once hidden; otherwise a silhouette's normal leans towards
 // the hidden far slope and the silhouette is lit as that slope (1-px dark lines along ridges).
 // Continuous as a side turns away; the plain central difference wherever both sides face the
 // eye (docs/architecture.md, "Stage 4, operation by operation").

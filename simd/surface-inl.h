@@ -63,13 +63,20 @@ HWY_INLINE LaneTangent<D> AxisTangent(D d, const V centre[3], const V minus[3], 
   return {t[0], t[1], t[2], hn::Or(has_minus, has_plus)};
 }
 
-// to - from, scaled (core/surface.cc, side_difference).
+// to - from as it is and scaled (core/surface.cc, side_difference).
+template <class D>
+struct LaneSideDifference {
+  LaneTangent<D> raw, scaled;
+};
+
 template <class D, class V = hn::Vec<D>>
-HWY_INLINE LaneTangent<D> SideDifference(D d, const V from[3], const V to[3]) {
-  LaneTangent<D> t{hn::Sub(to[0], from[0]), hn::Sub(to[1], from[1]), hn::Sub(to[2], from[2]),
-                   hn::FirstN(d, 0)};
-  ScaleToUnitMax(d, t.x, t.h, t.z);
-  return t;
+HWY_INLINE LaneSideDifference<D> SideDifference(D d, const V from[3], const V to[3]) {
+  LaneSideDifference<D> s;
+  s.raw = {hn::Sub(to[0], from[0]), hn::Sub(to[1], from[1]), hn::Sub(to[2], from[2]),
+           hn::FirstN(d, 0)};
+  s.scaled = s.raw;
+  ScaleToUnitMax(d, s.scaled.x, s.scaled.h, s.scaled.z);
+  return s;
 }
 
 // core/surface.cc, facing_weight: u along i, w along j; ray scaled, with its length.
@@ -95,21 +102,40 @@ HWY_INLINE V FacingWeight(D d, const LaneTangent<D>& u, const LaneTangent<D>& w,
 
 // core/surface.cc, weigh_sides, where `central` holds.
 template <class D, class M = hn::Mask<D>, class V = hn::Vec<D>>
-HWY_INLINE void WeighSides(D d, M central, LaneTangent<D>& t, const LaneTangent<D>& minus,
-                           V w_minus, const LaneTangent<D>& plus, V w_plus) {
+HWY_INLINE void WeighSides(D d, M central, LaneTangent<D>& t, const LaneSideDifference<D>& minus,
+                           V w_minus, const LaneSideDifference<D>& plus, V w_plus) {
   const V one = hn::Set(d, 1.0f);
   const M unchanged = hn::And(hn::Eq(w_minus, one), hn::Eq(w_plus, one));
   const M change = hn::AndNot(unchanged, central);
   if (hn::AllFalse(d, change)) {
     return;
   }
-  V x = hn::Add(hn::Mul(w_minus, minus.x), hn::Mul(w_plus, plus.x));
-  V h = hn::Add(hn::Mul(w_minus, minus.h), hn::Mul(w_plus, plus.h));
-  V z = hn::Add(hn::Mul(w_minus, minus.z), hn::Mul(w_plus, plus.z));
+  V x = hn::Add(hn::Mul(w_minus, minus.raw.x), hn::Mul(w_plus, plus.raw.x));
+  V h = hn::Add(hn::Mul(w_minus, minus.raw.h), hn::Mul(w_plus, plus.raw.h));
+  V z = hn::Add(hn::Mul(w_minus, minus.raw.z), hn::Mul(w_plus, plus.raw.z));
   ScaleToUnitMax(d, x, h, z);
   t.x = hn::IfThenElse(change, x, t.x);
   t.h = hn::IfThenElse(change, h, t.h);
   t.z = hn::IfThenElse(change, z, t.z);
+}
+
+// The visible sides of one axis (core/surface.cc): `t` reweighted from the points before and
+// after the vertex, where `central` holds. `other` is the other axis's central tangent; the
+// patch of a side is (side, other) along i and (other, side) along j.
+template <class D, class M = hn::Mask<D>, class V = hn::Vec<D>>
+HWY_INLINE void WeighAxis(D d, M central, bool along_i, LaneTangent<D>& t, const V before[3],
+                          const V centre[3], const V after[3], const LaneTangent<D>& other,
+                          const V ray[3], V ray_length, V inv_facing, V least) {
+  if (hn::AllFalse(d, central)) {
+    return;
+  }
+  const auto minus = SideDifference(d, before, centre);
+  const auto plus = SideDifference(d, centre, after);
+  const auto weight = [&](const LaneTangent<D>& side) {
+    return along_i ? FacingWeight(d, side, other, ray, ray_length, inv_facing, least)
+                   : FacingWeight(d, other, side, ray, ray_length, inv_facing, least);
+  };
+  WeighSides(d, central, t, minus, weight(minus.scaled), plus, weight(plus.scaled));
 }
 
 void SurfaceRows(const SurfaceParams<float>& p, RowRange rows, SurfaceInputs<float> in,
@@ -194,23 +220,13 @@ void SurfaceRows(const SurfaceParams<float>& p, RowRange rows, SurfaceInputs<flo
           const M seen = hn::Gt(ray_length, zero);
           const M a_central = hn::And(seen, hn::And(has_left, has_right));
           const M b_central = hn::And(seen, hn::And(has_below, has_above));
-          auto weighed_a = a, weighed_b = b;
-          if (!hn::AllFalse(d, a_central)) {
-            const auto minus = SideDifference(d, left, centre);
-            const auto plus = SideDifference(d, centre, right);
-            WeighSides(d, a_central, weighed_a, minus,
-                       FacingWeight(d, minus, b, ray, ray_length, inv_facing, least), plus,
-                       FacingWeight(d, plus, b, ray, ray_length, inv_facing, least));
-          }
-          if (!hn::AllFalse(d, b_central)) {
-            const auto minus = SideDifference(d, below, centre);
-            const auto plus = SideDifference(d, centre, above);
-            WeighSides(d, b_central, weighed_b, minus,
-                       FacingWeight(d, a, minus, ray, ray_length, inv_facing, least), plus,
-                       FacingWeight(d, a, plus, ray, ray_length, inv_facing, least));
-          }
-          a = weighed_a;
-          b = weighed_b;
+          auto weighted_a = a, weighted_b = b;
+          WeighAxis(d, a_central, true, weighted_a, left, centre, right, b, ray, ray_length,
+                    inv_facing, least);
+          WeighAxis(d, b_central, false, weighted_b, below, centre, above, a, ray, ray_length,
+                    inv_facing, least);
+          a = weighted_a;
+          b = weighted_b;
         }
         const V a_sq = hn::Add(hn::Mul(a.x, a.x), hn::Mul(a.z, a.z));
         const V b_sq = hn::Add(hn::Mul(b.x, b.x), hn::Mul(b.z, b.z));

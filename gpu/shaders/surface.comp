@@ -69,11 +69,17 @@ void scale_to_unit_max(inout float x, inout float h, inout float z) {
   }
 }
 
-// p[to] - p[from], scaled (core/surface.cc, side_difference).
+// p[to] - p[from] (core/surface.cc, side_difference: the weighted sum takes it as it is, the
+// facing weight scaled).
 Tangent side_difference(int from, int to) {
   precise float x = in_dx[to] - in_dx[from];
   precise float h = in_height[to] - in_height[from];
   precise float z = in_dz[to] - in_dz[from];
+  return Tangent(x, h, z, true);
+}
+
+Tangent scaled(Tangent t) {
+  float x = t.x, h = t.h, z = t.z;
   scale_to_unit_max(x, h, z);
   return Tangent(x, h, z, true);
 }
@@ -95,7 +101,7 @@ float facing_weight(Tangent u, Tangent w, vec3 ray, float ray_length) {
   return weight < least ? least : (weight > 1.0 ? 1.0 : weight);
 }
 
-// core/surface.cc, weigh_sides.
+// core/surface.cc, weigh_sides: the halves as they are, summed, then scaled.
 Tangent weigh_sides(Tangent t, Tangent minus, float w_minus, Tangent plus, float w_plus) {
   if (w_minus == 1.0 && w_plus == 1.0) {
     return t;
@@ -137,19 +143,19 @@ void main() {
     const vec3 ray = vec3(ray_x, ray_h, ray_z);
     precise float ray_length = square_root((ray_x * ray_x + ray_h * ray_h) + ray_z * ray_z);
     if (ray_length > 0.0) {
-      Tangent weighed_a = a, weighed_b = b;
+      Tangent weighted_a = a, weighted_b = b;
       if (valid_at(left) && valid_at(right)) {
         const Tangent minus = side_difference(left, k), plus = side_difference(k, right);
-        weighed_a = weigh_sides(a, minus, facing_weight(minus, b, ray, ray_length), plus,
-                                facing_weight(plus, b, ray, ray_length));
+        weighted_a = weigh_sides(a, minus, facing_weight(scaled(minus), b, ray, ray_length), plus,
+                                 facing_weight(scaled(plus), b, ray, ray_length));
       }
       if (valid_at(below) && valid_at(above)) {
         const Tangent minus = side_difference(below, k), plus = side_difference(k, above);
-        weighed_b = weigh_sides(b, minus, facing_weight(a, minus, ray, ray_length), plus,
-                                facing_weight(a, plus, ray, ray_length));
+        weighted_b = weigh_sides(b, minus, facing_weight(a, scaled(minus), ray, ray_length), plus,
+                                 facing_weight(a, scaled(plus), ray, ray_length));
       }
-      a = weighed_a;
-      b = weighed_b;
+      a = weighted_a;
+      b = weighted_b;
     }
     // Unnormalised normal (-gx, 1, -gz) scaled by a positive factor: |det| for the 2x2 solve
     // (no division), |a|^2 for the one-axis least-norm gradient.
