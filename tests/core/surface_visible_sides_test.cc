@@ -4,7 +4,6 @@
 // and the Highway kernel against the reference on every target.
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
 #include <functional>
 #include <string>
@@ -16,6 +15,7 @@
 #include "core/limits.h"
 #include "core/surface.h"
 #include "simd/surface.h"
+#include "tests/simd/kernel_ranges.h"
 #include "tests/support/simd_targets.h"
 #include "tests/support/test_support.h"
 
@@ -219,39 +219,31 @@ TEMPLATE_TEST_CASE("theNormalTurnsContinuouslyAsTheFarSideSinksOutOfSight", "[su
   CHECK(largest_change < 0.01);
 }
 
-bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
-  if (a.size() != b.size()) {
-    return false;
-  }
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    if (std::bit_cast<std::uint32_t>(a[k]) != std::bit_cast<std::uint32_t>(b[k])) {
-      return false;
-    }
-  }
-  return true;
-}
-
-TEST_CASE("simdVisibleSidesAreBitIdenticalToTheReferenceOnEveryTarget", "[simd][surface]") {
-  // Rough terrain close below the eye: many sides face it at grazing angles or not at all.
+// Rough terrain close below the eye, 41 x 33 vertices with a tenth of them holes (invalid, as
+// stage 3 leaves them): many sides face the eye at grazing angles or not at all, and every
+// neighbour case of the weighting occurs. Positions times `scale`.
+template <class Real>
+SyntheticGrid<Real> rough_grid(double scale = 1.0) {
   test::TestRandom random(23);
   std::vector<double> bumps(41 * 33);
   for (double& b : bumps) {
     b = random.uniform(-3, 3);
   }
-  // Holes (invalid vertices), as stage 3 leaves them: every neighbour case of the weighting.
-  std::vector<std::uint8_t> hole(41 * 33);
-  for (auto& h : hole) {
-    h = random.uniform(0, 1) < 0.1 ? 1 : 0;
-  }
-  const auto grid = [&] {
-    SyntheticGrid<float> g(41, 33, [&](int i, int j) { return -4.0 + bumps[j * 41 + i]; });
-    for (int j = 0; j < g.height; ++j) {
-      for (int i = 0; i < g.width; ++i) {
-        g.valid[g.index(i, j)] = hole[std::size_t(j) * 41 + i] ? 0 : 1;
-      }
+  SyntheticGrid<Real> g(41, 33, [&](int i, int j) { return -4.0 + bumps[j * 41 + i]; });
+  for (int j = 0; j < g.height; ++j) {
+    for (int i = 0; i < g.width; ++i) {
+      const std::size_t k = g.index(i, j);
+      g.valid[k] = random.uniform(0, 1) < 0.1 ? 0 : 1;
+      g.dx[k] = g.dx[k] * Real(scale);
+      g.dz[k] = g.dz[k] * Real(scale);
+      g.h[k] = g.h[k] * Real(scale);
     }
-    return g;
-  };
+  }
+  return g;
+}
+
+TEST_CASE("simdVisibleSidesAreBitIdenticalToTheReferenceOnEveryTarget", "[simd][surface]") {
+  const auto grid = [] { return rough_grid<float>(); };
   SyntheticGrid<float> expected = grid();
   expected.run();
   // Independently of the code: the vertices whose normal is not the central difference's
@@ -280,10 +272,64 @@ TEST_CASE("simdVisibleSidesAreBitIdenticalToTheReferenceOnEveryTarget", "[simd][
     SyntheticGrid<float> got = grid();
     simd::surface_pass(got.params(), RowRange{0, got.height}, got.inputs(), got.outputs());
     INFO(target);
-    CHECK(same_bits(got.nx, expected.nx));
-    CHECK(same_bits(got.ny, expected.ny));
-    CHECK(same_bits(got.nz, expected.nz));
-    CHECK(same_bits(got.slope, expected.slope));
+    CHECK(test::same_bits(got.nx, expected.nx));
+    CHECK(test::same_bits(got.ny, expected.ny));
+    CHECK(test::same_bits(got.nz, expected.nz));
+    CHECK(test::same_bits(got.slope, expected.slope));
+  }
+}
+
+TEMPLATE_TEST_CASE("visibleSidesGiveTheSameNormalsAtAnyPowerOfTwoScale", "[surface]", float,
+                   double) {
+  // Every difference is scaled to a largest component of 1 before it is multiplied, so a
+  // scene scaled by a power of two (exact in binary) down to spacings of 1e-18 or up to 1e18
+  // gives the same bits: no product underflows or overflows on the way.
+  SyntheticGrid<TestType> unit = rough_grid<TestType>();
+  unit.run();
+  for (const double scale : {0x1p-60, 0x1p-20, 0x1p20, 0x1p60}) {
+    SyntheticGrid<TestType> scaled = rough_grid<TestType>(scale);
+    scaled.run();
+    INFO("scale " << scale);
+    CHECK(test::same_bits(scaled.nx, unit.nx));
+    CHECK(test::same_bits(scaled.ny, unit.ny));
+    CHECK(test::same_bits(scaled.nz, unit.nz));
+    CHECK(test::same_bits(scaled.slope, unit.slope));
+  }
+}
+
+TEMPLATE_TEST_CASE("degenerateSidesGiveAFiniteUpwardUnitNormal", "[surface]", float, double) {
+  // A neighbour on top of the vertex (a side of length 0), the vertex at the eye (no ray), a
+  // side straight down (a vertical patch, whose upward sign is a tie) and a side straight up:
+  // the weights' undefined cosines must leave a finite unit normal with ny > 0.
+  const std::vector<std::function<void(SyntheticGrid<TestType>&)>> cases = {
+      [](SyntheticGrid<TestType>& g) {
+        const std::size_t c = g.index(1, 1), n = g.index(1, 2);
+        g.dx[n] = g.dx[c], g.dz[n] = g.dz[c], g.h[n] = g.h[c];
+      },
+      [](SyntheticGrid<TestType>& g) {
+        const std::size_t c = g.index(1, 1);
+        g.dx[c] = g.dz[c] = g.h[c] = TestType(0);
+      },
+      [](SyntheticGrid<TestType>& g) {
+        const std::size_t c = g.index(1, 1), n = g.index(1, 2);
+        g.dx[n] = g.dx[c], g.dz[n] = g.dz[c], g.h[n] = g.h[c] - TestType(50);
+      },
+      [](SyntheticGrid<TestType>& g) {
+        const std::size_t c = g.index(1, 1), n = g.index(2, 1);
+        g.dx[n] = g.dx[c], g.dz[n] = g.dz[c], g.h[n] = g.h[c] + TestType(50);
+      },
+  };
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    SyntheticGrid<TestType> grid(3, 3, [](int, int j) { return ridge(j, -8.0); });
+    cases[k](grid);
+    grid.run();
+    const auto n = grid.normal(1, 1);
+    INFO("case " << k << ": normal " << n[0] << ", " << n[1] << ", " << n[2]);
+    CHECK(std::isfinite(n[0]));
+    CHECK(std::isfinite(n[2]));
+    CHECK(n[1] > 0);
+    CHECK(std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) == Approx(1.0).margin(1e-6));
+    CHECK(std::isfinite(grid.slope[grid.index(1, 1)]));
   }
 }
 
