@@ -39,6 +39,12 @@ TerrainPlan make_terrain_plan(const TerrainSettings& settings, const NoiseLattic
   plan.lattice = &lattice;
   plan.interpolant = terrain.interpolant;
   plan.octaves = make_octave_table(terrain, lattice.size, camera_position);
+  if (!fractal_enabled(terrain)) {
+    // A height field without the fractal: stage 3 sums no octave, every backend's loop over
+    // them runs zero times and leaves base - camera_y (the skip the --stats octave counter
+    // shows); the LOD plan keeps its range, so stage 2 is unchanged.
+    plan.octaves.count = 0;
+  }
   plan.inv_horizontal_scale = 1.0 / terrain.horizontal_scale;
   plan.relative_base_height = terrain.base_height - camera_position[1];
   plan.amplitude = terrain.amplitude;
@@ -59,19 +65,19 @@ TerrainPlan make_terrain_plan(const TerrainSettings& settings, const NoiseLattic
   warp.roughness0 = std::pow(terrain.r, terrain.H);
   warp.lacunarity = terrain.r;
   warp.guard_sq = limits::kRoughnessGuard * limits::kRoughnessGuard;
-  if (terrain.sketch && sketch != nullptr) {
+  if (const SketchSettings* field = added_height_field(terrain); field && sketch != nullptr) {
     plan.sketch = sketch;
-    plan.sketch_plan =
-        make_sketch_plan(*terrain.sketch, *sketch, camera_position[0], camera_position[2]);
+    plan.sketch_plan = make_sketch_plan(*field, *sketch, camera_position[0], camera_position[2]);
   }
   return plan;
 }
 
 FramePlan make_frame_plan(const Scene& scene, const NoiseLattice& lattice,
                           const HeightSketch* sketch, const ParallelRows& parallel) {
-  if (scene.terrain.sketch && sketch == nullptr) {
+  if (added_height_field(scene.terrain) != nullptr && sketch == nullptr) {
     throw std::invalid_argument(
-        "make_frame_plan: the scene has a terrain.sketch but no sketch was loaded for it");
+        "make_frame_plan: the scene has a terrain.sketch or terrain.heightfield but no field "
+        "was loaded for it");
   }
   FramePlan plan;
   plan.camera = make_camera_frame(scene.camera, scene.viewport);

@@ -74,8 +74,8 @@ struct FramePlan {
 // Precondition: the scene passed validate_scene and `lattice` is stage 3's grid: the noise
 // lattice built from its seed and lattice_size, or with terrain.basis the composed grid of its
 // images (core/basis_images.h), whose side and tile_size then set the period and the cell; `sketch`
-// was loaded from scene.terrain.sketch (pipeline/scene_resources.h). Throws std::invalid_argument
-// when the scene has a sketch and `sketch` is null (a caller that forgot it would otherwise render
+// was loaded from scene.terrain.sketch or .heightfield (pipeline/scene_resources.h). Throws
+// std::invalid_argument when the scene has either and `sketch` is null (a caller that forgot it would otherwise render
 // another terrain). `parallel` runs the projector's refinement (projector.h), the same plan
 // whoever runs it.
 FramePlan make_frame_plan(const Scene& scene, const NoiseLattice& lattice,

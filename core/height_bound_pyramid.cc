@@ -259,6 +259,9 @@ ValueRange RegionalHeightBound::bound(double x0, double x1, double z0, double z1
       radius = w.lacunarity * grow * (radius * grow + c3 * h_max * g * grow);
     }
   }
+  if (o.count == 0) {  // a height field without the fractal: the sum is 0
+    lowest = highest = 0.0;
+  }
   return with_sketch({terrain_.relative_base_height + terrain_.amplitude * lowest - height_slack_,
                       terrain_.relative_base_height + terrain_.amplitude * highest + height_slack_},
                      x0, x1, z0, z1);
@@ -284,6 +287,9 @@ ValueRange RegionalHeightBound::global() const {
     hi += o.amplitude[n] * pyramid_.global_hi;
     lowest = std::min(lowest, lo);
     highest = std::max(highest, hi);
+  }
+  if (o.count == 0) {  // a height field without the fractal: the sum is 0
+    lowest = highest = 0.0;
   }
   ValueRange fractal{terrain_.relative_base_height + terrain_.amplitude * lowest - height_slack_,
                      terrain_.relative_base_height + terrain_.amplitude * highest + height_slack_};

@@ -7,7 +7,9 @@
 //   sum_k a_k min(Lmin, 0) <= fBm <= sum_k a_k max(Lmax, 0),   k = k0 .. k1.
 // §3's sketch adds a convex combination of its texels (height_sketch.h): the world bounds grow
 // by the texels' extremes, widened by kHeightBoundSlack of their magnitude for float's rounding.
-// Domain warping moves where S is sampled, never its range, so the bound holds warped too.
+// Domain warping moves where S is sampled, never its range, so the bound holds warped too. A
+// height field (terrain.heightfield) is such a sketch; without its fractal no octave is summed
+// and the fBm bound is [0, 0].
 #pragma once
 
 #include "core/height_sketch.h"

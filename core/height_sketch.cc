@@ -7,6 +7,57 @@
 
 namespace relief {
 
+namespace {
+
+// One level of block extremes from the texels (block_side kFirstBlockSide) or from the level
+// below (twice its side: 2 x 2 of its blocks).
+HeightBlockLevel coarser_level(const HeightSketch& sketch, const HeightBlockLevel* finer) {
+  HeightBlockLevel level;
+  const int step = finer == nullptr ? HeightSketch::kFirstBlockSide : 2;
+  const int source_width = finer == nullptr ? sketch.width : finer->width;
+  const int source_height = finer == nullptr ? sketch.height : finer->height;
+  level.block_side = finer == nullptr ? step : 2 * finer->block_side;
+  level.width = (source_width + step - 1) / step;
+  level.height = (source_height + step - 1) / step;
+  level.lo.resize(std::size_t(level.width) * std::size_t(level.height));
+  level.hi.resize(level.lo.size());
+  for (int bj = 0; bj < level.height; ++bj) {
+    for (int bi = 0; bi < level.width; ++bi) {
+      float lo = 0, hi = 0;
+      bool first = true;
+      for (int j = bj * step; j < std::min((bj + 1) * step, source_height); ++j) {
+        for (int i = bi * step; i < std::min((bi + 1) * step, source_width); ++i) {
+          const std::size_t k = std::size_t(j) * std::size_t(source_width) + std::size_t(i);
+          const float a = finer == nullptr ? sketch.heights[k] : finer->lo[k];
+          const float b = finer == nullptr ? sketch.heights[k] : finer->hi[k];
+          lo = first ? a : std::min(lo, a);
+          hi = first ? b : std::max(hi, b);
+          first = false;
+        }
+      }
+      level.lo[std::size_t(bj) * std::size_t(level.width) + std::size_t(bi)] = lo;
+      level.hi[std::size_t(bj) * std::size_t(level.width) + std::size_t(bi)] = hi;
+    }
+  }
+  return level;
+}
+
+// The extremes and the block levels of sketch.heights.
+void finish_height_sketch(HeightSketch& sketch) {
+  const auto [lowest, highest] = std::minmax_element(sketch.heights.begin(), sketch.heights.end());
+  sketch.min_height = *lowest;
+  sketch.max_height = *highest;
+  sketch.blocks.clear();
+  while (sketch.blocks.empty()
+             ? std::max(sketch.width, sketch.height) > HeightSketch::kFirstBlockSide
+             : std::max(sketch.blocks.back().width, sketch.blocks.back().height) > 1) {
+    sketch.blocks.push_back(
+        coarser_level(sketch, sketch.blocks.empty() ? nullptr : &sketch.blocks.back()));
+  }
+}
+
+}  // namespace
+
 HeightSketch make_height_sketch(const SketchSettings& settings, int width, int height,
                                 std::span<const std::uint16_t> grey, int max_grey) {
   HeightSketch sketch;
@@ -17,10 +68,22 @@ HeightSketch make_height_sketch(const SketchSettings& settings, int width, int h
   for (std::size_t k = 0; k < grey.size(); ++k) {
     sketch.heights[k] = static_cast<float>(lo + (hi - lo) * (double(grey[k]) / double(max_grey)));
   }
-  const auto [lowest, highest] = std::minmax_element(sketch.heights.begin(), sketch.heights.end());
-  sketch.min_height = *lowest;
-  sketch.max_height = *highest;
+  finish_height_sketch(sketch);
   return sketch;
+}
+
+HeightSketch make_height_field(const SketchSettings& settings, int width, int height,
+                               std::span<const float> values) {
+  HeightSketch field;
+  field.width = width;
+  field.height = height;
+  field.heights.resize(values.size());
+  const double lo = settings.height[0], hi = settings.height[1];
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    field.heights[k] = static_cast<float>(lo + (hi - lo) * double(values[k]));
+  }
+  finish_height_sketch(field);
+  return field;
 }
 
 SketchPlan make_sketch_plan(const SketchSettings& settings, const HeightSketch& sketch,
@@ -113,14 +176,32 @@ SketchRange sketch_range(const SketchPlan& plan, const HeightSketch& sketch, dou
   int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
   texels(plan.offset_x, plan.inv_cell_x, x0, x1, sketch.width, i0, i1);
   texels(plan.offset_z, plan.inv_cell_z, z0, z1, sketch.height, j0, j1);
-  // A region covering most of the sketch gets its global extremes (no scan of a large block).
-  if (std::int64_t(i1 - i0 + 1) * (j1 - j0 + 1) > 4096) {
-    return {sketch.min_height, sketch.max_height};
+  // A large region: the blocks of the finest level that covers it with at most kMaxScan of them
+  // (a superset of its texels, so still a bound), so that the cost does not grow with the field.
+  constexpr std::int64_t kMaxScan = 4096;
+  if (std::int64_t(i1 - i0 + 1) * (j1 - j0 + 1) > kMaxScan) {
+    for (const HeightBlockLevel& level : sketch.blocks) {
+      const int b0 = i0 / level.block_side, b1 = i1 / level.block_side;
+      const int c0 = j0 / level.block_side, c1 = j1 / level.block_side;
+      if (std::int64_t(b1 - b0 + 1) * (c1 - c0 + 1) > kMaxScan) {
+        continue;
+      }
+      float lo = level.lo[std::size_t(c0) * std::size_t(level.width) + std::size_t(b0)], hi = lo;
+      for (int c = c0; c <= c1; ++c) {
+        for (int b = b0; b <= b1; ++b) {
+          const std::size_t k = std::size_t(c) * std::size_t(level.width) + std::size_t(b);
+          lo = std::min(lo, level.lo[k]);
+          hi = std::max(hi, level.hi[k]);
+        }
+      }
+      return {lo, hi};
+    }
+    return {sketch.min_height, sketch.max_height};  // blocks not built (a hand-made sketch)
   }
-  float lo = sketch.heights[std::size_t(j0) * sketch.width + i0], hi = lo;
+  float lo = sketch.heights[std::size_t(j0) * std::size_t(sketch.width) + std::size_t(i0)], hi = lo;
   for (int j = j0; j <= j1; ++j) {
     for (int i = i0; i <= i1; ++i) {
-      const float v = sketch.heights[std::size_t(j) * sketch.width + i];
+      const float v = sketch.heights[std::size_t(j) * std::size_t(sketch.width) + std::size_t(i)];
       lo = std::min(lo, v);
       hi = std::max(hi, v);
     }

@@ -36,20 +36,42 @@
 
 namespace relief {
 
-// The texels, decoded once per scene (pipeline/scene_resources.h).
+// The extremes of square blocks of texels, for regional bounds over a large field: level L's
+// blocks are kFirstBlockSide 2^L texels a side (the last row and column of blocks cut by the
+// field's edge), block (bi, bj) at bj * width + bi.
+struct HeightBlockLevel {
+  int block_side = 0;         // texels a block spans along each axis
+  int width = 0, height = 0;  // blocks along x and z
+  std::vector<float> lo, hi;
+};
+
+// The texels, decoded once per scene (pipeline/scene_resources.h): §3's sketch or a height
+// field (terrain.heightfield), sampled alike.
 struct HeightSketch {
   int width = 0;   // texels along x (>= 2)
   int height = 0;  // texels along z (>= 2)
-  // World heights, row j (along z) at j * width: lo + (hi - lo) grey / max_grey formed in
-  // double and rounded once to float (exact in double: both precisions read the same values).
+  // World heights, row j (along z) at j * width: lo + (hi - lo) v for the stored value v (a
+  // level divided by its maximum, or a PFM's float) formed in double and rounded once to float
+  // (both precisions read the same values).
   std::vector<float> heights;
   float min_height = 0, max_height = 0;  // extremes of `heights`
+  // Block extremes, coarser level after level, until one block spans the field (none for a
+  // field of at most kFirstBlockSide texels a side): sketch_range's regional bounds in time
+  // independent of the region's size, for a twelfth of `heights`' memory.
+  std::vector<HeightBlockLevel> blocks;
+  static constexpr int kFirstBlockSide = 4;
 };
 
 // heights[k] = lo + (hi - lo) grey[k] / max_grey; grey has width x height values.
 // Precondition: validated settings (lo < hi finite), width, height >= 2, max_grey > 0.
 HeightSketch make_height_sketch(const SketchSettings& settings, int width, int height,
                                 std::span<const std::uint16_t> grey, int max_grey);
+
+// heights[k] = lo + (hi - lo) values[k] (a float file's samples).
+// Precondition: validated settings, width, height >= 2, every value finite and every mapped
+// height within +-limits::kMaxBaseHeight (the loader refuses others, naming the sample).
+HeightSketch make_height_field(const SketchSettings& settings, int width, int height,
+                               std::span<const float> values);
 
 // The frame's sketch values in double (per frame, from the camera position).
 struct SketchPlan {
@@ -97,8 +119,9 @@ void add_sketch(const SketchParams<Real>& c, std::span<const float> heights, Ind
                 std::span<const std::uint8_t> mask, std::span<Real> height);
 
 // Extremes of the sketch over camera-relative base points dx in [x0, x1], dz in [z0, z1]
-// (world heights, exact: the texels the interpolation can read there). Precondition: finite,
-// x0 <= x1, z0 <= z1.
+// (world heights: the texels the interpolation can read there, exact up to 4096 of them,
+// beyond that the extremes of the fewest blocks of one level covering them, at most 4096).
+// Precondition: finite, x0 <= x1, z0 <= z1.
 struct SketchRange {
   double lo = 0, hi = 0;
 };

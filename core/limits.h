@@ -113,6 +113,13 @@ inline constexpr int kMaxSketchSize = 4096;
 // then the per-frame texel offset, (camera - x0) x texels / side <= 2e12 x 4096 / 1e-3 = 8e18,
 // and its float rounding stay finite (docs/scene-limits.md).
 inline constexpr double kMinSketchSpan = 1e-3;
+// A height field (terrain.heightfield): 2 to 16385 samples a side (2^14 + 1, the largest
+// `relief generate` map), 1 GiB of float heights at most; the job's memory estimate counts it
+// before anything is read. Its file: a 16385^2 16-bit PNG stored uncompressed is 16385 rows of
+// 2 x 16385 + 1 bytes, 537 MB, plus zlib's and the chunks' framing (under 1 MB); a PFM is
+// 4 bytes a sample plus a header line or three.
+inline constexpr int kMaxHeightFieldSize = 16385;
+inline constexpr std::uintmax_t kMaxHeightFieldFileBytes = 1025u << 20;
 // §3 Eq. 2's basis images (terrain.basis): 1 to 4 images, each of one side P, a power of two
 // in the lattice's range (kMinLatticeSize..kMaxLatticeSize, after mirroring too), since the
 // composed grid takes the lattice's place in stage 3. tile_size / P is the octave-0 cell, so

@@ -163,6 +163,8 @@ void check_memory(const MemoryEstimate& estimate, const MemoryBudget& budget, st
       remedy = "The textures dominate: use smaller texture files or shading.texture_size" + tail;
     } else if (part == "height sketch") {
       remedy = "The height sketch dominates: use a smaller terrain.sketch.image" + tail;
+    } else if (part == "height field") {
+      remedy = "The height field dominates: use a smaller terrain.heightfield.file" + tail;
     }
   }
   throw MemoryLimitError(std::string(job) + " needs about " + estimate.describe() + "; " +

@@ -46,10 +46,11 @@ PngHeader png_header_or_throw(const std::vector<unsigned char>& bytes, const std
 
 std::vector<unsigned char> read_png_file(
     const std::string& file_name, const std::string& field, const std::string& path,
-    const std::function<void(const std::vector<unsigned char>&)>& check_header) {
+    const std::function<void(const std::vector<unsigned char>&)>& check_header,
+    std::uintmax_t max_bytes) {
   std::vector<unsigned char> bytes;
   try {
-    InputFile file(file_name, limits::kMaxTextureFileBytes);
+    InputFile file(file_name, max_bytes);
     bytes.resize(kPngHeaderBytes);
     bytes.resize(file.read(bytes.data(), bytes.size()));
     check_header(bytes);  // before the rest of the file is read
@@ -99,10 +100,11 @@ void check_png_image_data(const std::vector<unsigned char>& png, const std::stri
 }
 
 Grey16Image decode_grey16_png(const std::vector<unsigned char>& png, const std::string& field,
-                              const std::string& path) {
-  if (png.size() > limits::kMaxTextureFileBytes) {  // stb takes an int size
-    throw SceneError(path, "scene: " + field + " is larger than " +
-                               std::to_string(limits::kMaxTextureFileBytes) + " bytes");
+                              const std::string& path, std::uintmax_t max_bytes) {
+  static_assert(limits::kMaxHeightFieldFileBytes < (1u << 31), "stb takes an int size");
+  if (png.size() > max_bytes || png.size() > limits::kMaxHeightFieldFileBytes) {
+    throw SceneError(path,
+                     "scene: " + field + " is larger than " + std::to_string(max_bytes) + " bytes");
   }
   check_png_image_data(png, field, path);
   const PngHeader header = png_header_or_throw(png, field, path);
@@ -122,7 +124,7 @@ Grey16Image decode_grey16_png(const std::vector<unsigned char>& png, const std::
   return image;
 }
 
-PngPeek peek_png(const std::string& name) {
+PngPeek peek_png(const std::string& name, std::uintmax_t max_bytes) {
   static constexpr std::string_view kBuiltin = "builtin:";
   PngPeek peek;
   if (name.rfind(kBuiltin, 0) == 0) {
@@ -133,7 +135,7 @@ PngPeek peek_png(const std::string& name) {
     return peek;
   }
   try {
-    InputFile file(name, limits::kMaxTextureFileBytes);
+    InputFile file(name, max_bytes);
     unsigned char header[kPngHeaderBytes];
     peek.header = parse_png_header(header, file.read(header, sizeof header));
     peek.file_bytes = file.size();

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/limits.h"
 #include "image/png_header.h"
 
 namespace relief {
@@ -17,12 +18,13 @@ namespace relief {
 PngHeader png_header_or_throw(const std::vector<unsigned char>& bytes, const std::string& field,
                               const std::string& path);
 
-// The whole PNG file `file_name` (at most limits::kMaxTextureFileBytes), its header passed to
-// `check_header` before the rest is read, so that a file refused by its header is not read
-// whole. A file that cannot be read throws SceneError naming `field`.
+// The whole PNG file `file_name` (at most `max_bytes`), its header passed to `check_header`
+// before the rest is read, so that a file refused by its header is not read whole. A file that
+// cannot be read throws SceneError naming `field`.
 std::vector<unsigned char> read_png_file(
     const std::string& file_name, const std::string& field, const std::string& path,
-    const std::function<void(const std::vector<unsigned char>&)>& check_header);
+    const std::function<void(const std::vector<unsigned char>&)>& check_header,
+    std::uintmax_t max_bytes = limits::kMaxTextureFileBytes);
 
 // Throws SceneError(path, "scene: FIELD ...") unless the file's chunks are well-formed
 // (png_layout.h) and its image data inflates to at most the size its header gives.
@@ -31,7 +33,7 @@ void check_png_image_data(const std::vector<unsigned char>& png, const std::stri
                           const std::string& path);
 
 // A grey PNG's levels as 16-bit values (8-bit levels scaled by 257, as stb does), after
-// check_png_image_data (and at most limits::kMaxTextureFileBytes: stb takes an int size); throws
+// check_png_image_data (and at most `max_bytes`, below 2^31: stb takes an int size); throws
 // SceneError(path, "scene: FIELD could not be decoded: ...") when stb fails or its size disagrees
 // with the header. Precondition: parse_png_header accepted `png` and it has one channel.
 struct Grey16Image {
@@ -39,7 +41,8 @@ struct Grey16Image {
   std::vector<std::uint16_t> levels;  // row-major
 };
 Grey16Image decode_grey16_png(const std::vector<unsigned char>& png, const std::string& field,
-                              const std::string& path);
+                              const std::string& path,
+                              std::uintmax_t max_bytes = limits::kMaxTextureFileBytes);
 
 // The header of a PNG named as a scene names one ("builtin:NAME", a PNG shipped inside the
 // binary: builtin_sketches.h, or a file) and the file's size, for memory estimates before
@@ -49,7 +52,7 @@ struct PngPeek {
   std::optional<PngHeader> header;
   std::uintmax_t file_bytes = 0;
 };
-PngPeek peek_png(const std::string& name);
+PngPeek peek_png(const std::string& name, std::uintmax_t max_bytes = limits::kMaxTextureFileBytes);
 
 // stb's failure reason is a global that some failures leave as it was: reset it before a
 // call, then read it with a fallback for "none given".

@@ -55,7 +55,8 @@ class ResourceSerial {
 struct SceneResources {
   NoiseLattice lattice;
   std::vector<ProtoTexture> textures;  // one per scene.shading.layers entry
-  std::optional<HeightSketch> sketch;  // terrain.sketch's texels, when the scene has one
+  // terrain.sketch's or terrain.heightfield's texels, when the scene has one
+  std::optional<HeightSketch> sketch;
   // terrain.basis's composed grid (§3 Eq. 2, core/basis_images.h), when the scene has one: it
   // replaces `lattice` in stage 3 alone; the shading's noise keeps the lattice.
   std::optional<NoiseLattice> basis;
@@ -94,7 +95,8 @@ std::optional<Skybox> load_skybox(const Scene& scene);
 // Scene.set) keeps them where this holds.
 bool same_resource_inputs(const Scene& a, const Scene& b);
 
-// terrain.sketch's texels (nullopt when the scene has none), with load_scene_resources' checks.
+// terrain.sketch's or terrain.heightfield's texels (nullopt when the scene has neither), with
+// load_scene_resources' checks.
 std::optional<HeightSketch> load_height_sketch(const Scene& scene);
 
 // The proto-texture image of one layer, linear RGB (PNG files are sRGB-decoded). A file's PNG

@@ -1,6 +1,6 @@
 // terrain.sketch's image (§3's low-frequency base, core/height_sketch.h): a grey PNG of 8 or
 // 16 bits, from a file or built in, checked as the layer textures are (png_checks.h) before
-// stb_image decodes it.
+// stb_image decodes it; or terrain.heightfield's file (heightfield_files.h).
 #include <algorithm>
 #include <cstdint>
 #include <optional>
@@ -15,6 +15,7 @@
 #include "core/scene/scene_json.h"
 #include "image/png_header.h"
 #include "pipeline/builtin_sketches.h"
+#include "pipeline/heightfield_files.h"
 #include "pipeline/png_checks.h"
 #include "pipeline/scene_resources.h"
 
@@ -50,6 +51,9 @@ void check_sketch_header(const std::vector<unsigned char>& bytes, const std::str
 }  // namespace
 
 std::optional<HeightSketch> load_height_sketch(const Scene& scene) {
+  if (scene.terrain.heightfield) {
+    return load_height_field(*scene.terrain.heightfield);  // heightfield_files.h
+  }
   if (!scene.terrain.sketch) {
     return std::nullopt;
   }

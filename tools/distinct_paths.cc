@@ -67,6 +67,9 @@ std::vector<CommandPath> scene_input_paths(const std::string& scene_arg, const S
   if (scene.terrain.sketch) {
     add("terrain.sketch.image", scene.terrain.sketch->image);
   }
+  if (scene.terrain.heightfield) {
+    add("terrain.heightfield.file", scene.terrain.heightfield->image);
+  }
   if (scene.terrain.basis) {
     for (std::size_t k = 0; k < scene.terrain.basis->images.size(); ++k) {
       const std::string field = "terrain.basis.images[" + std::to_string(k) + "]";

@@ -85,6 +85,19 @@ struct SketchSettings {
   Vec2d height = {0.0, 1000.0};  // world heights of black and of white
 };
 
+// A finite height field as the terrain (core/height_sketch.h samples it as it samples §3's
+// sketch): real elevation data or a `relief generate` map. A sketch that may be large and come
+// in any height format, with the fractal off unless `fractal` asks for its detail on top.
+struct HeightFieldSettings : SketchSettings {
+  // `image` (the scene key "file"): a grey PNG (8 or 16 bits), a one-channel PFM (float), or
+  // RAW16 (.r16, .raw: little-endian 16-bit levels, top row first, no header).
+  // RAW16's samples per row; 0: the file is square and its size gives the side.
+  int raw_width = 0;
+  // Whether the paper's fractal adds its detail (terrain.amplitude and the octaves) on top;
+  // false: stage 3 sums no octave and the terrain is base_height plus the field.
+  bool fractal = false;
+};
+
 // §3 Eq. 2: the auxiliary function S as a convex combination of grey-scale basis images,
 // S = sum_i w_i I_i / sum_i w_i, composed once per scene into the periodic grid that takes the
 // noise lattice's place in stage 3 (core/basis_images.h, docs/terrain-spec.md section 12).
@@ -143,6 +156,8 @@ struct TerrainSettings {
   std::optional<double> water_level = 0.0;
   // The low-frequency base; nullopt: none (the fractal alone).
   std::optional<SketchSettings> sketch;
+  // A finite height field as the terrain; nullopt: none. At most one of sketch and heightfield.
+  std::optional<HeightFieldSettings> heightfield;
   // §3 Eq. 2's basis images in place of the noise lattice in stage 3; nullopt: the lattice.
   // With them, stage 3's P is the composed grid's side and its octave-0 cell is
   // basis.tile_size / P: lattice_size sizes only the shading's noise, horizontal_scale is unused.
@@ -150,6 +165,20 @@ struct TerrainSettings {
   // §4.1's spherical domain; nullopt (or radius 0): the plane.
   std::optional<PlanetSettings> planet;
 };
+
+// The field stage 3 adds to the fractal: terrain.sketch or terrain.heightfield (a scene has at
+// most one), or null.
+inline const SketchSettings* added_height_field(const TerrainSettings& terrain) {
+  if (terrain.heightfield) {
+    return &*terrain.heightfield;
+  }
+  return terrain.sketch ? &*terrain.sketch : nullptr;
+}
+
+// Whether stage 3 sums the fractal's octaves: off only for a height field without `fractal`.
+inline bool fractal_enabled(const TerrainSettings& terrain) {
+  return !terrain.heightfield || terrain.heightfield->fractal;
+}
 
 // One proto-texture layer (§4.2) with the height/slope ranges of Scape's layers.
 struct MaterialLayer {

@@ -168,6 +168,11 @@ void validate_scene(const Scene& scene) {
   const double coarsest_frequency = std::pow(t.r, t.first_octave);  // <= 2^40 (checked above)
   const double min_horizontal_scale =
       coarsest_frequency * farthest_footprint / (limits::kMaxLatticeCoordinate - period);
+  if (t.sketch && t.heightfield) {
+    fail("terrain.heightfield",
+         "terrain.heightfield and terrain.sketch are both given; allowed one of them (a "
+         "heightfield with \"fractal\": true is a sketch of any size and format)");
+  }
   if (t.basis) {
     validate_basis(*t.basis, coarsest_frequency * farthest_footprint);
   } else if (t.horizontal_scale < min_horizontal_scale) {

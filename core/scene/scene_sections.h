@@ -1,7 +1,7 @@
 // Each scene section's field list (scene_schema.h), and the rules across fields that
 // validate_scene runs. One function per section; the lists live beside their rules:
 // view_sections.cc (camera, viewport, grid), terrain_sections.cc (terrain, lod, warp),
-// sketch_section.cc, basis_section.cc, planet_section.cc, shading_section.cc,
+// sketch_section.cc (sketch, heightfield), basis_section.cc, planet_section.cc, shading_section.cc,
 // light_sections.cc (lighting, water, sky, output), scene_schema.cc (the whole scene).
 #pragma once
 
@@ -17,6 +17,7 @@ const Schema<ViewportSettings>& viewport_schema();
 const Schema<GridSettings>& grid_schema();
 const Schema<TerrainSettings>& terrain_schema();
 const Schema<SketchSettings>& sketch_schema();
+const Schema<HeightFieldSettings>& heightfield_schema();
 const Schema<BasisSettings>& basis_schema();
 const Schema<PlanetSettings>& planet_schema();
 const Schema<ShadingSettings>& shading_schema();

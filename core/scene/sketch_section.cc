@@ -1,5 +1,6 @@
-// terrain.sketch (§3's low-frequency base, core/height_sketch.h): its fields. Whether the image
-// can be read is checked when it is loaded (pipeline/scene_resources.h).
+// terrain.sketch (§3's low-frequency base, core/height_sketch.h) and terrain.heightfield (a
+// finite height field as the terrain, sampled the same way): their fields. Whether the file can
+// be read is checked when it is loaded (pipeline/scene_resources.h).
 #include <string>
 
 #include "core/limits.h"
@@ -11,16 +12,16 @@ namespace relief {
 namespace {
 
 // [x0, z0, x1, z1] with each side at least kMinSketchSpan long.
-Field<SketchSettings> extent_field() {
+template <class S>
+Field<S> extent_field() {
   const Range coordinate{-limits::kMaxCameraCoordinate, limits::kMaxCameraCoordinate};
-  Field<SketchSettings> field =
-      vector_field("extent", &SketchSettings::extent, coordinate,
-                   {"world units",
-                    "[x0, z0, x1, z1]: the rectangle the image covers; outside it the edge "
-                    "texels extend (no tiling)",
-                    "x1 − x0 and z1 − z0 ≥ 1e−3"});
-  field.read = [coordinate](const LayerContext& cx, const json& v, const std::string& p,
-                            SketchSettings& s) {
+  Field<S> field =
+      vector_field<S, 4>("extent", &S::extent, coordinate,
+                         {"world units",
+                          "[x0, z0, x1, z1]: the rectangle the image covers; outside it the edge "
+                          "texels extend (no tiling)",
+                          "x1 − x0 and z1 − z0 ≥ 1e−3"});
+  field.read = [coordinate](const LayerContext& cx, const json& v, const std::string& p, S& s) {
     s.extent = cx.in.vector<4>(v, p, coordinate);
     const auto& e = s.extent;
     if (!(e[2] - e[0] >= limits::kMinSketchSpan && e[3] - e[1] >= limits::kMinSketchSpan)) {
@@ -42,10 +43,38 @@ const Schema<SketchSettings>& sketch_schema() {
                        {"", "the heights; row 0 at z0 (a map with north, −z, up)",
                         "NAME `island`; the PNG: one grey channel, 8 or 16 bits, 2…4096 texels "
                         "a side"}),
-      extent_field(),
+      extent_field<S>(),
       increasing_pair_field("height", &S::height,
                             Range{-limits::kMaxBaseHeight, limits::kMaxBaseHeight},
                             {"world units", "world heights of black and of white"}),
+  });
+  return schema;
+}
+
+const Schema<HeightFieldSettings>& heightfield_schema() {
+  using S = HeightFieldSettings;
+  static const Schema<S> schema({
+      input_file_field<S>("file", &S::image,
+                          {"",
+                           "the heights; row 0 at z0 (a map with north, −z, up); the format from "
+                           "the extension",
+                           "a grey PNG (8 or 16 bits), a one-channel PFM (float), or RAW16 (.r16, "
+                           ".raw: little-endian, top row first); 2…16385 samples a side"}),
+      extent_field<S>(),
+      increasing_pair_field<S>(
+          "height", &S::height, Range{-limits::kMaxBaseHeight, limits::kMaxBaseHeight},
+          {"world units",
+           "world heights of stored values 0 and 1 (PNG and RAW16 levels divided by their "
+           "largest, 255 or 65535; a PFM's floats as they are: [0, 1] keeps them)",
+           "every sample's world height within ±1e7"}),
+      integer_field<S>("raw_width", &S::raw_width, 0, limits::kMaxHeightFieldSize,
+                       {"samples",
+                        "RAW16's samples per row; 0: square, the side from the file's size "
+                        "(other formats: 0)"}),
+      boolean_field<S>("fractal", &S::fractal,
+                       {"",
+                        "the paper's fractal adds its detail on top (terrain.amplitude and "
+                        "the octaves); false: the terrain is base_height plus the field"}),
   });
   return schema;
 }

@@ -84,6 +84,11 @@ const Schema<TerrainSettings>& terrain_schema() {
                              {"",
                               "§3's low-frequency base, added to the fractal "
                               "(docs/terrain-spec.md §11)"}),
+      optional_section_field("heightfield", &S::heightfield, heightfield_schema(), "file",
+                             "a \"file\"",
+                             {"",
+                              "a finite height field as the terrain (docs/terrain-spec.md §11), "
+                              "sampled as the sketch is; not with sketch"}),
       optional_section_field("basis", &S::basis, basis_schema(), "images", "\"images\"",
                              {"",
                               "§3 Eq. 2: basis images in place of the noise lattice in "

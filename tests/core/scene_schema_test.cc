@@ -84,10 +84,14 @@ std::string reported_path(std::string path) {
 // when it is accepted.
 std::optional<std::string> error_path(const std::string& path, const json& value) {
   // sky.skybox's fields need a skybox to patch: its faces are only read when a frame loads.
+  // So do terrain.heightfield's: its file is only read when a frame loads.
   const std::vector<std::string> skybox = {
       R"(sky.skybox={"faces": ["a.png", "b.png", "c.png", "d.png", "e.png", "f.png"]})"};
-  Scene scene = resolve_scene(
-      base_scene_for(path), path.starts_with("sky.skybox.") ? skybox : std::vector<std::string>{});
+  const std::vector<std::string> heightfield = {R"(terrain.heightfield={"file": "a.pfm"})"};
+  Scene scene = resolve_scene(base_scene_for(path), path.starts_with("sky.skybox.") ? skybox
+                                                    : path.starts_with("terrain.heightfield.")
+                                                        ? heightfield
+                                                        : std::vector<std::string>{});
   try {
     apply_scene_layer(scene, layer_at(path, value), "test");
   } catch (const SceneError& e) {

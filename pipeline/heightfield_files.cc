@@ -1,0 +1,331 @@
+#include "pipeline/heightfield_files.h"
+
+#include <algorithm>
+#include <bit>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/input_file.h"
+#include "core/limits.h"
+#include "core/scene/json_fields.h"
+#include "core/scene/json_input.h"
+#include "core/scene/scene_json.h"
+#include "image/png_header.h"
+#include "pipeline/png_checks.h"
+
+namespace relief {
+
+namespace {
+
+constexpr const char* kPath = "terrain.heightfield.file";
+
+bool ends_with(const std::string& name, std::string_view extension) {
+  if (name.size() < extension.size()) {
+    return false;
+  }
+  for (std::size_t k = 0; k < extension.size(); ++k) {
+    const char c = name[name.size() - extension.size() + k];
+    if (std::tolower(static_cast<unsigned char>(c)) != extension[k]) {
+      return false;
+    }
+  }
+  return true;
+}
+
+std::string field_text(const HeightFieldSettings& s) {
+  return std::string(kPath) + " = \"" + brief_text(s.image) + "\"";
+}
+
+[[noreturn]] void refuse(const HeightFieldSettings& s, const std::string& why,
+                         const char* path = kPath) {
+  throw SceneError(path, "scene: " + field_text(s) + " " + why);
+}
+
+HeightFieldFormat format_of(const HeightFieldSettings& s) {
+  if (s.image.rfind("builtin:", 0) == 0) {
+    refuse(s,
+           "names a built-in image; allowed: a file (the built-in island is a sketch: "
+           "terrain.sketch.image = \"builtin:island\")");
+  }
+  if (ends_with(s.image, ".png")) {
+    return HeightFieldFormat::kPng;
+  }
+  if (ends_with(s.image, ".pfm")) {
+    return HeightFieldFormat::kPfm;
+  }
+  if (ends_with(s.image, ".r16") || ends_with(s.image, ".raw")) {
+    return HeightFieldFormat::kRaw16;
+  }
+  refuse(s,
+         "has no height format's extension; allowed: .png (grey, 8 or 16 bits), .pfm (one "
+         "channel) or .r16 / .raw (RAW16)");
+}
+
+std::string size_text(std::uint64_t width, std::uint64_t height) {
+  return std::to_string(width) + "x" + std::to_string(height);
+}
+
+void check_side(const HeightFieldSettings& s, std::uint64_t width, std::uint64_t height,
+                const std::string& unit) {
+  const std::uint64_t lo = limits::kMinSketchSize, hi = limits::kMaxHeightFieldSize;
+  if (width < lo || width > hi || height < lo || height > hi) {
+    refuse(s, "is " + size_text(width, height) + " " + unit + "; allowed " + std::to_string(lo) +
+                  " to " + std::to_string(hi) + " on each side");
+  }
+}
+
+// A PFM's header: "Pf", width, height and scale separated by white space, then one white-space
+// byte before the samples (little-endian when scale < 0).
+struct PfmHeader {
+  std::uint64_t width = 0, height = 0;
+  bool little_endian = true;
+  std::size_t bytes = 0;  // header length
+};
+
+PfmHeader parse_pfm_header(const HeightFieldSettings& s, const unsigned char* data,
+                           std::size_t size) {
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  std::size_t at = 0;
+  const auto token = [&]() {
+    while (at < text.size() && std::isspace(static_cast<unsigned char>(text[at]))) {
+      ++at;
+    }
+    const std::size_t begin = at;
+    while (at < text.size() && !std::isspace(static_cast<unsigned char>(text[at]))) {
+      ++at;
+    }
+    return text.substr(begin, at - begin);
+  };
+  const std::string_view magic = token();
+  if (magic == "PF") {
+    refuse(s, "is a three-channel PFM (PF); allowed: one channel (Pf)");
+  }
+  if (magic != "Pf") {
+    refuse(s, "is not a PFM (it does not begin with Pf)");
+  }
+  PfmHeader header;
+  const std::string_view width = token(), height = token(), scale = token();
+  const auto whole = [](std::string_view t, std::uint64_t& v) {
+    const auto [end, error] = std::from_chars(t.data(), t.data() + t.size(), v);
+    return !t.empty() && error == std::errc() && end == t.data() + t.size();
+  };
+  double scale_value = 0;
+  const auto [scale_end, scale_error] =
+      std::from_chars(scale.data(), scale.data() + scale.size(), scale_value);
+  if (!whole(width, header.width) || !whole(height, header.height) || scale.empty() ||
+      scale_error != std::errc() || scale_end != scale.data() + scale.size() ||
+      !std::isfinite(scale_value) || scale_value == 0 || at >= text.size()) {
+    refuse(s,
+           "has a malformed PFM header; allowed: Pf, width, height and a non-zero scale "
+           "separated by white space, then one white-space byte");
+  }
+  header.little_endian = scale_value < 0;
+  header.bytes = at + 1;
+  return header;
+}
+
+std::uintmax_t file_size(const HeightFieldSettings& s, std::uintmax_t max_bytes) {
+  try {
+    return InputFile(s.image, max_bytes).size();
+  } catch (const InputFileError& e) {
+    refuse(s, e.what());
+  }
+}
+
+HeightFieldPeek peek_or_throw(const HeightFieldSettings& s) {
+  HeightFieldPeek peek;
+  peek.format = format_of(s);
+  if (s.raw_width != 0 && peek.format != HeightFieldFormat::kRaw16) {
+    throw SceneError("terrain.heightfield.raw_width",
+                     "scene: terrain.heightfield.raw_width = " + std::to_string(s.raw_width) +
+                         " is for RAW16 files, but " + field_text(s) +
+                         " is not one; allowed: 0 (or a .r16 / .raw file)");
+  }
+  if (peek.format == HeightFieldFormat::kPng) {
+    const PngPeek png = peek_png(s.image, limits::kMaxHeightFieldFileBytes);
+    if (!png.header) {
+      file_size(s, limits::kMaxHeightFieldFileBytes);  // names why it cannot be read
+      refuse(s, "is not a PNG image");
+    }
+    peek.file_bytes = png.file_bytes;
+    peek.width = png.header->width;
+    peek.height = png.header->height;
+  } else if (peek.format == HeightFieldFormat::kPfm) {
+    unsigned char head[128];
+    std::size_t got = 0;
+    try {
+      InputFile file(s.image, limits::kMaxHeightFieldFileBytes);
+      got = file.read(head, sizeof head);
+      peek.file_bytes = file.size();
+    } catch (const InputFileError& e) {
+      refuse(s, e.what());
+    }
+    const PfmHeader header = parse_pfm_header(s, head, got);
+    peek.width = header.width;
+    peek.height = header.height;
+  } else {
+    peek.file_bytes = file_size(s, limits::kMaxHeightFieldFileBytes);
+    const std::uintmax_t samples = peek.file_bytes / 2;
+    if (peek.file_bytes % 2 != 0) {
+      refuse(s, "is " + std::to_string(peek.file_bytes) +
+                    " bytes, not a whole number of 16-bit samples");
+    }
+    if (s.raw_width == 0) {
+      const auto side = static_cast<std::uint64_t>(std::llround(std::sqrt(double(samples))));
+      if (side * side != samples) {
+        refuse(s, "holds " + std::to_string(samples) +
+                      " samples, not a square number; give terrain.heightfield.raw_width");
+      }
+      peek.width = peek.height = side;
+    } else {
+      if (samples % std::uintmax_t(s.raw_width) != 0) {
+        throw SceneError("terrain.heightfield.raw_width",
+                         "scene: terrain.heightfield.raw_width = " + std::to_string(s.raw_width) +
+                             " does not divide the " + std::to_string(samples) + " samples of " +
+                             field_text(s) + " into whole rows; allowed: the file's row length");
+      }
+      peek.width = std::uint64_t(s.raw_width);
+      peek.height = samples / std::uint64_t(s.raw_width);
+    }
+  }
+  check_side(s, peek.width, peek.height, "samples");
+  return peek;
+}
+
+// Every sample finite and its world height within the scene's range.
+void check_samples(const HeightFieldSettings& s, std::span<const float> values, int width) {
+  const double lo = s.height[0], hi = s.height[1];
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    const double world = lo + (hi - lo) * double(values[k]);
+    if (!std::isfinite(values[k]) || !(std::abs(world) <= limits::kMaxBaseHeight)) {
+      refuse(s, "has sample " + format_number(values[k]) + " at column " +
+                    std::to_string(k % std::size_t(width)) + ", row " +
+                    std::to_string(k / std::size_t(width)) + " (from the top), world height " +
+                    format_number(world) +
+                    " with terrain.heightfield.height; allowed: finite "
+                    "samples whose world heights lie within ±" +
+                    format_number(limits::kMaxBaseHeight));
+    }
+  }
+}
+
+HeightSketch load_pfm(const HeightFieldSettings& s, const HeightFieldPeek& peek) {
+  const int width = int(peek.width), height = int(peek.height);
+  std::vector<float> values(std::size_t(width) * std::size_t(height));
+  try {
+    InputFile file(s.image, limits::kMaxHeightFieldFileBytes);
+    unsigned char head[128];
+    const std::size_t got = file.read(head, sizeof head);
+    const PfmHeader header = parse_pfm_header(s, head, got);
+    const std::uintmax_t expected = header.bytes + values.size() * sizeof(float);
+    if (file.size() != expected) {
+      refuse(s, "is " + std::to_string(file.size()) + " bytes; its header (" +
+                    size_text(peek.width, peek.height) + ") asks for exactly " +
+                    std::to_string(expected));
+    }
+    // The samples after the header: the bytes already read, then the rest in place.
+    const std::size_t early = got - header.bytes;
+    auto* bytes = reinterpret_cast<unsigned char*>(values.data());
+    std::memcpy(bytes, head + header.bytes, early);
+    const std::size_t rest = values.size() * sizeof(float) - early;
+    if (file.read(bytes + early, rest) != rest) {
+      refuse(s, "ends before its samples do");
+    }
+    if (header.little_endian != (std::endian::native == std::endian::little)) {
+      for (float& v : values) {
+        v = std::bit_cast<float>(__builtin_bswap32(std::bit_cast<std::uint32_t>(v)));
+      }
+    }
+  } catch (const InputFileError& e) {
+    refuse(s, e.what());
+  }
+  // PFM rows go from the bottom up; the field's row 0 is the picture's top (z0).
+  for (int j = 0; j < height / 2; ++j) {
+    std::swap_ranges(values.begin() + std::ptrdiff_t(j) * width,
+                     values.begin() + std::ptrdiff_t(j + 1) * width,
+                     values.begin() + std::ptrdiff_t(height - 1 - j) * width);
+  }
+  check_samples(s, values, width);
+  return make_height_field(s, width, height, values);
+}
+
+HeightSketch load_raw16(const HeightFieldSettings& s, const HeightFieldPeek& peek) {
+  std::vector<std::uint16_t> levels(std::size_t(peek.width) * std::size_t(peek.height));
+  try {
+    InputFile file(s.image, limits::kMaxHeightFieldFileBytes);
+    const std::size_t bytes = levels.size() * sizeof(std::uint16_t);
+    if (file.size() != bytes || file.read(levels.data(), bytes) != bytes) {
+      refuse(s, "changed size while it was read");
+    }
+  } catch (const InputFileError& e) {
+    refuse(s, e.what());
+  }
+  if constexpr (std::endian::native != std::endian::little) {
+    for (std::uint16_t& v : levels) {
+      v = static_cast<std::uint16_t>((v >> 8) | (v << 8));
+    }
+  }
+  // Levels map into terrain.heightfield.height, whose range holds every world height.
+  return make_height_sketch(s, int(peek.width), int(peek.height), levels, 65535);
+}
+
+HeightSketch load_png(const HeightFieldSettings& s) {
+  const std::string field = field_text(s);
+  const auto check_header = [&](const std::vector<unsigned char>& header) {
+    const PngHeader png = png_header_or_throw(header, field, kPath);
+    if (png.colour_type != 0) {
+      refuse(s, "has colour type " + std::to_string(png.colour_type) +
+                    "; allowed: a grey PNG with one channel (colour type 0)");
+    }
+    if (png.bit_depth != 8 && png.bit_depth != 16) {
+      refuse(s, "has " + std::to_string(png.bit_depth) + " bits per channel; allowed: 8 or 16");
+    }
+    check_side(s, png.width, png.height, "pixels");
+  };
+  const std::vector<unsigned char> bytes =
+      read_png_file(s.image, field, kPath, check_header, limits::kMaxHeightFieldFileBytes);
+  const Grey16Image grey = decode_grey16_png(bytes, field, kPath, limits::kMaxHeightFieldFileBytes);
+  return make_height_sketch(s, grey.width, grey.height, grey.levels, 65535);
+}
+
+}  // namespace
+
+std::optional<HeightFieldPeek> peek_height_field(const HeightFieldSettings& settings) {
+  try {
+    return peek_or_throw(settings);
+  } catch (const SceneError&) {
+    return std::nullopt;
+  }
+}
+
+std::uintmax_t height_field_load_bytes(const HeightFieldPeek& peek) {
+  const std::uintmax_t samples = std::uintmax_t(peek.width) * peek.height;
+  // PNG: the file, the inflate check's buffer, stb's inflated rows and its 16-bit output, the
+  // levels' copy; PFM: the floats read; RAW16: the levels. Then the heights (4 bytes) and their
+  // block extremes (2 x 4 bytes per 16 samples, times 4/3 for the coarser levels: under 1).
+  const std::uintmax_t decode = peek.format == HeightFieldFormat::kPng
+                                    ? peek.file_bytes + 8 * samples
+                                : peek.format == HeightFieldFormat::kPfm ? 4 * samples
+                                                                         : 2 * samples;
+  return decode + 5 * samples;
+}
+
+HeightSketch load_height_field(const HeightFieldSettings& settings) {
+  const HeightFieldPeek peek = peek_or_throw(settings);
+  switch (peek.format) {
+    case HeightFieldFormat::kPng:
+      return load_png(settings);
+    case HeightFieldFormat::kPfm:
+      return load_pfm(settings, peek);
+    case HeightFieldFormat::kRaw16:
+      return load_raw16(settings, peek);
+  }
+  return {};
+}
+
+}  // namespace relief

@@ -1,0 +1,354 @@
+// terrain.heightfield (pipeline/heightfield_files.h, core/height_sketch.h): every format gives
+// the same world heights, hostile files are refused naming the field, the frame's heights are the
+// field's B-spline (plus the fractal only when asked), and the regional bound stays tight on a
+// large field.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "core/fbm.h"
+#include "core/frame_plan.h"
+#include "core/height_sketch.h"
+#include "core/scene/scene_json.h"
+#include "core/terrain_stages.h"
+#include "image/png_encoder.h"
+#include "pipeline/heightfield_files.h"
+#include "pipeline/scene_resources.h"
+#include "tests/support/cli_support.h"
+#include "tests/support/test_support.h"
+
+namespace relief {
+namespace {
+
+using test::concat;
+using test::require_refused;
+using test::run;
+
+// Written here byte by byte, not by Relief's encoders: the reader is checked against the format.
+std::string pfm_bytes(int width, int height, const std::vector<float>& top_row_first,
+                      bool little_endian = true, const std::string& magic = "Pf") {
+  std::string out = magic + "\n" + std::to_string(width) + " " + std::to_string(height) + "\n" +
+                    (little_endian ? "-1.0" : "1.0") + "\n";
+  for (int j = height - 1; j >= 0; --j) {  // PFM: bottom row first
+    for (int i = 0; i < width; ++i) {
+      std::uint32_t bits = 0;
+      std::memcpy(&bits, &top_row_first[std::size_t(j * width + i)], 4);
+      for (int b = 0; b < 4; ++b) {
+        const int shift = little_endian ? 8 * b : 8 * (3 - b);
+        out.push_back(static_cast<char>((bits >> shift) & 0xFF));
+      }
+    }
+  }
+  return out;
+}
+
+std::string raw16_bytes(const std::vector<std::uint16_t>& levels) {
+  std::string out;
+  for (const std::uint16_t v : levels) {
+    out.push_back(static_cast<char>(v & 0xFF));
+    out.push_back(static_cast<char>(v >> 8));
+  }
+  return out;
+}
+
+HeightFieldSettings settings_for(const std::string& file, double lo = -200.0, double hi = 800.0) {
+  HeightFieldSettings s;
+  s.image = file;
+  s.extent = {-1000.0, -1000.0, 1000.0, 1000.0};
+  s.height = {lo, hi};
+  return s;
+}
+
+// A 5 x 3 field whose every level differs, top row first.
+constexpr int kW = 5, kH = 3;
+std::uint16_t level_at(int i, int j) {
+  return static_cast<std::uint16_t>(1000 * i + 7000 * j + 13);
+}
+
+TEST_CASE("heightfieldFilesOfEveryFormatGiveTheSameWorldHeights", "[heightfield]") {
+  test::TempDir dir("heightfield-formats");
+  std::vector<std::uint16_t> levels;
+  std::vector<float> unit;
+  for (int j = 0; j < kH; ++j) {
+    for (int i = 0; i < kW; ++i) {
+      levels.push_back(level_at(i, j));
+      unit.push_back(float(level_at(i, j)) / 65535.0f);
+    }
+  }
+  const std::vector<unsigned char> png = encode_png_grey16(kW, kH, levels);
+  const std::string png_file =
+      test::write_file(dir.path() / "f.png", std::string(png.begin(), png.end()));
+  const std::string raw_file = test::write_file(dir.path() / "f.R16", raw16_bytes(levels));
+  const std::string pfm_file = test::write_file(dir.path() / "f.pfm", pfm_bytes(kW, kH, unit));
+  const std::string big_endian =
+      test::write_file(dir.path() / "big.pfm", pfm_bytes(kW, kH, unit, false));
+  HeightFieldSettings raw = settings_for(raw_file);
+  raw.raw_width = kW;
+  for (const HeightFieldSettings& s : {settings_for(png_file), raw}) {
+    INFO(s.image);
+    const HeightSketch field = load_height_field(s);
+    REQUIRE(field.width == kW);
+    REQUIRE(field.height == kH);
+    for (int j = 0; j < kH; ++j) {
+      for (int i = 0; i < kW; ++i) {
+        // Row 0 is the file's first (top) row, at z0.
+        CHECK(field.heights[std::size_t(j * kW + i)] ==
+              float(-200.0 + 1000.0 * (double(level_at(i, j)) / 65535.0)));
+      }
+    }
+    CHECK(field.min_height == field.heights.front());
+    CHECK(field.max_height == field.heights.back());
+  }
+  for (const std::string& file : {pfm_file, big_endian}) {
+    INFO(file);
+    const HeightSketch field = load_height_field(settings_for(file));
+    REQUIRE(field.width == kW);
+    for (int j = 0; j < kH; ++j) {
+      for (int i = 0; i < kW; ++i) {
+        const float v = unit[std::size_t(j * kW + i)];
+        CHECK(field.heights[std::size_t(j * kW + i)] == float(-200.0 + 1000.0 * double(v)));
+      }
+    }
+  }
+  // [0, 1] keeps a float file's values as world heights.
+  const HeightSketch kept = load_height_field(settings_for(pfm_file, 0.0, 1.0));
+  CHECK(kept.heights[7] == unit[7]);
+}
+
+TEST_CASE("hostileHeightfieldFilesAreRefusedNamingTheField", "[heightfield]") {
+  test::TempDir dir("heightfield-hostile");
+  const std::filesystem::path out = dir.path() / "out.png";
+  const auto scene_with = [&](const std::string& file, const std::string& more = "") {
+    return test::write_file(
+        dir.path() / "scene.json",
+        concat({R"({"grid": {"width": 48, "height": 48}, "viewport": {"width": 48, "height": 32},
+                   "terrain": {"heightfield": {"file": ")",
+                file, R"(", "extent": [-1000, -1000, 1000, 1000])", more, "}}}"}));
+  };
+  const auto refused = [&](const std::string& file, const std::string& message,
+                           const std::string& more = "") {
+    INFO(file << ": " << message);
+    require_refused(run({"render", scene_with(file, more), "-o", out.string()}), message, out);
+  };
+  const std::vector<float> ramp = {0.0f, 0.25f, 0.5f, 0.75f, 0.125f, 0.375f};
+  const auto pfm = [&](const std::string& name, const std::string& bytes) {
+    return test::write_file(dir.path() / name, bytes);
+  };
+  const std::string good = pfm("good.pfm", pfm_bytes(3, 2, ramp));
+  refused(test::write_file(dir.path() / "f.exr", "x"), "terrain.heightfield.file = \"" +
+                                                           (dir.path() / "f.exr").string() +
+                                                           "\" has no height format's extension");
+  refused((dir.path() / "missing.pfm").string(), "terrain.heightfield.file");
+  refused("builtin:island", "names a built-in image; allowed: a file");
+  std::filesystem::create_directories(dir.path() / "folder.png");
+  refused((dir.path() / "folder.png").string(), "not a regular file");
+  refused(pfm("rgb.pfm", pfm_bytes(3, 2, ramp, true, "PF")), "is a three-channel PFM (PF)");
+  refused(pfm("junk.pfm", "Pf\n3 x\n-1\n"), "has a malformed PFM header");
+  refused(pfm("zero.pfm", "Pf\n3 2\n0\n"), "has a malformed PFM header");
+  refused(pfm("noend.pfm", "Pf\n3 2\n-1"), "has a malformed PFM header");
+  const std::string whole = pfm_bytes(3, 2, ramp);
+  refused(pfm("cut.pfm", whole.substr(0, whole.size() - 3)), "its header (3x2) asks for exactly");
+  refused(pfm("long.pfm", whole + "extra"), "its header (3x2) asks for exactly");
+  refused(pfm("thin.pfm", pfm_bytes(1, 3, {0, 0, 0})),
+          "is 1x3 samples; allowed 2 to 16385 on each side");
+  refused(pfm("huge.pfm", "Pf\n20000 20000\n-1\n"), "is 20000x20000 samples");
+  std::vector<float> holes = ramp;
+  holes[4] = std::numeric_limits<float>::quiet_NaN();
+  refused(pfm("nan.pfm", pfm_bytes(3, 2, holes)), "has sample nan at column 1, row 1");
+  holes[4] = std::numeric_limits<float>::infinity();
+  refused(pfm("inf.pfm", pfm_bytes(3, 2, holes)), "has sample inf at column 1, row 1");
+  holes[4] = 2e7f;
+  refused(pfm("tall.pfm", pfm_bytes(3, 2, holes)), "world height 2e+07", R"(, "height": [0, 1])");
+  refused(test::write_file(dir.path() / "odd.r16", std::string(9, '\1')),
+          "is 9 bytes, not a whole number of 16-bit samples");
+  refused(test::write_file(dir.path() / "six.raw", std::string(12, '\1')),
+          "holds 6 samples, not a square number; give terrain.heightfield.raw_width");
+  refused(test::write_file(dir.path() / "rows.raw", std::string(12, '\1')),
+          "terrain.heightfield.raw_width = 4 does not divide the 6 samples", R"(, "raw_width": 4)");
+  refused(good, "terrain.heightfield.raw_width = 3 is for RAW16 files", R"(, "raw_width": 3)");
+  refused(test::write_file(dir.path() / "one.raw", std::string(2, '\1')),
+          "is 1x1 samples; allowed 2 to 16385");
+  std::string header("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR\0\0\x40\x02\0\0\0\x10\x10\0\0\0\0\0\0\0\0",
+                     33);  // 16386 x 16, 16-bit grey: refused from the header alone
+  refused(test::write_file(dir.path() / "wide.png", header), "is 16386x16 samples");
+  header[25] = 2;  // RGB
+  header[19] = 0x10, header[18] = 0;
+  refused(test::write_file(dir.path() / "rgb.png", header), "has colour type 2");
+  refused(good, "terrain.heightfield.height = [5,5] is empty", R"(, "height": [5, 5])");
+  // One of sketch and heightfield; a new heightfield names its file.
+  require_refused(run({"render", scene_with(good), "--set",
+                       "terrain.sketch={\"image\":\"builtin:island\"}", "-o", out.string()}),
+                  "terrain.heightfield and terrain.sketch are both given", out);
+  require_refused(
+      run({"render", "--set", "terrain.heightfield={\"extent\":[0,0,1,1]}", "-o", out.string()}),
+      "terrain.heightfield must be null or an object with at least a \"file\"", out);
+  // A field too large for the memory given is refused before it is read, naming the remedy.
+  header[25] = 0;
+  header[16] = 0, header[17] = 0, header[18] = 0x40, header[19] = 0x01;  // 16385 wide
+  header[20] = 0, header[21] = 0, header[22] = 0x40, header[23] = 0x01;  // 16385 high
+  const std::string giant = test::write_file(dir.path() / "giant.png", header);
+  require_refused(run({"render", scene_with(giant), "--max-memory", "1G", "-o", out.string()}),
+                  "The height field dominates: use a smaller terrain.heightfield.file", out);
+  // The good file renders.
+  CHECK(run({"render", scene_with(good), "-o", out.string()}).code == 0);
+}
+
+// The test's own B-spline (core/height_sketch.h's definition: uniform cubic B-spline of the
+// samples, centres at x0 + (i + 1/2) cell, taps clamped to the edge), in double.
+double bspline_oracle(const HeightSketch& f, const HeightFieldSettings& s, double x, double z) {
+  const double sx = (x - s.extent[0]) * f.width / (s.extent[2] - s.extent[0]) - 0.5;
+  const double sz = (z - s.extent[1]) * f.height / (s.extent[3] - s.extent[1]) - 0.5;
+  const auto weights = [](double t, double w[4]) {
+    w[0] = (1 - t) * (1 - t) * (1 - t) / 6;
+    w[1] = (3 * t * t * t - 6 * t * t + 4) / 6;
+    w[2] = (-3 * t * t * t + 3 * t * t + 3 * t + 1) / 6;
+    w[3] = t * t * t / 6;
+  };
+  const double fx = std::floor(sx), fz = std::floor(sz);
+  double wx[4], wz[4];
+  weights(sx - fx, wx);
+  weights(sz - fz, wz);
+  double sum = 0;
+  for (int m = 0; m < 4; ++m) {
+    const int j = std::clamp(int(fz) + m - 1, 0, f.height - 1);
+    for (int n = 0; n < 4; ++n) {
+      const int i = std::clamp(int(fx) + n - 1, 0, f.width - 1);
+      sum += wz[m] * wx[n] * f.heights[std::size_t(j * f.width + i)];
+    }
+  }
+  return sum;
+}
+
+TEST_CASE("heightfieldFrameHeightsAreTheFieldAloneUnlessTheFractalIsAsked", "[heightfield]") {
+  test::TempDir dir("heightfield-frame");
+  std::vector<float> values(33 * 17);
+  test::TestRandom rng(41);
+  for (float& v : values) {
+    v = float(rng.uniform(0.0, 1.0));
+  }
+  const std::string file = test::write_file(dir.path() / "f.pfm", pfm_bytes(33, 17, values));
+  const std::vector<std::string> view = {
+      "camera.position=[100,2500,300]",
+      "camera.pitch_deg=-60",
+      "grid.width=96",
+      "grid.height=96",
+      "terrain.base_height=40",
+      concat({"terrain.heightfield={\"file\":\"", file,
+              "\",\"extent\":[-3000,-2000,3000,2000],\"height\":[-500,1500]}"})};
+  for (const bool fractal : {false, true}) {
+    std::vector<std::string> sets = view;
+    sets.push_back(fractal ? "terrain.heightfield.fractal=true" : "terrain.water_level=null");
+    const Scene scene = resolve_scene("alpine", sets);
+    const NoiseLattice lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
+    const std::optional<HeightSketch> field = load_height_sketch(scene);
+    REQUIRE(field);
+    const FramePlan plan = make_frame_plan(scene, lattice, &*field);
+    CHECK(plan.terrain.octaves.count ==
+          (fractal ? scene.terrain.last_octave - scene.terrain.first_octave + 1 : 0));
+    GridBuffers<double> grid(plan.layout);
+    run_terrain_stages(plan, grid);
+    GridBuffers<double> again = grid;  // stage 3 run once more, for its work counter
+    const FbmWork work =
+        evaluate_fbm_rows<double>(make_terrain_params<double>(plan).fbm, lattice,
+                                  RowRange{0, plan.layout.height}, again, again.valid);
+    CHECK((work.octaves == 0) == !fractal);  // the skip: no octave summed without the fractal
+    const Vec3d& c = scene.camera.position;
+    std::size_t checked = 0;
+    double worst = 0;
+    for (std::size_t k = 0; k < plan.layout.size(); ++k) {
+      if (!grid.valid[k]) {
+        continue;
+      }
+      const double x = grid.dx[k] + c[0], z = grid.dz[k] + c[2];
+      double expected = 40.0 + bspline_oracle(*field, *scene.terrain.heightfield, x, z);
+      if (fractal) {
+        expected +=
+            fbm_height<double>(plan.terrain, grid.dx[k], grid.dz[k], grid.nu[k]) - (40.0 - c[1]);
+      }
+      worst = std::max(worst, std::abs(grid.height[k] + c[1] - expected));
+      ++checked;
+    }
+    INFO("fractal " << fractal << ", worst " << worst);
+    CHECK(checked > 5000);
+    // Double stages against the double oracle: the camera-relative texel coordinate's rounding
+    // moves a sample by under 1e-9 texels, a height by under 1e-6 units at these slopes.
+    CHECK(worst < 1e-6);
+  }
+}
+
+TEST_CASE("heightfieldRegionalBoundStaysTightOnALargeField", "[heightfield]") {
+  constexpr int kBigW = 400, kBigH = 300;
+  std::vector<std::uint16_t> grey(std::size_t(kBigW) * kBigH);
+  test::TestRandom rng(5);
+  for (int j = 0; j < kBigH; ++j) {
+    for (int i = 0; i < kBigW; ++i) {  // a ramp with noise: regions differ
+      grey[std::size_t(j * kBigW + i)] =
+          static_cast<std::uint16_t>(std::min(65535.0, 80.0 * (i + j) + rng.uniform(0, 9000)));
+    }
+  }
+  HeightFieldSettings s = settings_for("test", 0.0, 1000.0);
+  s.extent = {0.0, 0.0, 4000.0, 3000.0};  // 10 units a texel
+  const HeightSketch field = make_height_sketch(s, kBigW, kBigH, grey, 65535);
+  REQUIRE_FALSE(field.blocks.empty());
+  CHECK(field.blocks.back().width == 1);
+  CHECK(field.blocks.back().height == 1);
+  const SketchPlan plan = make_sketch_plan(s, field, 0.0, 0.0);  // camera at the corner
+  const SketchParams<double> p = make_sketch_params<double>(plan, &field);
+  for (const double side : {100.0, 900.0, 1500.0, 2500.0}) {  // 100 to 62500 texels
+    for (const double x0 : {0.0, 700.0, 1400.0}) {
+      const double z0 = x0 * 0.4;
+      const SketchRange r = sketch_range(plan, field, x0, x0 + side, z0, z0 + side);
+      // The bound holds every value the interpolation takes there ...
+      double lo = 1e300, hi = -1e300;
+      for (int a = 0; a <= 40; ++a) {
+        for (int b = 0; b <= 40; ++b) {
+          const double x = x0 + side * a / 40.0, z = z0 + side * b / 40.0;
+          const double v = sample_sketch<double>(p, field.heights, p.offset_x + x * p.inv_cell_x,
+                                                 p.offset_z + z * p.inv_cell_z);
+          lo = std::min(lo, v);
+          hi = std::max(hi, v);
+        }
+      }
+      INFO("side " << side << " at " << x0 << ": [" << r.lo << ", " << r.hi << "] holds [" << lo
+                   << ", " << hi << "]");
+      CHECK(r.lo <= lo);
+      CHECK(r.hi >= hi);
+      // ... and is not the field's global one: within one block of 4 texels' ramp of the
+      // region's own extremes (80 levels a texel, 8 texels of slack, 1000 / 65535 units a level).
+      const double slack = 8 * 80 * 1000.0 / 65535.0 + 1e-3;
+      CHECK(r.hi <= hi + slack + 9000 * 1000.0 / 65535.0);
+      CHECK(r.lo >= lo - slack - 9000 * 1000.0 / 65535.0);
+    }
+  }
+}
+
+TEST_CASE("generatedMapsRenderAsHeightfieldsAndTheSimdFrameMatchesTheReference", "[heightfield]") {
+  test::TempDir dir("heightfield-generated");
+  for (const std::string method : {"diamond-square", "square-square", "triangle-edge", "perlin"}) {
+    const std::string map = (dir.path() / (method + ".r16")).string();
+    REQUIRE(run({"generate", method, "--size", "65", "--seed", "3", "-o", map}).code == 0);
+    const std::string scene = test::write_file(
+        dir.path() / "scene.json",
+        concat({R"({"grid": {"width": 64, "height": 64}, "viewport": {"width": 80, "height": 64},
+                   "camera": {"position": [0, 1800, 2500], "yaw_deg": 0, "pitch_deg": -30},
+                   "terrain": {"water_level": 200, "heightfield": {"file": ")",
+                map, R"(", "extent": [-3000, -3000, 3000, 3000], "height": [0, 1200]}}})"}));
+    const std::string simd = (dir.path() / "simd.png").string();
+    const std::string scalar = (dir.path() / "scalar.png").string();
+    INFO(method);
+    REQUIRE(run({"render", scene, "-o", simd}).code == 0);
+    REQUIRE(run({"render", scene, "--backend", "reference", "-o", scalar}).code == 0);
+    CHECK(test::read_bytes(simd) == test::read_bytes(scalar));
+  }
+}
+
+}  // namespace
+}  // namespace relief
