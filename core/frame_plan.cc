@@ -31,6 +31,24 @@ LodPlan make_lod_plan(const TerrainSettings& terrain) {
   return lod;
 }
 
+LodPlan make_field_lod_plan(const TerrainSettings& terrain, const HeightSketch& field) {
+  // A height field without the fractal reads level lambda = levels - nu (height_sketch.h):
+  // the level whose sample spacing cell 2^lambda is the vertex's grid spacing sigma,
+  //   lambda = log2(sigma / cell) - bias,   nu = levels + log2 cell + bias - log2(sigma^2) / 2,
+  // so c0 = levels + log2 cell + bias, c1 = 1/2, and stage 2's clamp of nu to [1, levels] is
+  // the clamp of lambda to [0, levels - 1]. `cell` the coarser axis's sample spacing (> 0:
+  // validate_scene keeps each side of the extent at least kMinSketchSpan long).
+  const SketchSettings& s = *added_height_field(terrain);
+  const double cell = std::max((s.extent[2] - s.extent[0]) / field.width,
+                               (s.extent[3] - s.extent[1]) / field.height);
+  LodPlan lod;
+  lod.nu_max = field.levels();
+  lod.c0 = lod.nu_max + std::log2(cell) + terrain.lod.bias;
+  lod.c1 = 0.5;
+  lod.whole_octaves = !terrain.lod.fractional;
+  return lod;
+}
+
 TerrainPlan make_terrain_plan(const TerrainSettings& settings, const NoiseLattice& lattice,
                               const Vec3d& camera_position, const HeightSketch* sketch) {
   // With §3's basis images, `lattice` is their composed grid and sets the period and cell.
@@ -83,7 +101,9 @@ FramePlan make_frame_plan(const Scene& scene, const NoiseLattice& lattice,
   plan.camera = make_camera_frame(scene.camera, scene.viewport);
   plan.bounds = derive_height_bounds(lattice, scene.terrain, sketch);
   plan.layout = make_grid_layout(scene.grid.width, scene.grid.height);
-  plan.lod = make_lod_plan(stage3_terrain(scene.terrain, lattice.size));
+  plan.lod = sketch != nullptr && sketch->levels() > 1 && !fractal_enabled(scene.terrain)
+                 ? make_field_lod_plan(scene.terrain, *sketch)
+                 : make_lod_plan(stage3_terrain(scene.terrain, lattice.size));
   plan.terrain = make_terrain_plan(scene.terrain, lattice, scene.camera.position, sketch);
   plan.planet = make_planet_plan(scene.terrain, plan.camera, plan.bounds);
   if (plan.planet.enabled) {

@@ -85,5 +85,9 @@ TerrainPlan make_terrain_plan(const TerrainSettings& terrain, const NoiseLattice
                               const Vec3d& camera_position, const HeightSketch* sketch = nullptr);
 
 LodPlan make_lod_plan(const TerrainSettings& terrain);
+// A height field's levels of detail in place of the octaves (the fractal off): stage 2's count
+// nu read as level levels - nu (height_sketch.h). Precondition: the terrain has a height field
+// and `field` is its samples.
+LodPlan make_field_lod_plan(const TerrainSettings& terrain, const HeightSketch& field);
 
 }  // namespace relief

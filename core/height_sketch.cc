@@ -59,30 +59,43 @@ void finish_height_sketch(HeightSketch& sketch) {
 }  // namespace
 
 HeightSketch make_height_sketch(const SketchSettings& settings, int width, int height,
-                                std::span<const std::uint16_t> grey, int max_grey) {
+                                std::span<const std::uint16_t> grey, int max_grey,
+                                bool levels_of_detail) {
   HeightSketch sketch;
   sketch.width = width;
   sketch.height = height;
+  if (levels_of_detail) {  // one allocation for every level
+    sketch.heights.reserve(field_levels_samples(width, height));
+  }
   sketch.heights.resize(grey.size());
   const double lo = settings.height[0], hi = settings.height[1];
   for (std::size_t k = 0; k < grey.size(); ++k) {
     sketch.heights[k] = static_cast<float>(lo + (hi - lo) * (double(grey[k]) / double(max_grey)));
   }
   finish_height_sketch(sketch);
+  if (levels_of_detail) {
+    build_field_levels(sketch);
+  }
   return sketch;
 }
 
 HeightSketch make_height_field(const SketchSettings& settings, int width, int height,
-                               std::span<const float> values) {
+                               std::span<const float> values, bool levels_of_detail) {
   HeightSketch field;
   field.width = width;
   field.height = height;
+  if (levels_of_detail) {  // one allocation for every level
+    field.heights.reserve(field_levels_samples(width, height));
+  }
   field.heights.resize(values.size());
   const double lo = settings.height[0], hi = settings.height[1];
   for (std::size_t k = 0; k < values.size(); ++k) {
     field.heights[k] = static_cast<float>(lo + (hi - lo) * double(values[k]));
   }
   finish_height_sketch(field);
+  if (levels_of_detail) {
+    build_field_levels(field);
+  }
   return field;
 }
 
@@ -113,15 +126,29 @@ SketchParams<Real> make_sketch_params(const SketchPlan& plan, const HeightSketch
   p.inv_cell_z = Real(plan.inv_cell_z);
   p.max_x = Real(sketch->width + 1);
   p.max_z = Real(sketch->height + 1);
+  p.levels = sketch->levels();
+  p.lod_origin = Real(p.levels);
+  for (int l = 0; l < p.levels; ++l) {
+    const bool own = !sketch->level_width.empty();
+    p.level_width[l] = own ? sketch->level_width[std::size_t(l)] : sketch->width;
+    p.level_height[l] = own ? sketch->level_height[std::size_t(l)] : sketch->height;
+    p.level_offset[l] = own ? static_cast<std::int32_t>(sketch->level_offset[std::size_t(l)]) : 0;
+    p.level_scale[l] = Real(std::ldexp(1.0, -l));  // exact
+  }
   return p;
 }
 
+namespace {
+
+// The B-spline of a width x height grid of samples at texel coordinate (sx, sz) (the operations
+// of docs/terrain-spec.md section 11), its clamp limits max_x = width + 1, max_z = height + 1.
 template <class Real>
-Real sample_sketch(const SketchParams<Real>& c, std::span<const float> heights, Real sx, Real sz) {
+Real sample_grid(const float* samples, int width, int height, Real max_x, Real max_z, Real sx,
+                 Real sz) {
   // Beyond 2 texels outside the centres every tap is an edge texel already: the clamp changes
   // no value and keeps the integer conversion in range (and +-inf finite).
-  sx = std::min(std::max(sx, Real(-2)), c.max_x);
-  sz = std::min(std::max(sz, Real(-2)), c.max_z);
+  sx = std::min(std::max(sx, Real(-2)), max_x);
+  sz = std::min(std::max(sz, Real(-2)), max_z);
   const Real fx = std::floor(sx), fz = std::floor(sz);
   Real wx[4], wz[4];
   bspline_weights(sx - fx, wx);
@@ -129,12 +156,12 @@ Real sample_sketch(const SketchParams<Real>& c, std::span<const float> heights, 
   const int i = static_cast<int>(fx), j = static_cast<int>(fz);
   int column[4];
   for (int k = 0; k < 4; ++k) {
-    column[k] = std::min(std::max(i + k - 1, 0), c.width - 1);  // clamp to the edge
+    column[k] = std::min(std::max(i + k - 1, 0), width - 1);  // clamp to the edge
   }
   Real sum = Real(0);
   for (int m = 0; m < 4; ++m) {
     const float* row =
-        heights.data() + std::size_t(std::min(std::max(j + m - 1, 0), c.height - 1)) * c.width;
+        samples + std::size_t(std::min(std::max(j + m - 1, 0), height - 1)) * std::size_t(width);
     const Real r = ((wx[0] * Real(row[column[0]]) + wx[1] * Real(row[column[1]])) +
                     wx[2] * Real(row[column[2]])) +
                    wx[3] * Real(row[column[3]]);
@@ -143,42 +170,137 @@ Real sample_sketch(const SketchParams<Real>& c, std::span<const float> heights, 
   return sum;
 }
 
+}  // namespace
+
+template <class Real>
+Real sample_sketch(const SketchParams<Real>& c, std::span<const float> heights, Real sx, Real sz) {
+  return sample_grid<Real>(heights.data(), c.width, c.height, c.max_x, c.max_z, sx, sz);
+}
+
+template <class Real>
+Real sample_field_level(const SketchParams<Real>& c, std::span<const float> heights, int level,
+                        Real sx, Real sz) {
+  const int width = c.level_width[level], height = c.level_height[level];
+  const Real scale = c.level_scale[level];
+  return sample_grid<Real>(heights.data() + c.level_offset[level], width, height, Real(width + 1),
+                           Real(height + 1), sx * scale, sz * scale);
+}
+
 template <class Real>
 void add_sketch(const SketchParams<Real>& c, std::span<const float> heights, IndexRange range,
-                std::span<const Real> dx, std::span<const Real> dz,
+                std::span<const Real> dx, std::span<const Real> dz, std::span<const Real> nu,
                 std::span<const std::uint8_t> mask, std::span<Real> height) {
+  const bool levels = c.levels > 1 && !nu.empty();
+  const Real top = Real(c.levels - 1);
   for (std::size_t k = range.begin; k < range.end; ++k) {
     if (!mask.empty() && !mask[k]) {
       continue;  // not evaluated: evaluate_fbm left 0, no consumer reads it
     }
     const Real sx = c.offset_x + dx[k] * c.inv_cell_x;
     const Real sz = c.offset_z + dz[k] * c.inv_cell_z;
-    height[k] = height[k] + sample_sketch<Real>(c, heights, sx, sz);
+    if (!levels) {
+      height[k] = height[k] + sample_sketch<Real>(c, heights, sx, sz);
+      continue;
+    }
+    // The level of detail: stage 2's count read as a level, both samples always taken (the
+    // blend's bits then never depend on a shortcut).
+    const Real lambda = std::min(std::max(c.lod_origin - nu[k], Real(0)), top);
+    const Real floor_lambda = std::floor(lambda);
+    const Real t = lambda - floor_lambda;
+    const int a = static_cast<int>(floor_lambda);
+    const int b = std::min(a + 1, c.levels - 1);
+    const Real fine = sample_field_level<Real>(c, heights, a, sx, sz);
+    const Real coarse = sample_field_level<Real>(c, heights, b, sx, sz);
+    height[k] = height[k] + (fine + t * (coarse - fine));
   }
 }
 
-SketchRange sketch_range(const SketchPlan& plan, const HeightSketch& sketch, double x0, double x1,
-                         double z0, double z1) {
-  // The texel coordinates the stage can form there, widened for float's rounding of the
-  // offset and the product (a thousandth of a texel plus 1e-6 relative, far more than
-  // float's 2^-24 relative per operation).
-  const auto texels = [](double offset, double inv_cell, double a, double b, int count, int& lo,
-                         int& hi) {
-    const double s0 = offset + a * inv_cell, s1 = offset + b * inv_cell;
-    const double margin = 1e-3 + 1e-6 * (std::abs(offset) + std::abs(s0) + std::abs(s1));
-    // Taps floor(s) - 1 .. floor(s) + 2, clamped to the edges (coordinates clamped as the
-    // stage clamps them first).
-    const double c0 = std::clamp(s0 - margin, -2.0, count + 1.0);
-    const double c1 = std::clamp(s1 + margin, -2.0, count + 1.0);
-    lo = std::clamp(static_cast<int>(std::floor(c0)) - 1, 0, count - 1);
-    hi = std::clamp(static_cast<int>(std::floor(c1)) + 2, 0, count - 1);
-  };
-  int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
-  texels(plan.offset_x, plan.inv_cell_x, x0, x1, sketch.width, i0, i1);
-  texels(plan.offset_z, plan.inv_cell_z, z0, z1, sketch.height, j0, j1);
-  // A large region: the blocks of the finest level that covers it with at most kMaxScan of them
-  // (a superset of its texels, so still a bound), so that the cost does not grow with the field.
-  constexpr std::int64_t kMaxScan = 4096;
+namespace {
+
+// The sides of the levels build_field_levels makes from a width x height field.
+std::vector<std::pair<int, int>> field_level_sides(int width, int height) {
+  std::vector<std::pair<int, int>> sides = {{width, height}};
+  while (int(sides.size()) < limits::kMaxFieldLevels) {
+    const auto [w, h] = sides.back();
+    if (w / 2 + 1 >= w && h / 2 + 1 >= h) {
+      break;  // 2 x 2 (or 2 wide and 2 high): no side shrinks any more
+    }
+    sides.push_back({w / 2 + 1, h / 2 + 1});
+  }
+  return sides;
+}
+
+}  // namespace
+
+std::size_t field_levels_samples(int width, int height) {
+  std::size_t total = 0;
+  for (const auto& [w, h] : field_level_sides(width, height)) {
+    total += std::size_t(w) * std::size_t(h);
+  }
+  return total;
+}
+
+void build_field_levels(HeightSketch& field) {
+  const std::vector<std::pair<int, int>> sides = field_level_sides(field.width, field.height);
+  field.heights.reserve(field_levels_samples(field.width, field.height));
+  field.level_width = {field.width};
+  field.level_height = {field.height};
+  field.level_offset = {0};
+  for (std::size_t l = 1; l < sides.size(); ++l) {
+    const auto [w, h] = sides[l - 1];
+    const auto [next_w, next_h] = sides[l];
+    const std::size_t from = field.level_offset.back();
+    // Row z of level l - 1 filtered along x at its even columns 2i (taps clamped to the edge),
+    // in double; five such rows give one row of level l.
+    const auto filter_row = [&](int z, std::vector<double>& out) {
+      const float* row = field.heights.data() + from +
+                         std::size_t(std::min(std::max(z, 0), h - 1)) * std::size_t(w);
+      const auto at = [&](int i) { return double(row[std::min(std::max(i, 0), w - 1)]); };
+      for (int i = 0; i < next_w; ++i) {
+        const int x = 2 * i;
+        out[std::size_t(i)] =
+            (at(x - 2) + 4.0 * at(x - 1) + 6.0 * at(x) + 4.0 * at(x + 1) + at(x + 2)) / 16.0;
+      }
+    };
+    std::vector<std::vector<double>> rows(5, std::vector<double>(std::size_t(next_w)));
+    const std::size_t offset = field.heights.size();
+    field.heights.resize(offset + std::size_t(next_w) * std::size_t(next_h));
+    for (int j = 0; j < next_h; ++j) {
+      for (int m = 0; m < 5; ++m) {
+        filter_row(2 * j + m - 2, rows[std::size_t(m)]);
+      }
+      float* out = field.heights.data() + offset + std::size_t(j) * std::size_t(next_w);
+      for (int i = 0; i < next_w; ++i) {
+        const std::size_t c = std::size_t(i);
+        out[i] = static_cast<float>(
+            (rows[0][c] + 4.0 * rows[1][c] + 6.0 * rows[2][c] + 4.0 * rows[3][c] + rows[4][c]) /
+            16.0);
+      }
+    }
+    field.level_width.push_back(next_w);
+    field.level_height.push_back(next_h);
+    field.level_offset.push_back(offset);
+  }
+}
+
+namespace {
+
+// Taps floor(s) - 1 .. floor(s) + 2 over texel coordinates s0 .. s1 of a side of `count`
+// texels, widened by `margin`, clamped to the edges (coordinates clamped as the stage clamps
+// them first).
+void tap_range(double s0, double s1, double margin, int count, int& lo, int& hi) {
+  const double c0 = std::clamp(s0 - margin, -2.0, count + 1.0);
+  const double c1 = std::clamp(s1 + margin, -2.0, count + 1.0);
+  lo = std::clamp(static_cast<int>(std::floor(c0)) - 1, 0, count - 1);
+  hi = std::clamp(static_cast<int>(std::floor(c1)) + 2, 0, count - 1);
+}
+
+constexpr std::int64_t kMaxScan = 4096;
+
+// Extremes of level 0's texels [i0, i1] x [j0, j1]: directly up to kMaxScan of them, beyond
+// that the blocks of the finest block level that covers them with at most kMaxScan blocks (a
+// superset of the texels, so still a bound), so that the cost does not grow with the field.
+SketchRange level0_range(const HeightSketch& sketch, int i0, int i1, int j0, int j1) {
   if (std::int64_t(i1 - i0 + 1) * (j1 - j0 + 1) > kMaxScan) {
     for (const HeightBlockLevel& level : sketch.blocks) {
       const int b0 = i0 / level.block_side, b1 = i1 / level.block_side;
@@ -209,17 +331,78 @@ SketchRange sketch_range(const SketchPlan& plan, const HeightSketch& sketch, dou
   return {lo, hi};
 }
 
+}  // namespace
+
+SketchRange sketch_range(const SketchPlan& plan, const HeightSketch& sketch, double x0, double x1,
+                         double z0, double z1) {
+  // The texel coordinates the stage can form there, widened for float's rounding of the
+  // offset and the product (a thousandth of a texel plus 1e-6 relative, far more than
+  // float's 2^-24 relative per operation).
+  const double sx0 = plan.offset_x + x0 * plan.inv_cell_x,
+               sx1 = plan.offset_x + x1 * plan.inv_cell_x;
+  const double sz0 = plan.offset_z + z0 * plan.inv_cell_z,
+               sz1 = plan.offset_z + z1 * plan.inv_cell_z;
+  const double margin_x = 1e-3 + 1e-6 * (std::abs(plan.offset_x) + std::abs(sx0) + std::abs(sx1));
+  const double margin_z = 1e-3 + 1e-6 * (std::abs(plan.offset_z) + std::abs(sz0) + std::abs(sz1));
+  int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
+  tap_range(sx0, sx1, margin_x, sketch.width, i0, i1);
+  tap_range(sz0, sz1, margin_z, sketch.height, j0, j1);
+  SketchRange range = level0_range(sketch, i0, i1, j0, j1);
+  // A height field's coarser levels (build_field_levels): level l's taps at the coordinates
+  // times 2^-l (exact), each level's texels a convex combination the B-spline reads. Their
+  // extremes join level 0's: directly where few, else level 0's over every texel they filter
+  // (level l's texel i reads level 0 within 2^(l+1) - 2 of 2^l i).
+  for (int l = 1; l < sketch.levels(); ++l) {
+    const double scale = std::ldexp(1.0, -l);
+    const int w = sketch.level_width[std::size_t(l)], h = sketch.level_height[std::size_t(l)];
+    int a0 = 0, a1 = 0, c0 = 0, c1 = 0;
+    tap_range(sx0 * scale, sx1 * scale, margin_x, w, a0, a1);
+    tap_range(sz0 * scale, sz1 * scale, margin_z, h, c0, c1);
+    SketchRange level;
+    if (std::int64_t(a1 - a0 + 1) * (c1 - c0 + 1) <= kMaxScan) {
+      const float* samples = sketch.heights.data() + sketch.level_offset[std::size_t(l)];
+      level.lo = level.hi = samples[std::size_t(c0) * std::size_t(w) + std::size_t(a0)];
+      for (int c = c0; c <= c1; ++c) {
+        for (int a = a0; a <= a1; ++a) {
+          const double v = samples[std::size_t(c) * std::size_t(w) + std::size_t(a)];
+          level.lo = std::min(level.lo, v);
+          level.hi = std::max(level.hi, v);
+        }
+      }
+    } else {
+      const int reach = (2 << l) - 2;
+      const auto fine = [&](int i, int count) {
+        return std::clamp((i << l) + reach, 0, count - 1);
+      };
+      const auto fine_lo = [&](int i, int count) {
+        return std::clamp((i << l) - reach, 0, count - 1);
+      };
+      level = level0_range(sketch, fine_lo(a0, sketch.width), fine(a1, sketch.width),
+                           fine_lo(c0, sketch.height), fine(c1, sketch.height));
+    }
+    range.lo = std::min(range.lo, level.lo);
+    range.hi = std::max(range.hi, level.hi);
+  }
+  return range;
+}
+
 template SketchParams<float> make_sketch_params<float>(const SketchPlan&, const HeightSketch*);
 template SketchParams<double> make_sketch_params<double>(const SketchPlan&, const HeightSketch*);
 template float sample_sketch<float>(const SketchParams<float>&, std::span<const float>, float,
                                     float);
 template double sample_sketch<double>(const SketchParams<double>&, std::span<const float>, double,
                                       double);
+template float sample_field_level<float>(const SketchParams<float>&, std::span<const float>, int,
+                                         float, float);
+template double sample_field_level<double>(const SketchParams<double>&, std::span<const float>, int,
+                                           double, double);
 template void add_sketch<float>(const SketchParams<float>&, std::span<const float>, IndexRange,
                                 std::span<const float>, std::span<const float>,
-                                std::span<const std::uint8_t>, std::span<float>);
+                                std::span<const float>, std::span<const std::uint8_t>,
+                                std::span<float>);
 template void add_sketch<double>(const SketchParams<double>&, std::span<const float>, IndexRange,
                                  std::span<const double>, std::span<const double>,
-                                 std::span<const std::uint8_t>, std::span<double>);
+                                 std::span<const double>, std::span<const std::uint8_t>,
+                                 std::span<double>);
 
 }  // namespace relief

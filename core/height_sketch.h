@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "core/grid_buffers.h"
+#include "core/limits.h"
 #include "core/scene/scene.h"
 #include "core/stage_param_fields.h"
 
@@ -60,18 +61,39 @@ struct HeightSketch {
   // independent of the region's size, for a twelfth of `heights`' memory.
   std::vector<HeightBlockLevel> blocks;
   static constexpr int kFirstBlockSide = 4;
+  // A height field's levels of detail (build_field_levels), level 0 the samples themselves:
+  // level l's level_width[l] x level_height[l] values follow level l - 1's in `heights`, from
+  // level_offset[l]. A sketch has level 0 only.
+  std::vector<int> level_width, level_height;
+  std::vector<std::size_t> level_offset;
+  int levels() const { return level_width.empty() ? 1 : int(level_width.size()); }
 };
+
+// Appends the levels of detail of a height field's samples, each the one before filtered by
+// the binomial [1 4 6 4 1] / 16 along x, then along z (taps clamped to the edge), and every
+// other value kept: level l + 1 value i is level l's filtered value 2i, floor(n / 2) + 1 of
+// them for n (the last reaches or passes level l's last sample); while a side still shrinks,
+// at most limits::kMaxFieldLevels levels. A convex filter: every level lies within level 0's
+// extremes. Its texel centres: level l's texel i sits on level 0's texel 2^l i, so its texel
+// coordinate is level 0's times 2^-l, exactly.
+void build_field_levels(HeightSketch& field);
+
+// The samples of all the levels build_field_levels makes for a width x height field (level 0's
+// included), for memory estimates: under 4/3 of level 0's plus a few rows.
+std::size_t field_levels_samples(int width, int height);
 
 // heights[k] = lo + (hi - lo) grey[k] / max_grey; grey has width x height values.
 // Precondition: validated settings (lo < hi finite), width, height >= 2, max_grey > 0.
+// `levels_of_detail`: also build_field_levels (a height field without the fractal).
 HeightSketch make_height_sketch(const SketchSettings& settings, int width, int height,
-                                std::span<const std::uint16_t> grey, int max_grey);
+                                std::span<const std::uint16_t> grey, int max_grey,
+                                bool levels_of_detail = false);
 
 // heights[k] = lo + (hi - lo) values[k] (a float file's samples).
 // Precondition: validated settings, width, height >= 2, every value finite and every mapped
 // height within +-limits::kMaxBaseHeight (the loader refuses others, naming the sample).
 HeightSketch make_height_field(const SketchSettings& settings, int width, int height,
-                               std::span<const float> values);
+                               std::span<const float> values, bool levels_of_detail = false);
 
 // The frame's sketch values in double (per frame, from the camera position).
 struct SketchPlan {
@@ -110,17 +132,29 @@ SketchParams<Real> make_sketch_params(const SketchPlan& plan, const HeightSketch
 template <class Real>
 Real sample_sketch(const SketchParams<Real>& c, std::span<const float> heights, Real sx, Real sz);
 
+// Level `level` of a height field at level 0's texel coordinate (sx, sz): sample_sketch's
+// operations on that level's samples at (sx, sz) times level_scale[level].
+// Precondition: 0 <= level < c.levels.
+template <class Real>
+Real sample_field_level(const SketchParams<Real>& c, std::span<const float> heights, int level,
+                        Real sx, Real sz);
+
 // height[k] = height[k] + sketch at camera-relative (dx[k], dz[k]), for k in range where mask
 // is non-zero (empty: everywhere). Run after evaluate_fbm in stage 3 when c.enabled.
-// Precondition: finite dx, dz.
+// With levels of detail (c.levels > 1) and `nu` given, the vertex reads level
+//   lambda = min(max(lod_origin - nu[k], 0), levels - 1),  a = floor(lambda),  t = lambda - a,
+//   B = B_a + t (B_b - B_a),  b = min(a + 1, levels - 1)
+// (§4.1's geomorphing, between two levels instead of two octaves); `nu` empty: level 0.
+// Precondition: finite dx, dz, nu.
 template <class Real>
 void add_sketch(const SketchParams<Real>& c, std::span<const float> heights, IndexRange range,
-                std::span<const Real> dx, std::span<const Real> dz,
+                std::span<const Real> dx, std::span<const Real> dz, std::span<const Real> nu,
                 std::span<const std::uint8_t> mask, std::span<Real> height);
 
 // Extremes of the sketch over camera-relative base points dx in [x0, x1], dz in [z0, z1]
 // (world heights: the texels the interpolation can read there, exact up to 4096 of them,
-// beyond that the extremes of the fewest blocks of one level covering them, at most 4096).
+// beyond that the extremes of the fewest blocks of one level covering them, at most 4096;
+// with a height field's levels of detail, joined by every level's texels read there).
 // Precondition: finite, x0 <= x1, z0 <= z1.
 struct SketchRange {
   double lo = 0, hi = 0;

@@ -110,8 +110,9 @@ inline constexpr int kMaxSkyboxSize = 2048;
 inline constexpr int kMinSketchSize = 2;
 inline constexpr int kMaxSketchSize = 4096;
 // Its extent's coordinates lie within the camera's range, and a side spans at least 1e-3 units:
-// then the per-frame texel offset, (camera - x0) x texels / side <= 2e12 x 4096 / 1e-3 = 8e18,
-// and its float rounding stay finite (docs/scene-limits.md).
+// then the per-frame texel offset, (camera - x0) x texels / side <= 2e12 x 16385 / 1e-3 =
+// 3.3e19 (a height field's largest side; a sketch's 4096 gives 8e18), and its float rounding
+// stay finite (docs/scene-limits.md).
 inline constexpr double kMinSketchSpan = 1e-3;
 // A height field (terrain.heightfield): 2 to 16385 samples a side (2^14 + 1, the largest
 // `relief generate` map), 1 GiB of float heights at most; the job's memory estimate counts it
@@ -120,6 +121,9 @@ inline constexpr double kMinSketchSpan = 1e-3;
 // 4 bytes a sample plus a header line or three.
 inline constexpr int kMaxHeightFieldSize = 16385;
 inline constexpr std::uintmax_t kMaxHeightFieldFileBytes = 1025u << 20;
+// A height field's levels of detail (core/height_sketch.h): level l + 1 has floor(n / 2) + 1
+// samples a side where level l has n, so 16385 samples take 15 levels (to 2 a side).
+inline constexpr int kMaxFieldLevels = 16;
 // §3 Eq. 2's basis images (terrain.basis): 1 to 4 images, each of one side P, a power of two
 // in the lattice's range (kMinLatticeSize..kMaxLatticeSize, after mirroring too), since the
 // composed grid takes the lattice's place in stage 3. tile_size / P is the octave-0 cell, so

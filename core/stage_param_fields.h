@@ -59,7 +59,17 @@
   F(Real, offset_x, 0) F(Real, offset_z, 0) E                                                   \
   F(Real, inv_cell_x, 1) F(Real, inv_cell_z, 1) E                                               \
   /* width + 1, height + 1: the coordinate clamp (with -2) */                                   \
-  F(Real, max_x, 0) F(Real, max_z, 0) E
+  F(Real, max_x, 0) F(Real, max_z, 0) E                                                         \
+  /* A height field's levels of detail (height_sketch.h): 1 for a sketch (level 0 only). A     \
+     vertex reads level lod_origin - nu (stage 2's count read as a level); level l's samples   \
+     are level_width[l] x level_height[l] at level_offset[l] of the heights, its texel         \
+     coordinate level_scale[l] = 2^-l times level 0's. */                                       \
+  F(std::int32_t, levels, 1) E                                                                  \
+  F(Real, lod_origin, 0) E                                                                      \
+  A(std::int32_t, level_width, [limits::kMaxFieldLevels], {}) E                                 \
+  A(std::int32_t, level_height, [limits::kMaxFieldLevels], {}) E                                \
+  A(std::int32_t, level_offset, [limits::kMaxFieldLevels], {}) E                                \
+  A(Real, level_scale, [limits::kMaxFieldLevels], {}) E
 
 // core/vec3.h, Vec3<Real> (declared there): GLSL's Float3, since a vec3 aligns to 16 bytes.
 #define RELIEF_VEC3_FIELDS(F, A, E) F(Real, x) F(Real, y) F(Real, z) E

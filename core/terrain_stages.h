@@ -41,7 +41,8 @@ void add_sketch_rows(const SketchParams<Real>& params, const HeightSketch* sketc
     return;
   }
   const IndexRange range{buffers.layout.index(0, rows.begin), buffers.layout.index(0, rows.end)};
-  add_sketch<Real>(params, sketch->heights, range, buffers.dx, buffers.dz, mask, buffers.height);
+  add_sketch<Real>(params, sketch->heights, range, buffers.dx, buffers.dz, buffers.nu, mask,
+                   buffers.height);
 }
 
 // Stages 2, 3 and 4 over the whole grid, with parameters derived from `plan` for this call:

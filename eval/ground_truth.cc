@@ -127,6 +127,14 @@ GroundTruthLod ground_truth_lod(const Scene& scene, const SceneResources& resour
   out.lod.gap_sq = gap * gap;
   // c0 - c1 log2(d^2) = nu_max  <=>  d = 2^((c0 - nu_max) / (2 c1)).
   out.cap_distance = std::exp2((out.lod.c0 - out.lod.nu_max) / (2.0 * out.lod.c1));
+  const HeightSketch* field = resources.sketch_or_null();
+  if (field != nullptr && field->levels() > 1 && !fractal_enabled(t)) {
+    // A height field without the fractal: the truth is its samples themselves, level 0
+    // everywhere (nu = levels, height_sketch.h), whatever the distance.
+    out.lod.c1 = 0.0;
+    out.lod.c0 = out.lod.nu_max = field->levels();
+    out.cap_distance = 0.0;
+  }
   return out;
 }
 

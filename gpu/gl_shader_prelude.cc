@@ -79,6 +79,7 @@ std::string_view gl_stream_name(GlStream stream) {
 std::string shader_prelude() {
   std::string s = "#version 450 core\n";
   s += define("RELIEF_MAX_OCTAVES", limits::kMaxOctaves);
+  s += define("RELIEF_MAX_FIELD_LEVELS", limits::kMaxFieldLevels);
   s += define("RELIEF_GROUP_SIZE", kGroupSize);
   s += "#define RELIEF_NEED_DRAW " + std::to_string(int(kDraw)) + "u\n";
   s += define("RELIEF_BINDING_PARAMS", kBindingParams);

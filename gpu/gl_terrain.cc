@@ -147,8 +147,10 @@ void GlTerrain::check_sketch(const char* who, const HeightSketch* sketch) const 
   if (sketch == nullptr) {
     return;
   }
-  if (sketch->width < 2 || sketch->height < 2 ||
-      sketch->heights.size() != std::size_t(sketch->width) * std::size_t(sketch->height)) {
+  const std::size_t samples = sketch->level_width.empty()
+                                  ? std::size_t(sketch->width) * std::size_t(sketch->height)
+                                  : field_levels_samples(sketch->width, sketch->height);
+  if (sketch->width < 2 || sketch->height < 2 || sketch->heights.size() != samples) {
     throw std::invalid_argument(
         std::string(who) + ": the sketch (" + std::to_string(sketch->width) + " x " +
         std::to_string(sketch->height) + ", " + std::to_string(sketch->heights.size()) +
@@ -156,9 +158,13 @@ void GlTerrain::check_sketch(const char* who, const HeightSketch* sketch) const 
   }
   const std::size_t bytes = sketch->heights.size() * sizeof(float);
   if (static_cast<GLint64>(bytes) > max_block_bytes_) {
-    throw GlError(std::string(who) + ": the sketch (" + std::to_string(bytes) +
-                  " bytes) exceeds this GL's largest storage block (" +
-                  std::to_string(max_block_bytes_) + " bytes)");
+    throw GlError(std::string(who) + ": the sketch or height field (" +
+                  std::to_string(sketch->width) + "x" + std::to_string(sketch->height) +
+                  " samples" + (sketch->levels() > 1 ? " and their levels of detail, " : ", ") +
+                  std::to_string(bytes) + " bytes) exceeds this GL's largest storage block (" +
+                  std::to_string(max_block_bytes_) +
+                  " bytes); use a smaller terrain.heightfield.file or terrain.sketch.image, or "
+                  "another backend");
   }
 }
 
@@ -338,7 +344,7 @@ void GlTerrain::add_sketch(const SketchParams<float>& params) {
   glProgramUniform1i(program, glGetUniformLocation(program, "grid_pitch"), layout_.pitch);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingParams, sketch_params_.get());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingSketch, sketch_.get());
-  for (const GlStream s : {GlStream::kDx, GlStream::kDz, GlStream::kHeight}) {
+  for (const GlStream s : {GlStream::kDx, GlStream::kDz, GlStream::kNu, GlStream::kHeight}) {
     bind_stream(s);
   }
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindingMask,

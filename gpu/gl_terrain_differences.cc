@@ -121,8 +121,8 @@ GridBuffers<float> staged_reference(const FramePlan& plan, const GridBuffers<flo
   evaluate_fbm<float>(params.fbm, *plan.terrain.lattice, all, gl.dx, gl.dz, gl.nu, gl.valid,
                       staged.height);
   if (params.sketch.enabled != 0) {  // §3's sketch, stage 3's second part
-    add_sketch<float>(params.sketch, plan.terrain.sketch->heights, all, gl.dx, gl.dz, gl.valid,
-                      staged.height);
+    add_sketch<float>(params.sketch, plan.terrain.sketch->heights, all, gl.dx, gl.dz, gl.nu,
+                      gl.valid, staged.height);
   }
   // Stage 4 on the GL's stages 2 and 3.
   const SurfaceInputs<float> inputs{gl.dx, gl.dz, gl.height, gl.valid, {}};

@@ -110,6 +110,7 @@ std::string glsl_type() {
 std::string glsl_dims(const std::string& dims) {
   static const std::map<std::string, std::string> kNames = {
       {"limits::kMaxOctaves", "RELIEF_MAX_OCTAVES"},  // gl_shader_prelude.cc
+      {"limits::kMaxFieldLevels", "RELIEF_MAX_FIELD_LEVELS"},  // gl_shader_prelude.cc
       {"limits::kMaxMaterialLayers", "kMaxLayers"},   // glsl_prelude.cc
       {"kWaveOctaves", "kWaveOctaves"},               // glsl_prelude.cc
   };

@@ -158,7 +158,7 @@ void CpuBackend<Real>::run(StageId id, std::size_t begin, std::size_t end) {
                                  need_, grid_.height));
       if (params_.sketch.enabled != 0 && plan_.terrain.sketch != nullptr) {  // §3's base
         kernels_.sketch(params_.sketch, plan_.terrain.sketch->heights, range, grid_.dx, grid_.dz,
-                        need_, grid_.height);
+                        grid_.nu, need_, grid_.height);
       }
       if (planet()) {  // the bend, once the rows' heights are known (planet_bend.h)
         bend_vertices<Real>(params_.planet, range, grid_.dx, grid_.dz, grid_.height, grid_.valid,

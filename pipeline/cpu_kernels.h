@@ -55,7 +55,7 @@ struct CpuKernels {
                      std::span<const Real> dx, std::span<const Real> dz, std::span<const Real> nu,
                      std::span<const std::uint8_t> mask, std::span<Real> height) = nullptr;
   void (*sketch)(const SketchParams<Real>&, std::span<const float> heights, IndexRange,
-                 std::span<const Real> dx, std::span<const Real> dz,
+                 std::span<const Real> dx, std::span<const Real> dz, std::span<const Real> nu,
                  std::span<const std::uint8_t> mask, std::span<Real> height) = nullptr;
   // Stage 4 (core/surface.h).
   void (*surface)(const SurfaceParams<Real>&, RowRange, SurfaceInputs<Real>,

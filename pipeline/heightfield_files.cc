@@ -23,6 +23,9 @@ namespace relief {
 namespace {
 
 constexpr const char* kPath = "terrain.heightfield.file";
+// A PFM's header is read from the file's first bytes: "Pf", two sides of at most 5 digits and a
+// scale fit in a few dozen (longer padding is refused, saying so).
+constexpr std::size_t kPfmHeaderBytes = 128;
 
 bool ends_with(const std::string& name, std::string_view extension) {
   if (name.size() < extension.size()) {
@@ -108,6 +111,22 @@ PfmHeader parse_pfm_header(const HeightFieldSettings& s, const unsigned char* da
   if (magic != "Pf") {
     refuse(s, "is not a PFM (it does not begin with Pf)");
   }
+  // The header as read, for messages: white space shown as single spaces, other bytes that do
+  // not print as '?'.
+  const auto shown = [&](std::size_t end) {
+    std::string out;
+    for (const char c : text.substr(0, std::min(end, text.size()))) {
+      const auto u = static_cast<unsigned char>(c);
+      if (std::isspace(u)) {
+        if (out.empty() || out.back() != ' ') {
+          out.push_back(' ');
+        }
+      } else {
+        out.push_back(std::isprint(u) ? c : '?');
+      }
+    }
+    return brief_text(out);
+  };
   PfmHeader header;
   const std::string_view width = token(), height = token(), scale = token();
   const auto whole = [](std::string_view t, std::uint64_t& v) {
@@ -120,9 +139,16 @@ PfmHeader parse_pfm_header(const HeightFieldSettings& s, const unsigned char* da
   if (!whole(width, header.width) || !whole(height, header.height) || scale.empty() ||
       scale_error != std::errc() || scale_end != scale.data() + scale.size() ||
       !std::isfinite(scale_value) || scale_value == 0 || at >= text.size()) {
+    refuse(s, "has a malformed PFM header \"" + shown(at) +
+                  "\"; allowed: Pf, width and height in decimal digits and a finite non-zero "
+                  "scale, separated by white space, then one white-space byte, all within the "
+                  "first " +
+                  std::to_string(size) + " bytes");
+  }
+  if (text[at] == '\r' && at + 1 < text.size() && text[at + 1] == '\n') {
     refuse(s,
-           "has a malformed PFM header; allowed: Pf, width, height and a non-zero scale "
-           "separated by white space, then one white-space byte");
+           "ends its PFM header with CR LF; allowed: one white-space byte (LF) before the "
+           "samples");
   }
   header.little_endian = scale_value < 0;
   header.bytes = at + 1;
@@ -140,6 +166,7 @@ std::uintmax_t file_size(const HeightFieldSettings& s, std::uintmax_t max_bytes)
 HeightFieldPeek peek_or_throw(const HeightFieldSettings& s) {
   HeightFieldPeek peek;
   peek.format = format_of(s);
+  peek.levels_of_detail = !s.fractal && s.level_of_detail;
   if (s.raw_width != 0 && peek.format != HeightFieldFormat::kRaw16) {
     throw SceneError("terrain.heightfield.raw_width",
                      "scene: terrain.heightfield.raw_width = " + std::to_string(s.raw_width) +
@@ -156,7 +183,7 @@ HeightFieldPeek peek_or_throw(const HeightFieldSettings& s) {
     peek.width = png.header->width;
     peek.height = png.header->height;
   } else if (peek.format == HeightFieldFormat::kPfm) {
-    unsigned char head[128];
+    unsigned char head[kPfmHeaderBytes];
     std::size_t got = 0;
     try {
       InputFile file(s.image, limits::kMaxHeightFieldFileBytes);
@@ -194,6 +221,23 @@ HeightFieldPeek peek_or_throw(const HeightFieldSettings& s) {
     }
   }
   check_side(s, peek.width, peek.height, "samples");
+  if (peek.format == HeightFieldFormat::kPfm) {
+    // Refused from the header and the file's size, before a sample is allocated or read.
+    unsigned char head[kPfmHeaderBytes];
+    std::size_t got = 0;
+    try {
+      got = InputFile(s.image, limits::kMaxHeightFieldFileBytes).read(head, sizeof head);
+    } catch (const InputFileError& e) {
+      refuse(s, e.what());
+    }
+    const std::uintmax_t expected =
+        parse_pfm_header(s, head, got).bytes + peek.width * peek.height * sizeof(float);
+    if (peek.file_bytes != expected) {
+      refuse(s, "is " + std::to_string(peek.file_bytes) + " bytes; its header (" +
+                    size_text(peek.width, peek.height) + ") asks for exactly " +
+                    std::to_string(expected));
+    }
+  }
   return peek;
 }
 
@@ -219,7 +263,7 @@ HeightSketch load_pfm(const HeightFieldSettings& s, const HeightFieldPeek& peek)
   std::vector<float> values(std::size_t(width) * std::size_t(height));
   try {
     InputFile file(s.image, limits::kMaxHeightFieldFileBytes);
-    unsigned char head[128];
+    unsigned char head[kPfmHeaderBytes];
     const std::size_t got = file.read(head, sizeof head);
     const PfmHeader header = parse_pfm_header(s, head, got);
     const std::uintmax_t expected = header.bytes + values.size() * sizeof(float);
@@ -251,7 +295,7 @@ HeightSketch load_pfm(const HeightFieldSettings& s, const HeightFieldPeek& peek)
                      values.begin() + std::ptrdiff_t(height - 1 - j) * width);
   }
   check_samples(s, values, width);
-  return make_height_field(s, width, height, values);
+  return make_height_field(s, width, height, values, !s.fractal && s.level_of_detail);
 }
 
 HeightSketch load_raw16(const HeightFieldSettings& s, const HeightFieldPeek& peek) {
@@ -271,7 +315,8 @@ HeightSketch load_raw16(const HeightFieldSettings& s, const HeightFieldPeek& pee
     }
   }
   // Levels map into terrain.heightfield.height, whose range holds every world height.
-  return make_height_sketch(s, int(peek.width), int(peek.height), levels, 65535);
+  return make_height_sketch(s, int(peek.width), int(peek.height), levels, 65535,
+                            !s.fractal && s.level_of_detail);
 }
 
 HeightSketch load_png(const HeightFieldSettings& s) {
@@ -290,7 +335,8 @@ HeightSketch load_png(const HeightFieldSettings& s) {
   const std::vector<unsigned char> bytes =
       read_png_file(s.image, field, kPath, check_header, limits::kMaxHeightFieldFileBytes);
   const Grey16Image grey = decode_grey16_png(bytes, field, kPath, limits::kMaxHeightFieldFileBytes);
-  return make_height_sketch(s, grey.width, grey.height, grey.levels, 65535);
+  return make_height_sketch(s, grey.width, grey.height, grey.levels, 65535,
+                            !s.fractal && s.level_of_detail);
 }
 
 }  // namespace
@@ -306,13 +352,14 @@ std::optional<HeightFieldPeek> peek_height_field(const HeightFieldSettings& sett
 std::uintmax_t height_field_load_bytes(const HeightFieldPeek& peek) {
   const std::uintmax_t samples = std::uintmax_t(peek.width) * peek.height;
   // PNG: the file, the inflate check's buffer, stb's inflated rows and its 16-bit output, the
-  // levels' copy; PFM: the floats read; RAW16: the levels. Then the heights (4 bytes) and their
-  // block extremes (2 x 4 bytes per 16 samples, times 4/3 for the coarser levels: under 1).
+  // levels' copy; PFM: the floats read; RAW16: the levels. Then the heights with their levels of
+  // detail (4 bytes, times 4/3 and a few rows: under 6) and the block extremes (2 x 4 bytes per
+  // 16 samples, times 4/3 for the coarser blocks: under 1).
   const std::uintmax_t decode = peek.format == HeightFieldFormat::kPng
                                     ? peek.file_bytes + 8 * samples
                                 : peek.format == HeightFieldFormat::kPfm ? 4 * samples
                                                                          : 2 * samples;
-  return decode + 5 * samples;
+  return decode + (peek.levels_of_detail ? 7 : 5) * samples;
 }
 
 HeightSketch load_height_field(const HeightFieldSettings& settings) {

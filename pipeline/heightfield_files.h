@@ -22,6 +22,7 @@ struct HeightFieldPeek {
   HeightFieldFormat format = HeightFieldFormat::kPng;
   std::uintmax_t file_bytes = 0;
   std::uint64_t width = 0, height = 0;
+  bool levels_of_detail = false;  // built after loading (no fractal, level_of_detail on)
 };
 std::optional<HeightFieldPeek> peek_height_field(const HeightFieldSettings& settings);
 

@@ -158,11 +158,11 @@ void check_planet_depth(const Scene& scene, const SceneResources& resources) {
                   format_number(limits::kMaxPlanetRadius) + ")"
             : "no radius up to terrain.planet.radius's maximum " +
                   format_number(limits::kMaxPlanetRadius) +
-                  " holds it: lower terrain.amplitude or the sketch's heights";
+                  " holds it: lower terrain.amplitude or the sketch's or height field's heights";
     throw SceneError("terrain.planet.radius",
                      "scene: terrain.planet.radius = " + format_number(t.planet->radius) +
                          " is not above the depth the terrain can reach below the datum, " + depth +
-                         " (terrain.amplitude, the octaves' sum and the sketch's heights), so "
+                         " (terrain.amplitude, the octaves' sum and the sketch's or height field's heights), so "
                          "the surface would pass through the planet's centre; " +
                          advice);
   }

@@ -14,11 +14,11 @@ namespace relief::simd {
 HWY_EXPORT(AddSketch);
 
 void add_sketch(const SketchParams<float>& params, std::span<const float> heights, IndexRange range,
-                std::span<const float> dx, std::span<const float> dz,
+                std::span<const float> dx, std::span<const float> dz, std::span<const float> nu,
                 std::span<const std::uint8_t> mask, std::span<float> height) {
   HWY_DYNAMIC_DISPATCH(AddSketch)
-  (params, heights.data(), range, dx.data(), dz.data(), mask.empty() ? nullptr : mask.data(),
-   height.data());
+  (params, heights.data(), range, dx.data(), dz.data(), nu.empty() ? nullptr : nu.data(),
+   mask.empty() ? nullptr : mask.data(), height.data());
 }
 
 }  // namespace relief::simd

@@ -12,7 +12,7 @@ namespace relief::simd {
 
 // add_sketch<float> (core/height_sketch.h) over `range`, with the same preconditions and results.
 void add_sketch(const SketchParams<float>& params, std::span<const float> heights, IndexRange range,
-                std::span<const float> dx, std::span<const float> dz,
+                std::span<const float> dx, std::span<const float> dz, std::span<const float> nu,
                 std::span<const std::uint8_t> mask, std::span<float> height);
 
 }  // namespace relief::simd

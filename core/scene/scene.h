@@ -96,6 +96,10 @@ struct HeightFieldSettings : SketchSettings {
   // Whether the paper's fractal adds its detail (terrain.amplitude and the octaves) on top;
   // false: stage 3 sums no octave and the terrain is base_height plus the field.
   bool fractal = false;
+  // Without the fractal: whether each vertex reads the field filtered to its grid spacing
+  // (levels of detail, geomorphed; core/height_sketch.h); false: the samples themselves. Off by
+  // default: on the measured scenes it sat farther from the ground truth (docs/heightfields.md).
+  bool level_of_detail = false;
 };
 
 // §3 Eq. 2: the auxiliary function S as a convex combination of grey-scale basis images,

@@ -34,6 +34,19 @@ Field<S> extent_field() {
   return field;
 }
 
+// terrain.heightfield.file: a path only (no built-in field ships).
+Field<HeightFieldSettings> heightfield_file_field() {
+  Field<HeightFieldSettings> field = input_file_field<HeightFieldSettings>(
+      "file", &HeightFieldSettings::image,
+      {"",
+       "the heights; row 0 at z0 (a map with north, −z, up); the format from "
+       "the extension",
+       "a grey PNG (8 or 16 bits), a one-channel PFM (float), or RAW16 (.r16, "
+       ".raw: little-endian, top row first); 2…16385 samples a side"});
+  field.info.allowed = "a file path (relative to the scene file)";
+  return field;
+}
+
 }  // namespace
 
 const Schema<SketchSettings>& sketch_schema() {
@@ -54,12 +67,7 @@ const Schema<SketchSettings>& sketch_schema() {
 const Schema<HeightFieldSettings>& heightfield_schema() {
   using S = HeightFieldSettings;
   static const Schema<S> schema({
-      input_file_field<S>("file", &S::image,
-                          {"",
-                           "the heights; row 0 at z0 (a map with north, −z, up); the format from "
-                           "the extension",
-                           "a grey PNG (8 or 16 bits), a one-channel PFM (float), or RAW16 (.r16, "
-                           ".raw: little-endian, top row first); 2…16385 samples a side"}),
+      heightfield_file_field(),
       extent_field<S>(),
       increasing_pair_field<S>(
           "height", &S::height, Range{-limits::kMaxBaseHeight, limits::kMaxBaseHeight},
@@ -75,6 +83,11 @@ const Schema<HeightFieldSettings>& heightfield_schema() {
                        {"",
                         "the paper's fractal adds its detail on top (terrain.amplitude and "
                         "the octaves); false: the terrain is base_height plus the field"}),
+      boolean_field<S>("level_of_detail", &S::level_of_detail,
+                       {"",
+                        "without the fractal, each vertex reads the field filtered to its grid "
+                        "spacing (levels of detail, geomorphed; terrain.lod.bias finer); false: "
+                        "the samples themselves"}),
   });
   return schema;
 }

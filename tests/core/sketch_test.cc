@@ -276,11 +276,11 @@ TEST_CASE("simdSketchIsBitIdenticalToTheReferenceOnEveryTarget", "[sketch][simd]
        {std::span<const std::uint8_t>(), std::span<const std::uint8_t>(mask)}) {
     for (const IndexRange range : {IndexRange{0, kCount}, IndexRange{3, kCount - 2}}) {
       std::vector<float> reference = base;
-      add_sketch<float>(p, s.heights, range, dx, dz, m, reference);
+      add_sketch<float>(p, s.heights, range, dx, dz, {}, m, reference);
       for (const std::string& target : targets.runnable()) {
         simd::force_target(target);
         std::vector<float> vector = base;
-        simd::add_sketch(p, s.heights, range, dx, dz, m, vector);
+        simd::add_sketch(p, s.heights, range, dx, dz, {}, m, vector);
         INFO(target);
         CHECK(std::memcmp(vector.data(), reference.data(), kCount * sizeof(float)) == 0);
       }

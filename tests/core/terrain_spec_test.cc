@@ -216,7 +216,7 @@ void check_sketch_point(const SketchPlan& plan, const HeightSketch& sketch, Real
   Real height = Real(0);
   const std::uint8_t mask = 1;
   add_sketch<Real>(params, sketch.heights, IndexRange{0, 1}, std::span<const Real>(&dx, 1),
-                   std::span<const Real>(&dz, 1), std::span<const std::uint8_t>(&mask, 1),
+                   std::span<const Real>(&dz, 1), {}, std::span<const std::uint8_t>(&mask, 1),
                    std::span<Real>(&height, 1));
   CHECK(height == b);
 }

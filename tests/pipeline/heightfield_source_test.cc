@@ -105,7 +105,7 @@ TEST_CASE("heightfieldFilesOfEveryFormatGiveTheSameWorldHeights", "[heightfield]
       }
     }
     CHECK(field.min_height == field.heights.front());
-    CHECK(field.max_height == field.heights.back());
+    CHECK(field.max_height == field.heights[kW * kH - 1]);
   }
   for (const std::string& file : {pfm_file, big_endian}) {
     INFO(file);
@@ -153,7 +153,19 @@ TEST_CASE("hostileHeightfieldFilesAreRefusedNamingTheField", "[heightfield]") {
   refused(pfm("rgb.pfm", pfm_bytes(3, 2, ramp, true, "PF")), "is a three-channel PFM (PF)");
   refused(pfm("junk.pfm", "Pf\n3 x\n-1\n"), "has a malformed PFM header");
   refused(pfm("zero.pfm", "Pf\n3 2\n0\n"), "has a malformed PFM header");
-  refused(pfm("noend.pfm", "Pf\n3 2\n-1"), "has a malformed PFM header");
+  refused(pfm("noend.pfm", "Pf\n3 2\n-1"), "has a malformed PFM header \"Pf 3 2 -1\"");
+  refused(pfm("padded.pfm", "Pf\n3 2" + std::string(200, ' ') + "\n-1\n"),
+          "all within the first 128 bytes");
+  const std::string crlf_samples = pfm_bytes(3, 2, ramp).substr(10);  // after "Pf\n3 2\n-1.0\n"
+  refused(pfm("crlf.pfm", "Pf\r\n3 2\r\n-1.0\r\n" + crlf_samples),
+          "ends its PFM header with CR LF");
+  // A header that promises more than the file holds is refused from the file's size, before
+  // any sample is allocated: not as a memory problem.
+  require_refused(
+      run({"render",
+           scene_with(pfm("short.pfm", "Pf\n16385 16385\n-1.0\n" + std::string(16, '\0'))),
+           "--max-memory", "1G", "-o", out.string()}),
+      "its header (16385x16385) asks for exactly", out);
   const std::string whole = pfm_bytes(3, 2, ramp);
   refused(pfm("cut.pfm", whole.substr(0, whole.size() - 3)), "its header (3x2) asks for exactly");
   refused(pfm("long.pfm", whole + "extra"), "its header (3x2) asks for exactly");
@@ -202,15 +214,21 @@ TEST_CASE("hostileHeightfieldFilesAreRefusedNamingTheField", "[heightfield]") {
 }
 
 // The test's own B-spline (core/height_sketch.h's definition: uniform cubic B-spline of the
-// samples, centres at x0 + (i + 1/2) cell, taps clamped to the edge), in double.
-double bspline_oracle(const HeightSketch& f, const HeightFieldSettings& s, double x, double z) {
-  const double sx = (x - s.extent[0]) * f.width / (s.extent[2] - s.extent[0]) - 0.5;
-  const double sz = (z - s.extent[1]) * f.height / (s.extent[3] - s.extent[1]) - 0.5;
-  const auto weights = [](double t, double w[4]) {
-    w[0] = (1 - t) * (1 - t) * (1 - t) / 6;
-    w[1] = (3 * t * t * t - 6 * t * t + 4) / 6;
-    w[2] = (-3 * t * t * t + 3 * t * t + 3 * t + 1) / 6;
-    w[3] = t * t * t / 6;
+// samples, centres at x0 + (i + 1/2) cell, taps clamped to the edge), in double, on level `l`
+// of the field (its texel i on level 0's texel 2^l i, so its coordinate is level 0's / 2^l).
+double bspline_oracle(const HeightSketch& f, const HeightFieldSettings& s, double x, double z,
+                      int l = 0) {
+  const double scale = std::ldexp(1.0, -l);
+  const double sx = ((x - s.extent[0]) * f.width / (s.extent[2] - s.extent[0]) - 0.5) * scale;
+  const double sz = ((z - s.extent[1]) * f.height / (s.extent[3] - s.extent[1]) - 0.5) * scale;
+  const int w = l == 0 ? f.width : f.level_width[std::size_t(l)];
+  const int h = l == 0 ? f.height : f.level_height[std::size_t(l)];
+  const float* samples = f.heights.data() + (l == 0 ? 0 : f.level_offset[std::size_t(l)]);
+  const auto weights = [](double t, double wt[4]) {
+    wt[0] = (1 - t) * (1 - t) * (1 - t) / 6;
+    wt[1] = (3 * t * t * t - 6 * t * t + 4) / 6;
+    wt[2] = (-3 * t * t * t + 3 * t * t + 3 * t + 1) / 6;
+    wt[3] = t * t * t / 6;
   };
   const double fx = std::floor(sx), fz = std::floor(sz);
   double wx[4], wz[4];
@@ -218,13 +236,24 @@ double bspline_oracle(const HeightSketch& f, const HeightFieldSettings& s, doubl
   weights(sz - fz, wz);
   double sum = 0;
   for (int m = 0; m < 4; ++m) {
-    const int j = std::clamp(int(fz) + m - 1, 0, f.height - 1);
+    const int j = std::clamp(int(fz) + m - 1, 0, h - 1);
     for (int n = 0; n < 4; ++n) {
-      const int i = std::clamp(int(fx) + n - 1, 0, f.width - 1);
-      sum += wz[m] * wx[n] * f.heights[std::size_t(j * f.width + i)];
+      const int i = std::clamp(int(fx) + n - 1, 0, w - 1);
+      sum += wz[m] * wx[n] * samples[std::size_t(j * w + i)];
     }
   }
   return sum;
+}
+
+// Without the fractal, the level a vertex reads: stage 2's count nu as levels - nu (the field's
+// LOD rule, core/frame_plan.h), and the blend of its two levels.
+double field_oracle(const HeightSketch& f, const HeightFieldSettings& s, double x, double z,
+                    double nu) {
+  const int levels = f.levels();
+  const double lambda = std::clamp(levels - nu, 0.0, double(levels - 1));
+  const int a = int(std::floor(lambda)), b = std::min(a + 1, levels - 1);
+  const double fine = bspline_oracle(f, s, x, z, a), coarse = bspline_oracle(f, s, x, z, b);
+  return fine + (lambda - a) * (coarse - fine);
 }
 
 TEST_CASE("heightfieldFrameHeightsAreTheFieldAloneUnlessTheFractalIsAsked", "[heightfield]") {
@@ -242,10 +271,14 @@ TEST_CASE("heightfieldFrameHeightsAreTheFieldAloneUnlessTheFractalIsAsked", "[he
       "grid.height=96",
       "terrain.base_height=40",
       concat({"terrain.heightfield={\"file\":\"", file,
-              "\",\"extent\":[-3000,-2000,3000,2000],\"height\":[-500,1500]}"})};
-  for (const bool fractal : {false, true}) {
+              "\",\"extent\":[-900,-600,900,600],\"height\":[-500,1500]}"})};
+  // The field alone (its samples, then its levels of detail), then with the fractal.
+  for (const int mode : {0, 1, 2}) {
+    const bool fractal = mode == 2, lod = mode == 1;
     std::vector<std::string> sets = view;
     sets.push_back(fractal ? "terrain.heightfield.fractal=true" : "terrain.water_level=null");
+    sets.push_back(lod ? "terrain.heightfield.level_of_detail=true"
+                       : "terrain.heightfield.level_of_detail=false");
     const Scene scene = resolve_scene("alpine", sets);
     const NoiseLattice lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
     const std::optional<HeightSketch> field = load_height_sketch(scene);
@@ -261,14 +294,17 @@ TEST_CASE("heightfieldFrameHeightsAreTheFieldAloneUnlessTheFractalIsAsked", "[he
                                   RowRange{0, plan.layout.height}, again, again.valid);
     CHECK((work.octaves == 0) == !fractal);  // the skip: no octave summed without the fractal
     const Vec3d& c = scene.camera.position;
-    std::size_t checked = 0;
+    std::size_t checked = 0, coarser = 0;  // vertices reading a level above 0
     double worst = 0;
     for (std::size_t k = 0; k < plan.layout.size(); ++k) {
       if (!grid.valid[k]) {
         continue;
       }
       const double x = grid.dx[k] + c[0], z = grid.dz[k] + c[2];
-      double expected = 40.0 + bspline_oracle(*field, *scene.terrain.heightfield, x, z);
+      double expected =
+          40.0 + (fractal ? bspline_oracle(*field, *scene.terrain.heightfield, x, z)
+                          : field_oracle(*field, *scene.terrain.heightfield, x, z, grid.nu[k]));
+      coarser += field->levels() > 1 && grid.nu[k] < field->levels();
       if (fractal) {
         expected +=
             fbm_height<double>(plan.terrain, grid.dx[k], grid.dz[k], grid.nu[k]) - (40.0 - c[1]);
@@ -276,8 +312,13 @@ TEST_CASE("heightfieldFrameHeightsAreTheFieldAloneUnlessTheFractalIsAsked", "[he
       worst = std::max(worst, std::abs(grid.height[k] + c[1] - expected));
       ++checked;
     }
-    INFO("fractal " << fractal << ", worst " << worst);
+    INFO("mode " << mode << ", worst " << worst);
     CHECK(checked > 5000);
+    // Without the fractal the far vertices read coarser levels (the levels exist only then).
+    // Levels of detail only where asked (33 x 17, 17 x 9, 9 x 5, 5 x 3, 3 x 2, 2 x 2), and then
+    // the far vertices read coarser levels.
+    CHECK(field->levels() == (lod ? 6 : 1));
+    CHECK((coarser > checked / 10) == lod);
     // Double stages against the double oracle: the camera-relative texel coordinate's rounding
     // moves a sample by under 1e-9 texels, a height by under 1e-6 units at these slopes.
     CHECK(worst < 1e-6);
@@ -296,36 +337,48 @@ TEST_CASE("heightfieldRegionalBoundStaysTightOnALargeField", "[heightfield]") {
   }
   HeightFieldSettings s = settings_for("test", 0.0, 1000.0);
   s.extent = {0.0, 0.0, 4000.0, 3000.0};  // 10 units a texel
-  const HeightSketch field = make_height_sketch(s, kBigW, kBigH, grey, 65535);
-  REQUIRE_FALSE(field.blocks.empty());
-  CHECK(field.blocks.back().width == 1);
-  CHECK(field.blocks.back().height == 1);
-  const SketchPlan plan = make_sketch_plan(s, field, 0.0, 0.0);  // camera at the corner
-  const SketchParams<double> p = make_sketch_params<double>(plan, &field);
-  for (const double side : {100.0, 900.0, 1500.0, 2500.0}) {  // 100 to 62500 texels
-    for (const double x0 : {0.0, 700.0, 1400.0}) {
-      const double z0 = x0 * 0.4;
-      const SketchRange r = sketch_range(plan, field, x0, x0 + side, z0, z0 + side);
-      // The bound holds every value the interpolation takes there ...
-      double lo = 1e300, hi = -1e300;
-      for (int a = 0; a <= 40; ++a) {
-        for (int b = 0; b <= 40; ++b) {
-          const double x = x0 + side * a / 40.0, z = z0 + side * b / 40.0;
-          const double v = sample_sketch<double>(p, field.heights, p.offset_x + x * p.inv_cell_x,
-                                                 p.offset_z + z * p.inv_cell_z);
-          lo = std::min(lo, v);
-          hi = std::max(hi, v);
+  // Without levels of detail (a sketch, or a field with the fractal), then with them.
+  for (const bool levels_of_detail : {false, true}) {
+    const HeightSketch field = make_height_sketch(s, kBigW, kBigH, grey, 65535, levels_of_detail);
+    REQUIRE_FALSE(field.blocks.empty());
+    CHECK(field.blocks.back().width == 1);
+    CHECK(field.blocks.back().height == 1);
+    CHECK(field.levels() == (levels_of_detail ? 10 : 1));          // 400 x 300 down to 2 x 2
+    const SketchPlan plan = make_sketch_plan(s, field, 0.0, 0.0);  // camera at the corner
+    const SketchParams<double> p = make_sketch_params<double>(plan, &field);
+    for (const double side : {100.0, 900.0, 1500.0, 2500.0}) {  // 100 to 62500 texels
+      for (const double x0 : {0.0, 700.0, 1400.0}) {
+        const double z0 = x0 * 0.4;
+        const SketchRange r = sketch_range(plan, field, x0, x0 + side, z0, z0 + side);
+        // The bound holds every value the interpolation takes there, at every level ...
+        double lo = 1e300, hi = -1e300;
+        for (int a = 0; a <= 40; ++a) {
+          for (int b = 0; b <= 40; ++b) {
+            const double x = x0 + side * a / 40.0, z = z0 + side * b / 40.0;
+            for (int l = 0; l < field.levels(); ++l) {
+              const double v =
+                  sample_field_level<double>(p, field.heights, l, p.offset_x + x * p.inv_cell_x,
+                                             p.offset_z + z * p.inv_cell_z);
+              lo = std::min(lo, v);
+              hi = std::max(hi, v);
+            }
+          }
+        }
+        INFO("levels " << field.levels() << ", side " << side << " at " << x0 << ": [" << r.lo
+                       << ", " << r.hi << "] holds [" << lo << ", " << hi << "]");
+        CHECK(r.lo <= lo);
+        CHECK(r.hi >= hi);
+        if (!levels_of_detail) {
+          // ... and is not the field's global one: within one block of 4 texels' ramp of the
+          // region's own extremes (80 levels a texel, 8 texels of slack, 1000 / 65535 units a
+          // level). With levels the coarsest ones' few texels average the whole field: a
+          // region's bound then reaches toward the field's mean, as a vertex far enough away
+          // reads it.
+          const double slack = 8 * 80 * 1000.0 / 65535.0 + 1e-3;
+          CHECK(r.hi <= hi + slack + 9000 * 1000.0 / 65535.0);
+          CHECK(r.lo >= lo - slack - 9000 * 1000.0 / 65535.0);
         }
       }
-      INFO("side " << side << " at " << x0 << ": [" << r.lo << ", " << r.hi << "] holds [" << lo
-                   << ", " << hi << "]");
-      CHECK(r.lo <= lo);
-      CHECK(r.hi >= hi);
-      // ... and is not the field's global one: within one block of 4 texels' ramp of the
-      // region's own extremes (80 levels a texel, 8 texels of slack, 1000 / 65535 units a level).
-      const double slack = 8 * 80 * 1000.0 / 65535.0 + 1e-3;
-      CHECK(r.hi <= hi + slack + 9000 * 1000.0 / 65535.0);
-      CHECK(r.lo >= lo - slack - 9000 * 1000.0 / 65535.0);
     }
   }
 }

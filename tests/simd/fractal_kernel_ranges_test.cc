@@ -125,13 +125,13 @@ TEST_CASE("simdSketchAtAwkwardLengthsIsTheScalarSketchAndWritesOnlyItsRange", "[
                   fractal.begin() + std::ptrdiff_t(range.end),
                   before.begin() + std::ptrdiff_t(range.begin));
         std::vector<float> expected = before;
-        add_sketch<float>(params, sketch.heights, range, p.dx, p.dz, mask, expected);
+        add_sketch<float>(params, sketch.heights, range, p.dx, p.dz, {}, mask, expected);
         INFO("mask " << mask.size() << ", start " << start << ", length " << length);
         REQUIRE(test::untouched_outside(expected, range.begin, range.end));
         for (const std::string& target : targets.runnable()) {
           simd::force_target(target);
           std::vector<float> got = before;
-          simd::add_sketch(params, sketch.heights, range, p.dx, p.dz, mask, got);
+          simd::add_sketch(params, sketch.heights, range, p.dx, p.dz, {}, mask, got);
           INFO(target);
           CHECK(test::same_bits(got, expected));
         }
