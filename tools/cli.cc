@@ -25,6 +25,7 @@
 #include "tools/flicker_command.h"
 #include "tools/generate_command.h"
 #include "tools/image_library.h"
+#include "tools/panorama_command.h"
 #include "tools/path_command.h"
 #include "tools/reference_command.h"
 #include "tools/shard.h"
@@ -78,6 +79,13 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   std::string simd_target;
   add_backend(stages_cmd, backend, simd_target);
   add_float_format(stages_cmd, stages.raw_format);
+  // SCENE, --set, --threads and --max-memory: what the commands that render a scene take.
+  const auto scene_job = [&](CLI::App* command) {
+    add_scene_args(command, scene_args);
+    add_threads(command, threads);
+    add_max_memory(command, max_memory);
+    return command;
+  };
 
   RenderOptions render;
   CLI::App* render_cmd =
@@ -136,31 +144,19 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   CLI::App* compare_cmd = add_compare_command(app, compare);
 
   CrosscheckOptions crosscheck;
-  CLI::App* crosscheck_cmd = add_crosscheck_command(app, crosscheck);
-  add_scene_args(crosscheck_cmd, scene_args);
-  add_threads(crosscheck_cmd, threads);
-  add_max_memory(crosscheck_cmd, max_memory);
+  CLI::App* crosscheck_cmd = scene_job(add_crosscheck_command(app, crosscheck));
 
   // The ground truth and the error of a render against it (reference_command.h).
   ReferenceOptions reference;
-  CLI::App* reference_cmd = add_reference_command(app, reference);
-  add_scene_args(reference_cmd, scene_args);
-  add_threads(reference_cmd, threads);
-  add_max_memory(reference_cmd, max_memory);
+  CLI::App* reference_cmd = scene_job(add_reference_command(app, reference));
   FlickerOptions flicker;  // a camera move in real time and as truth (flicker_command.h)
-  CLI::App* flicker_cmd = add_flicker_command(app, flicker);
-  add_scene_args(flicker_cmd, scene_args);
-  add_threads(flicker_cmd, threads);
-  add_max_memory(flicker_cmd, max_memory);
+  CLI::App* flicker_cmd = scene_job(add_flicker_command(app, flicker));
   ErrorOptions error_options;
   CLI::App* error_cmd = add_error_command(app, error_options);
   add_max_memory(error_cmd, max_memory);
   // Frame time against error over the speed knobs (sweep_command.h).
   SweepOptions sweep;
-  CLI::App* sweep_cmd = add_sweep_command(app, sweep);
-  add_scene_args(sweep_cmd, scene_args);
-  add_threads(sweep_cmd, threads);
-  add_max_memory(sweep_cmd, max_memory);
+  CLI::App* sweep_cmd = scene_job(add_sweep_command(app, sweep));
 
   // The stability stress suite (stress_command.cc).
   StressOptions stress;
@@ -169,11 +165,11 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   add_threads(stress_cmd, threads);
   // A camera path down to a planet (path_command.h).
   PathOptions path;
-  CLI::App* path_cmd = add_path_command(app, path);
-  add_scene_args(path_cmd, scene_args);
-  add_threads(path_cmd, threads);
-  add_max_memory(path_cmd, max_memory);
+  CLI::App* path_cmd = scene_job(add_path_command(app, path));
   add_backend(path_cmd, backend, simd_target);
+  PanoramaOptions panorama;  // the scene all around its camera (panorama_command.h)
+  CLI::App* panorama_cmd = scene_job(add_panorama_command(app, panorama));
+  add_backend(panorama_cmd, backend, simd_target);
   StitchOptions stitch;  // the parts of --shard put together (stitch_command.h)
   add_max_memory(add_stitch_command(app, stitch), max_memory);
   GenerateOptions generate;  // height maps by the seeds' generators (generate_command.h)
@@ -234,7 +230,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     return bad_input;
   }
   for (CLI::App* command : {scene_cmd, stages_cmd, render_cmd, crosscheck_cmd, reference_cmd,
-                            sweep_cmd, stress_cmd, path_cmd}) {
+                            sweep_cmd, stress_cmd, path_cmd, panorama_cmd}) {
     if (command->parsed() && given_empty(command->get_option("SCENE"), scene_args.scene)) {
       err << "relief: error: SCENE is empty; give a scene file or a preset name, or leave it "
              "out for the default scene\n";
@@ -253,7 +249,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   const MemoryBudget budget = memory_budget(parse_memory_size(max_memory), max_memory);
   stages.budget = render.budget = raster_options.budget = crosscheck.budget = budget;
   reference.budget = flicker.budget = error_options.budget = sweep.budget = path.budget =
-      stitch.budget = generate.budget = budget;
+      stitch.budget = generate.budget = panorama.budget = budget;
   reference.scene_arg = crosscheck.scene_arg = flicker.scene_arg = scene_args.scene;
   if (error_cmd->parsed()) {
     return run_error_command(error_options, out, err);
@@ -289,7 +285,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       return bad_input;
     }
   }
-  stages.backend = render.backend = path.backend = *backend_from_name(backend);
+  stages.backend = render.backend = path.backend = panorama.backend = *backend_from_name(backend);
   // The rasteriser has no double variant: its arithmetic is exact integers and doubles already.
   if (raster_cmd->parsed() &&
       (render.backend == Backend::kReferenceDouble || render.backend == Backend::kGl)) {
@@ -358,6 +354,9 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     }
     if (path_cmd->parsed()) {
       return run_path_command(scene, path, out, err);
+    }
+    if (panorama_cmd->parsed()) {
+      return run_panorama_command(scene, panorama, out, err);
     }
     if (render_cmd->parsed()) {
       if (const int refused = check_render_paths(scene, scene_args.scene, render, err)) {
