@@ -16,16 +16,20 @@
 #include "core/scene/json_input.h"
 #include "core/scene/scene_json.h"
 #include "image/png_header.h"
+#include "pipeline/heightfield_checks.h"
 #include "pipeline/png_checks.h"
 
 namespace relief {
 
 namespace {
 
-constexpr const char* kPath = "terrain.heightfield.file";
+using namespace heightfield_checks;
+
 // A PFM's header is read from the file's first bytes: "Pf", two sides of at most 5 digits and a
 // scale fit in a few dozen (longer padding is refused, saying so).
 constexpr std::size_t kPfmHeaderBytes = 128;
+
+HeightFieldImageReader image_reader = nullptr;  // set_height_field_image_reader
 
 bool ends_with(const std::string& name, std::string_view extension) {
   if (name.size() < extension.size()) {
@@ -38,15 +42,6 @@ bool ends_with(const std::string& name, std::string_view extension) {
     }
   }
   return true;
-}
-
-std::string field_text(const HeightFieldSettings& s) {
-  return std::string(kPath) + " = \"" + brief_text(s.image) + "\"";
-}
-
-[[noreturn]] void refuse(const HeightFieldSettings& s, const std::string& why,
-                         const char* path = kPath) {
-  throw SceneError(path, "scene: " + field_text(s) + " " + why);
 }
 
 HeightFieldFormat format_of(const HeightFieldSettings& s) {
@@ -64,22 +59,12 @@ HeightFieldFormat format_of(const HeightFieldSettings& s) {
   if (ends_with(s.image, ".r16") || ends_with(s.image, ".raw")) {
     return HeightFieldFormat::kRaw16;
   }
+  if (ends_with(s.image, ".exr") || ends_with(s.image, ".tif") || ends_with(s.image, ".tiff")) {
+    return HeightFieldFormat::kImage;
+  }
   refuse(s,
          "has no height format's extension; allowed: .png (grey, 8 or 16 bits), .pfm (one "
-         "channel) or .r16 / .raw (RAW16)");
-}
-
-std::string size_text(std::uint64_t width, std::uint64_t height) {
-  return std::to_string(width) + "x" + std::to_string(height);
-}
-
-void check_side(const HeightFieldSettings& s, std::uint64_t width, std::uint64_t height,
-                const std::string& unit) {
-  const std::uint64_t lo = limits::kMinSketchSize, hi = limits::kMaxHeightFieldSize;
-  if (width < lo || width > hi || height < lo || height > hi) {
-    refuse(s, "is " + size_text(width, height) + " " + unit + "; allowed " + std::to_string(lo) +
-                  " to " + std::to_string(hi) + " on each side");
-  }
+         "channel), .r16 / .raw (RAW16), .exr, .tif / .tiff (one channel)");
 }
 
 // A PFM's header: "Pf", width, height and scale separated by white space, then one white-space
@@ -155,12 +140,24 @@ PfmHeader parse_pfm_header(const HeightFieldSettings& s, const unsigned char* da
   return header;
 }
 
-std::uintmax_t file_size(const HeightFieldSettings& s, std::uintmax_t max_bytes) {
-  try {
-    return InputFile(s.image, max_bytes).size();
-  } catch (const InputFileError& e) {
-    refuse(s, e.what());
+// An EXR or TIFF through the installed reader: one channel (a height map; several would leave
+// the height to guess), refused naming the field otherwise.
+HeightFieldImage read_image(const HeightFieldSettings& s, bool header_only) {
+  if (image_reader == nullptr) {
+    refuse(s,
+           "is an EXR or TIFF file, which this program cannot read (the relief command line "
+           "reads them through its image module); allowed here: .png, .pfm, .r16, .raw");
   }
+  HeightFieldImage image;
+  std::string error;
+  if (!image_reader(s.image, header_only, image, error)) {
+    refuse(s, "could not be read as an image: " + brief_text(error));
+  }
+  if (image.channels != 1) {
+    refuse(s, "has " + std::to_string(image.channels) +
+                  " channels; allowed: one (the heights), as a grey EXR or a one-band TIFF");
+  }
+  return image;
 }
 
 HeightFieldPeek peek_or_throw(const HeightFieldSettings& s) {
@@ -195,6 +192,11 @@ HeightFieldPeek peek_or_throw(const HeightFieldSettings& s) {
     const PfmHeader header = parse_pfm_header(s, head, got);
     peek.width = header.width;
     peek.height = header.height;
+  } else if (peek.format == HeightFieldFormat::kImage) {
+    peek.file_bytes = file_size(s, limits::kMaxHeightFieldFileBytes);  // a regular file first
+    const HeightFieldImage header = read_image(s, true);
+    peek.width = std::uint64_t(header.width);
+    peek.height = std::uint64_t(header.height);
   } else {
     peek.file_bytes = file_size(s, limits::kMaxHeightFieldFileBytes);
     const std::uintmax_t samples = peek.file_bytes / 2;
@@ -239,23 +241,6 @@ HeightFieldPeek peek_or_throw(const HeightFieldSettings& s) {
     }
   }
   return peek;
-}
-
-// Every sample finite and its world height within the scene's range.
-void check_samples(const HeightFieldSettings& s, std::span<const float> values, int width) {
-  const double lo = s.height[0], hi = s.height[1];
-  for (std::size_t k = 0; k < values.size(); ++k) {
-    const double world = lo + (hi - lo) * double(values[k]);
-    if (!std::isfinite(values[k]) || !(std::abs(world) <= limits::kMaxBaseHeight)) {
-      refuse(s, "has sample " + format_number(values[k]) + " at column " +
-                    std::to_string(k % std::size_t(width)) + ", row " +
-                    std::to_string(k / std::size_t(width)) + " (from the top), world height " +
-                    format_number(world) +
-                    " with terrain.heightfield.height; allowed: finite "
-                    "samples whose world heights lie within ±" +
-                    format_number(limits::kMaxBaseHeight));
-    }
-  }
 }
 
 HeightSketch load_pfm(const HeightFieldSettings& s, const HeightFieldPeek& peek) {
@@ -319,6 +304,17 @@ HeightSketch load_raw16(const HeightFieldSettings& s, const HeightFieldPeek& pee
                             !s.fractal && s.level_of_detail);
 }
 
+HeightSketch load_image(const HeightFieldSettings& s, const HeightFieldPeek& peek) {
+  HeightFieldImage image = read_image(s, false);
+  if (std::uint64_t(image.width) != peek.width || std::uint64_t(image.height) != peek.height ||
+      image.values.size() != std::size_t(image.width) * std::size_t(image.height)) {
+    refuse(s, "changed while it was read");
+  }
+  check_samples(s, image.values, image.width);  // rows top first: row 0 at z0
+  return make_height_field(s, image.width, image.height, image.values,
+                           !s.fractal && s.level_of_detail);
+}
+
 HeightSketch load_png(const HeightFieldSettings& s) {
   const std::string field = field_text(s);
   const auto check_header = [&](const std::vector<unsigned char>& header) {
@@ -341,6 +337,10 @@ HeightSketch load_png(const HeightFieldSettings& s) {
 
 }  // namespace
 
+void set_height_field_image_reader(HeightFieldImageReader reader) {
+  image_reader = reader;
+}
+
 std::optional<HeightFieldPeek> peek_height_field(const HeightFieldSettings& settings) {
   try {
     return peek_or_throw(settings);
@@ -355,7 +355,9 @@ std::uintmax_t height_field_load_bytes(const HeightFieldPeek& peek) {
   // levels' copy; PFM: the floats read; RAW16: the levels. Then the heights with their levels of
   // detail (4 bytes, times 4/3 and a few rows: under 6) and the block extremes (2 x 4 bytes per
   // 16 samples, times 4/3 for the coarser blocks: under 1).
-  const std::uintmax_t decode = peek.format == HeightFieldFormat::kPng
+  // EXR and TIFF: the reader's floats, and OpenImageIO's own buffer as large again.
+  const std::uintmax_t decode = peek.format == HeightFieldFormat::kImage ? 8 * samples
+                                : peek.format == HeightFieldFormat::kPng
                                     ? peek.file_bytes + 8 * samples
                                 : peek.format == HeightFieldFormat::kPfm ? 4 * samples
                                                                          : 2 * samples;
@@ -371,6 +373,8 @@ HeightSketch load_height_field(const HeightFieldSettings& settings) {
       return load_pfm(settings, peek);
     case HeightFieldFormat::kRaw16:
       return load_raw16(settings, peek);
+    case HeightFieldFormat::kImage:
+      return load_image(settings, peek);
   }
   return {};
 }

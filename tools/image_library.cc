@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "core/input_file.h"
+#include "pipeline/heightfield_files.h"
 #include "pipeline/memory_budget.h"
 
 namespace relief {
@@ -107,5 +108,47 @@ const ImageLibrary& image_library() {
   }
   return *library;
 }
+
+}  // namespace relief
+
+namespace relief {
+
+namespace {
+
+// terrain.heightfield's EXR and TIFF files (pipeline/heightfield_files.h), through the module:
+// the header first, the pixels only when asked.
+bool read_height_field_image(const std::string& path, bool header_only, HeightFieldImage& image,
+                             std::string& error) {
+  std::unique_ptr<ImageReader> reader;
+  try {
+    reader = image_library().open(path, error);
+  } catch (const ImageLibraryError& e) {
+    error = e.what();
+    return false;
+  }
+  if (!reader) {
+    return false;
+  }
+  const ImageHeader& header = reader->header();
+  if (header.deep || header.depth != 1) {
+    error = "a deep or volume image";
+    return false;
+  }
+  image.width = header.width;
+  image.height = header.height;
+  image.channels = header.channels;
+  if (header_only) {
+    return true;
+  }
+  image.values.resize(std::size_t(header.width) * std::size_t(header.height) *
+                      std::size_t(header.channels));
+  return reader->read(image.values.data(), error);
+}
+
+// Installed before main: the library reads no EXR or TIFF by itself.
+const bool kHeightFieldReaderInstalled =
+    (set_height_field_image_reader(&read_height_field_image), true);
+
+}  // namespace
 
 }  // namespace relief

@@ -41,8 +41,8 @@ Field<HeightFieldSettings> heightfield_file_field() {
       {"",
        "the heights; row 0 at z0 (a map with north, −z, up); the format from "
        "the extension",
-       "a grey PNG (8 or 16 bits), a one-channel PFM (float), or RAW16 (.r16, "
-       ".raw: little-endian, top row first); 2…16385 samples a side"});
+       "a grey PNG (8 or 16 bits), a one-channel PFM, EXR or TIFF (float), or RAW16 "
+       "(.r16, .raw: little-endian, top row first); 2…16385 samples a side"});
   field.info.allowed = "a file path (relative to the scene file)";
   return field;
 }
