@@ -58,45 +58,46 @@ void finish_height_sketch(HeightSketch& sketch) {
 
 }  // namespace
 
-HeightSketch make_height_sketch(const SketchSettings& settings, int width, int height,
-                                std::span<const std::uint16_t> grey, int max_grey,
-                                bool levels_of_detail) {
-  HeightSketch sketch;
-  sketch.width = width;
-  sketch.height = height;
-  if (levels_of_detail) {  // one allocation for every level
-    sketch.heights.reserve(field_levels_samples(width, height));
-  }
-  sketch.heights.resize(grey.size());
-  const double lo = settings.height[0], hi = settings.height[1];
-  for (std::size_t k = 0; k < grey.size(); ++k) {
-    sketch.heights[k] = static_cast<float>(lo + (hi - lo) * (double(grey[k]) / double(max_grey)));
-  }
-  finish_height_sketch(sketch);
-  if (levels_of_detail) {
-    build_field_levels(sketch);
-  }
-  return sketch;
-}
+namespace {
 
-HeightSketch make_height_field(const SketchSettings& settings, int width, int height,
-                               std::span<const float> values, bool levels_of_detail) {
+// heights[k] = lo + (hi - lo) unit(k) in double, rounded once to float; then the extremes, the
+// blocks and, when asked, the levels of detail (one allocation for every level).
+template <class Unit>
+HeightSketch make_field(const SketchSettings& settings, int width, int height, std::size_t count,
+                        Unit unit, bool levels_of_detail) {
   HeightSketch field;
   field.width = width;
   field.height = height;
-  if (levels_of_detail) {  // one allocation for every level
+  if (levels_of_detail) {
     field.heights.reserve(field_levels_samples(width, height));
   }
-  field.heights.resize(values.size());
+  field.heights.resize(count);
   const double lo = settings.height[0], hi = settings.height[1];
-  for (std::size_t k = 0; k < values.size(); ++k) {
-    field.heights[k] = static_cast<float>(lo + (hi - lo) * double(values[k]));
+  for (std::size_t k = 0; k < count; ++k) {
+    field.heights[k] = static_cast<float>(lo + (hi - lo) * unit(k));
   }
   finish_height_sketch(field);
   if (levels_of_detail) {
     build_field_levels(field);
   }
   return field;
+}
+
+}  // namespace
+
+HeightSketch make_height_sketch(const SketchSettings& settings, int width, int height,
+                                std::span<const std::uint16_t> grey, int max_grey,
+                                bool levels_of_detail) {
+  return make_field(
+      settings, width, height, grey.size(),
+      [&](std::size_t k) { return double(grey[k]) / double(max_grey); }, levels_of_detail);
+}
+
+HeightSketch make_height_field(const SketchSettings& settings, int width, int height,
+                               std::span<const float> values, bool levels_of_detail) {
+  return make_field(
+      settings, width, height, values.size(), [&](std::size_t k) { return double(values[k]); },
+      levels_of_detail);
 }
 
 SketchPlan make_sketch_plan(const SketchSettings& settings, const HeightSketch& sketch,

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -90,6 +91,19 @@ std::string InputFile::read_rest() {
     text.append(chunk, n);
   }
   return text;
+}
+
+bool has_extension(const std::string& name, std::string_view extension) {
+  if (name.size() < extension.size()) {
+    return false;
+  }
+  for (std::size_t k = 0; k < extension.size(); ++k) {
+    const char c = name[name.size() - extension.size() + k];
+    if (std::tolower(static_cast<unsigned char>(c)) != extension[k]) {
+      return false;
+    }
+  }
+  return true;
 }
 
 std::string format_bytes(std::uintmax_t bytes) {

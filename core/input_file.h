@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace relief {
 
@@ -41,6 +42,9 @@ class InputFile {
   std::uintmax_t position_ = 0;
   std::uintmax_t max_bytes_ = 0;
 };
+
+// Whether `name` ends in `extension` (lower case, with its dot), in any letter case.
+bool has_extension(const std::string& name, std::string_view extension);
 
 // "16 MiB", "1.5 GiB", "512 bytes": a size for messages.
 std::string format_bytes(std::uintmax_t bytes);

@@ -31,35 +31,23 @@ constexpr std::size_t kPfmHeaderBytes = 128;
 
 HeightFieldImageReader image_reader = nullptr;  // set_height_field_image_reader
 
-bool ends_with(const std::string& name, std::string_view extension) {
-  if (name.size() < extension.size()) {
-    return false;
-  }
-  for (std::size_t k = 0; k < extension.size(); ++k) {
-    const char c = name[name.size() - extension.size() + k];
-    if (std::tolower(static_cast<unsigned char>(c)) != extension[k]) {
-      return false;
-    }
-  }
-  return true;
-}
-
 HeightFieldFormat format_of(const HeightFieldSettings& s) {
   if (s.image.rfind("builtin:", 0) == 0) {
     refuse(s,
            "names a built-in image; allowed: a file (the built-in island is a sketch: "
            "terrain.sketch.image = \"builtin:island\")");
   }
-  if (ends_with(s.image, ".png")) {
+  if (has_extension(s.image, ".png")) {
     return HeightFieldFormat::kPng;
   }
-  if (ends_with(s.image, ".pfm")) {
+  if (has_extension(s.image, ".pfm")) {
     return HeightFieldFormat::kPfm;
   }
-  if (ends_with(s.image, ".r16") || ends_with(s.image, ".raw")) {
+  if (has_extension(s.image, ".r16") || has_extension(s.image, ".raw")) {
     return HeightFieldFormat::kRaw16;
   }
-  if (ends_with(s.image, ".exr") || ends_with(s.image, ".tif") || ends_with(s.image, ".tiff")) {
+  if (has_extension(s.image, ".exr") || has_extension(s.image, ".tif") ||
+      has_extension(s.image, ".tiff")) {
     return HeightFieldFormat::kImage;
   }
   refuse(s,

@@ -96,19 +96,6 @@ const CLI::Validator kNonEmptyNumber(
     },
     "NUMBER");
 
-bool has_extension(const std::string& name, std::string_view extension) {
-  if (name.size() < extension.size()) {
-    return false;
-  }
-  for (std::size_t k = 0; k < extension.size(); ++k) {
-    const char c = name[name.size() - extension.size() + k];
-    if (std::tolower(static_cast<unsigned char>(c)) != extension[k]) {
-      return false;
-    }
-  }
-  return true;
-}
-
 bool given_empty(const CLI::Option* option, const std::string& value) {
   return option->count() > 0 && value.empty();
 }

@@ -2,6 +2,8 @@
 // limit, the backend, the thread count, and checks of file names.
 #pragma once
 
+#include "core/input_file.h"  // has_extension
+
 #include <string>
 #include <string_view>
 #include <vector>
@@ -37,9 +39,6 @@ CLI::Validator integer_in(long long lo, long long hi);
 
 // A number is given: CLI11 turns an empty value into 0 ("--amplitude ''" was a flat map).
 extern const CLI::Validator kNonEmptyNumber;
-
-// `name` ends in `extension` (lower case), in any letter case.
-bool has_extension(const std::string& name, std::string_view extension);
 
 // An option given with an empty value (-o ""): never silently the default.
 bool given_empty(const CLI::Option* option, const std::string& value);
