@@ -285,36 +285,36 @@ SketchRange sketch_range(const SketchPlan& plan, const HeightSketch& sketch, dou
   // times 2^-l (exact), each level's texels a convex combination the B-spline reads. Their
   // extremes join level 0's: directly where few, else level 0's over every texel they filter
   // (level l's texel i reads level 0 within 2^(l+1) - 2 of 2^l i).
+  // The fallback windows of level 0 nest (each level's reaches past the one before): one
+  // block scan over the widest of them serves every level that needs it.
+  int wide_i0 = sketch.width, wide_i1 = -1, wide_j0 = sketch.height, wide_j1 = -1;
   for (int l = 1; l < sketch.levels(); ++l) {
     const double scale = std::ldexp(1.0, -l);
     const int w = sketch.level_width[std::size_t(l)], h = sketch.level_height[std::size_t(l)];
     int a0 = 0, a1 = 0, c0 = 0, c1 = 0;
     tap_range(sx0 * scale, sx1 * scale, margin_x, w, a0, a1);
     tap_range(sz0 * scale, sz1 * scale, margin_z, h, c0, c1);
-    SketchRange level;
     if (std::int64_t(a1 - a0 + 1) * (c1 - c0 + 1) <= kMaxScan) {
       const float* samples = sketch.heights.data() + sketch.level_offset[std::size_t(l)];
-      level.lo = level.hi = samples[std::size_t(c0) * std::size_t(w) + std::size_t(a0)];
       for (int c = c0; c <= c1; ++c) {
         for (int a = a0; a <= a1; ++a) {
           const double v = samples[std::size_t(c) * std::size_t(w) + std::size_t(a)];
-          level.lo = std::min(level.lo, v);
-          level.hi = std::max(level.hi, v);
+          range.lo = std::min(range.lo, v);
+          range.hi = std::max(range.hi, v);
         }
       }
-    } else {
-      const int reach = (2 << l) - 2;
-      const auto fine = [&](int i, int count) {
-        return std::clamp((i << l) + reach, 0, count - 1);
-      };
-      const auto fine_lo = [&](int i, int count) {
-        return std::clamp((i << l) - reach, 0, count - 1);
-      };
-      level = level0_range(sketch, fine_lo(a0, sketch.width), fine(a1, sketch.width),
-                           fine_lo(c0, sketch.height), fine(c1, sketch.height));
+      continue;
     }
-    range.lo = std::min(range.lo, level.lo);
-    range.hi = std::max(range.hi, level.hi);
+    const int reach = (2 << l) - 2;
+    wide_i0 = std::min(wide_i0, std::clamp((a0 << l) - reach, 0, sketch.width - 1));
+    wide_i1 = std::max(wide_i1, std::clamp((a1 << l) + reach, 0, sketch.width - 1));
+    wide_j0 = std::min(wide_j0, std::clamp((c0 << l) - reach, 0, sketch.height - 1));
+    wide_j1 = std::max(wide_j1, std::clamp((c1 << l) + reach, 0, sketch.height - 1));
+  }
+  if (wide_i1 >= 0) {
+    const SketchRange wide = level0_range(sketch, wide_i0, wide_i1, wide_j0, wide_j1);
+    range.lo = std::min(range.lo, wide.lo);
+    range.hi = std::max(range.hi, wide.hi);
   }
   return range;
 }

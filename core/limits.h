@@ -124,6 +124,12 @@ inline constexpr std::uintmax_t kMaxHeightFieldFileBytes = 1025u << 20;
 // A height field's levels of detail (core/height_sketch.h): level l + 1 has floor(n / 2) + 1
 // samples a side where level l has n, so 16385 samples take 15 levels (to 2 a side).
 inline constexpr int kMaxFieldLevels = 16;
+// Every level's samples together (under 4/3 of level 0's and a few rows) index as int32 in the
+// kernels (SketchParams::level_offset, the gathers' lanes).
+static_assert(4.0 / 3.0 * kMaxHeightFieldSize * kMaxHeightFieldSize +
+                      16.0 * 2 * kMaxHeightFieldSize <
+                  2147483647.0,
+              "a height field's levels must index as int32");
 // §3 Eq. 2's basis images (terrain.basis): 1 to 4 images, each of one side P, a power of two
 // in the lattice's range (kMinLatticeSize..kMaxLatticeSize, after mirroring too), since the
 // composed grid takes the lattice's place in stage 3. tile_size / P is the octave-0 cell, so

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <numeric>
 #include <sstream>
@@ -133,7 +134,7 @@ GroundTruthLod ground_truth_lod(const Scene& scene, const SceneResources& resour
     // everywhere (nu = levels, height_sketch.h), whatever the distance.
     out.lod.c1 = 0.0;
     out.lod.c0 = out.lod.nu_max = field->levels();
-    out.cap_distance = 0.0;
+    out.cap_distance = std::numeric_limits<double>::infinity();  // the cap holds everywhere
   }
   return out;
 }

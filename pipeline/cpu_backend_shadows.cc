@@ -37,9 +37,9 @@ void CpuBackend<Real>::run_shadow_heights(std::size_t begin, std::size_t end) {
     work.points += row_work.points;
     work.octaves += row_work.octaves;
     if (params_.sketch.enabled != 0 && plan_.terrain.sketch != nullptr) {  // §3's base
-      // A height field's level 0: the shadows' cache levels have their own spacing.
+      // A height field's level of detail by the cache level's own spacing (nu, as stage 2's).
       kernels_.sketch(params_.sketch, plan_.terrain.sketch->heights, IndexRange{0, std::size_t(n)},
-                      dx, dz, {}, {}, heights);
+                      dx, dz, nu, {}, heights);
     }
   }
   const std::lock_guard<std::mutex> lock(work_mutex_);

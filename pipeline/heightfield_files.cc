@@ -116,7 +116,7 @@ PfmHeader parse_pfm_header(const HeightFieldSettings& s, const unsigned char* da
                   "\"; allowed: Pf, width and height in decimal digits and a finite non-zero "
                   "scale, separated by white space, then one white-space byte, all within the "
                   "first " +
-                  std::to_string(size) + " bytes");
+                  std::to_string(kPfmHeaderBytes) + " bytes");
   }
   if (text[at] == '\r' && at + 1 < text.size() && text[at + 1] == '\n') {
     refuse(s,
@@ -130,13 +130,17 @@ PfmHeader parse_pfm_header(const HeightFieldSettings& s, const unsigned char* da
 
 // An EXR or TIFF through the installed reader: one channel (a height map; several would leave
 // the height to guess), refused naming the field otherwise.
-HeightFieldImage read_image(const HeightFieldSettings& s, bool header_only) {
+HeightFieldImage read_image(const HeightFieldSettings& s, bool header_only, int width = 0,
+                            int height = 0) {
   if (image_reader == nullptr) {
     refuse(s,
            "is an EXR or TIFF file, which this program cannot read (the relief command line "
            "reads them through its image module); allowed here: .png, .pfm, .r16, .raw");
   }
   HeightFieldImage image;
+  image.width = width;  // the header's, when the pixels are asked for
+  image.height = height;
+  image.channels = header_only ? 0 : 1;
   std::string error;
   if (!image_reader(s.image, header_only, image, error)) {
     refuse(s, "could not be read as an image: " + brief_text(error));
@@ -239,6 +243,9 @@ HeightSketch load_pfm(const HeightFieldSettings& s, const HeightFieldPeek& peek)
     unsigned char head[kPfmHeaderBytes];
     const std::size_t got = file.read(head, sizeof head);
     const PfmHeader header = parse_pfm_header(s, head, got);
+    if (header.width != peek.width || header.height != peek.height) {
+      refuse(s, "changed while it was read");  // before the samples' size is trusted
+    }
     const std::uintmax_t expected = header.bytes + values.size() * sizeof(float);
     if (file.size() != expected) {
       refuse(s, "is " + std::to_string(file.size()) + " bytes; its header (" +
@@ -293,7 +300,7 @@ HeightSketch load_raw16(const HeightFieldSettings& s, const HeightFieldPeek& pee
 }
 
 HeightSketch load_image(const HeightFieldSettings& s, const HeightFieldPeek& peek) {
-  HeightFieldImage image = read_image(s, false);
+  HeightFieldImage image = read_image(s, false, int(peek.width), int(peek.height));
   if (std::uint64_t(image.width) != peek.width || std::uint64_t(image.height) != peek.height ||
       image.values.size() != std::size_t(image.width) * std::size_t(image.height)) {
     refuse(s, "changed while it was read");

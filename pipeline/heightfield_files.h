@@ -21,7 +21,9 @@ enum class HeightFieldFormat { kPng, kPfm, kRaw16, kImage };
 // EXR and TIFF fields are read by a reader the command line installs (its OpenImageIO module,
 // tools/image_library.h), so that linking the library pulls no image library in. The image:
 // width x height x channels floats, top row first; values left empty when only the header is
-// asked for. Returns false with `error` set when the file cannot be read as an image.
+// asked for. Asked for the pixels, `image` arrives with the width, height and channels the
+// header gave: a file whose header now differs is refused before anything is allocated.
+// Returns false with `error` set when the file cannot be read as an image.
 struct HeightFieldImage {
   int width = 0, height = 0, channels = 0;
   std::vector<float> values;

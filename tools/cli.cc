@@ -36,6 +36,7 @@
 namespace relief {
 
 int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  install_height_field_image_reader();  // EXR and TIFF height fields (image_library.h)
   CLI::App app{
       "Relief renders procedural fractal landscapes (Schneider, Boldte & Westermann, VMV 2006) "
       "with a deterministic CPU pipeline.\n"
@@ -250,7 +251,8 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   stages.budget = render.budget = raster_options.budget = crosscheck.budget = budget;
   reference.budget = flicker.budget = error_options.budget = sweep.budget = path.budget =
       stitch.budget = generate.budget = panorama.budget = budget;
-  reference.scene_arg = crosscheck.scene_arg = flicker.scene_arg = scene_args.scene;
+  reference.scene_arg = crosscheck.scene_arg = flicker.scene_arg = panorama.scene_arg =
+      scene_args.scene;
   if (error_cmd->parsed()) {
     return run_error_command(error_options, out, err);
   }

@@ -134,6 +134,18 @@ bool read_height_field_image(const std::string& path, bool header_only, HeightFi
     error = "a deep or volume image";
     return false;
   }
+  // The extension names the format: OpenImageIO would read any image behind it (a JPEG named
+  // .exr, lossy), which the field's `file` does not allow.
+  const bool exr = has_extension(path, ".exr");
+  if (header.format != (exr ? "openexr" : "tiff")) {
+    error = "its contents are " + header.format + ", not " + (exr ? "OpenEXR" : "TIFF");
+    return false;
+  }
+  if (!header_only && (header.width != image.width || header.height != image.height ||
+                       header.channels != image.channels)) {
+    error = "it changed while it was read";  // refused before anything is allocated
+    return false;
+  }
   image.width = header.width;
   image.height = header.height;
   image.channels = header.channels;
@@ -145,10 +157,10 @@ bool read_height_field_image(const std::string& path, bool header_only, HeightFi
   return reader->read(image.values.data(), error);
 }
 
-// Installed before main: the library reads no EXR or TIFF by itself.
-const bool kHeightFieldReaderInstalled =
-    (set_height_field_image_reader(&read_height_field_image), true);
-
 }  // namespace
+
+void install_height_field_image_reader() {
+  set_height_field_image_reader(&read_height_field_image);
+}
 
 }  // namespace relief

@@ -69,4 +69,8 @@ using ImageLibraryEntry = const ImageLibrary* (*)();
 // the build tree. Throws ImageLibraryError.
 const ImageLibrary& image_library();
 
+// Lets terrain.heightfield read EXR and TIFF files through the module (pipeline's
+// set_height_field_image_reader): run_cli installs it; the library reads none by itself.
+void install_height_field_image_reader();
+
 }  // namespace relief

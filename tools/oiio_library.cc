@@ -36,8 +36,14 @@ class OiioReader : public ImageReader {
     return std::string(value->get_ustring().string());
   }
   bool read(float* pixels, std::string& error) override {
-    if (!input_->read_image(0, 0, 0, header_.channels, OIIO::TypeFloat, pixels)) {
+    // OpenImageIO 2.4 answers true for a TIFF whose strips are cut short, leaving zeros and an
+    // error behind: an error either way refuses the file.
+    if (!input_->read_image(0, 0, 0, header_.channels, OIIO::TypeFloat, pixels) ||
+        input_->has_error()) {
       error = input_->geterror();
+      if (error.empty()) {
+        error = "its pixels could not be read";
+      }
       return false;
     }
     return true;

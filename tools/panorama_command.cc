@@ -1,9 +1,12 @@
 #include "tools/panorama_command.h"
 
 #include <cstdio>
+#include <filesystem>
+#include <optional>
 #include <ostream>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -19,6 +22,7 @@
 #include "tools/atomic_file.h"
 #include "tools/cli.h"
 #include "tools/cli_options.h"
+#include "tools/distinct_paths.h"
 #include "tools/panorama.h"
 #include "tools/terminal_progress.h"
 
@@ -36,7 +40,7 @@ CLI::App* add_panorama_command(CLI::App& app, PanoramaOptions& o) {
                       std::to_string(kMaxPanoramaWidth) + "; the height is half")
       ->transform(integer_in(INT_MIN, INT_MAX))
       ->capture_default_str();
-  cmd->add_option("--json", o.json, "Also write the seams' figures as JSON");
+  o.json_option = cmd->add_option("--json", o.json, "Also write the seams' figures as JSON");
   return cmd;
 }
 
@@ -55,8 +59,26 @@ int run_panorama_command(const Scene& scene, const PanoramaOptions& o, std::ostr
                ": the panorama is written as PNG; give a file "
                "name ending in .png");
   }
-  if (!o.json.empty() && o.json == o.output) {
-    return bad("--json " + brief_text(o.json) + " is the panorama's own file; give another");
+  if (given_empty(o.json_option, o.json)) {
+    return bad("--json is empty; give a file name");
+  }
+  // Every file read or written distinct (links followed), and each output's directory there,
+  // before any work: nothing is written when one of them is wrong.
+  std::vector<CommandPath> paths = scene_input_paths(o.scene_arg, scene);
+  paths.push_back({"-o", o.output});
+  paths.push_back({"--json", o.json});
+  if (const std::optional<std::string> conflict = same_file_conflict(paths)) {
+    return bad(*conflict);
+  }
+  for (const auto& [name, file] : {std::pair{"-o", &o.output}, std::pair{"--json", &o.json}}) {
+    const std::filesystem::path parent = std::filesystem::path(*file).parent_path();
+    std::error_code error;
+    if (!file->empty() && ((!parent.empty() && !std::filesystem::is_directory(parent, error)) ||
+                           std::filesystem::is_directory(*file, error))) {
+      return bad(std::string(name) + " " + brief_text(*file) +
+                 ": its directory does not exist or it is a directory; give a file in an "
+                 "existing directory");
+    }
   }
   // Each view spans 90 degrees in side - 2 margin pixels: at the equator a quarter of the
   // panorama's width, as many pixels as the panorama has there.
@@ -78,7 +100,8 @@ int run_panorama_command(const Scene& scene, const PanoramaOptions& o, std::ostr
                6 * std::uintmax_t(side) * std::uintmax_t(side) * 3 * sizeof(float));
   estimate.add("panorama " + std::to_string(o.width) + "x" + std::to_string(o.width / 2),
                std::uintmax_t(o.width) * std::uintmax_t(o.width / 2) * (3 + 13));
-  check_memory(estimate, o.budget, "this panorama", render_memory_advice(scene));
+  check_memory(estimate, o.budget, "this panorama",
+               "Use a smaller --width, or a scene that needs less memory");
   request.max_bin_bytes = memory_left(estimate, o.budget);
   const SceneResources resources = load_scene_resources(scene);  // the camera's not in them
 
@@ -94,8 +117,10 @@ int run_panorama_command(const Scene& scene, const PanoramaOptions& o, std::ostr
   progress.update(int(faces.size()), int(faces.size()), "resampling");
   const Panorama panorama = resample_panorama(faces, scene.camera.yaw_deg, o.width);
   progress.finish();
-  write_file_atomically(o.output, encode_png_rgb(panorama.width, panorama.height, panorama.srgb,
-                                                 scene_metadata(scene)));
+  // Both files or neither (atomic_file.h).
+  OutputSet outputs;
+  outputs.add(o.output, encode_png_rgb(panorama.width, panorama.height, panorama.srgb,
+                                       scene_metadata(scene)));
   const PanoramaSeams& s = panorama.seams;
   if (!o.json.empty()) {
     const nlohmann::json figures = {{"width", panorama.width},
@@ -105,15 +130,15 @@ int run_panorama_command(const Scene& scene, const PanoramaOptions& o, std::ostr
                                     {"seam_mean_codes", s.mean_codes},
                                     {"seam_max_codes", s.max_codes}};
     const std::string text = figures.dump(2) + "\n";
-    write_file_atomically(
-        o.json, std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()));
+    outputs.add(o.json,
+                std::span(reinterpret_cast<const unsigned char*>(text.data()), text.size()));
   }
+  outputs.commit();
   char line[200];
   std::snprintf(line, sizeof line,
-                "seams: %llu directions seen by two views (within %d pixels of a cube edge), "
-                "mean difference %.3f sRGB codes, largest %d\n",
-                static_cast<unsigned long long>(s.directions), kPanoramaFaceMargin, s.mean_codes,
-                s.max_codes);
+                "seams: %llu directions seen by two views (next to a cube edge), mean "
+                "difference %.3f sRGB codes, largest %d\n",
+                static_cast<unsigned long long>(s.directions), s.mean_codes, s.max_codes);
   out << line << "wrote " << o.output << " (" << panorama.width << "x" << panorama.height
       << ", six views of " << side << "x" << side << ")\n";
   return kExitOk;

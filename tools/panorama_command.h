@@ -12,6 +12,7 @@
 
 namespace CLI {
 class App;
+class Option;
 }  // namespace CLI
 
 namespace relief {
@@ -20,6 +21,8 @@ struct PanoramaOptions {
   std::string output;  // .png
   int width = 2048;    // the equirectangular image's width; its height is half
   std::string json;    // the seams' figures; empty: none
+  const CLI::Option* json_option = nullptr;  // to tell --json '' from no --json
+  std::string scene_arg;                     // SCENE as given: a file is an input
   Backend backend = Backend::kSimd;
   MemoryBudget budget;
 };

@@ -260,10 +260,14 @@ int run_reference_command(const Scene& scene, const ReferenceOptions& options, s
       << big.viewport.width << "x" << big.viewport.height << " in " << image.bands
       << " band(s)), grid " << big.grid.width << "x" << big.grid.height
       << ", backend reference-double\n"
-      << "  octaves summed down to " << s.octave_epsilon << " of a pixel's footprint; all "
-      << int(image.lod.lod.nu_max) << " of the scene's octaves (the cap) within "
-      << std::setprecision(1) << image.lod.cap_distance << " world units of the camera\n"
-      << std::setprecision(3) << "  " << seconds << " s, estimated peak memory "
+      << "  octaves summed down to " << s.octave_epsilon << " of a pixel's footprint; ";
+  if (std::isinf(image.lod.cap_distance)) {  // a height field without the fractal
+    out << "the height field's own samples (level 0) everywhere\n";
+  } else {
+    out << "all " << int(image.lod.lod.nu_max) << " of the scene's octaves (the cap) within "
+        << std::setprecision(1) << image.lod.cap_distance << " world units of the camera\n";
+  }
+  out << std::setprecision(3) << "  " << seconds << " s, estimated peak memory "
       << estimate.describe() << "\n";
   if (options.stats) {
     RenderRuns runs;

@@ -173,6 +173,12 @@ void validate_scene(const Scene& scene) {
          "terrain.heightfield and terrain.sketch are both given; allowed one of them (a "
          "heightfield with \"fractal\": true is a sketch of any size and format)");
   }
+  if (t.heightfield && t.heightfield->fractal && t.heightfield->level_of_detail) {
+    fail("terrain.heightfield.level_of_detail",
+         "terrain.heightfield.level_of_detail = true with terrain.heightfield.fractal = true: the "
+         "levels are read from stage 2's octave count, which the fractal then needs; allowed: "
+         "level_of_detail with the fractal off");
+  }
   if (t.basis) {
     validate_basis(*t.basis, coarsest_frequency * farthest_footprint);
   } else if (t.horizontal_scale < min_horizontal_scale) {

@@ -17,6 +17,7 @@
 #include "tests/support/heightfield_files.h"
 #include "tests/support/test_support.h"
 #include "tools/float_image_file.h"
+#include "tools/image_library.h"
 
 namespace relief {
 namespace {
@@ -67,7 +68,7 @@ TEST_CASE("hostileHeightfieldFilesAreRefusedNamingTheField", "[heightfield]") {
   refused(pfm("padded.pfm", "Pf\n3 2" + std::string(200, ' ') + "\n-1\n"),
           "all within the first 128 bytes");
   const std::string crlf_samples =
-      test::pfm_bytes(3, 2, ramp).substr(10);  // after "Pf\n3 2\n-1.0\n"
+      test::pfm_bytes(3, 2, ramp).substr(12);  // after "Pf\n3 2\n-1.0\n"
   refused(pfm("crlf.pfm", "Pf\r\n3 2\r\n-1.0\r\n" + crlf_samples),
           "ends its PFM header with CR LF");
   // A header that promises more than the file holds is refused from the file's size, before
@@ -126,6 +127,7 @@ TEST_CASE("hostileHeightfieldFilesAreRefusedNamingTheField", "[heightfield]") {
 }
 
 TEST_CASE("exrAndTiffHeightfieldsGiveThePfmsHeights", "[heightfield]") {
+  install_height_field_image_reader();  // as run_cli does: the library alone reads neither
   test::TempDir dir("heightfield-images");
   constexpr int kW = 7, kH = 5;
   std::vector<float> top_first(kW * kH), bottom_first(kW * kH);
@@ -178,6 +180,23 @@ TEST_CASE("exrAndTiffHeightfieldsGiveThePfmsHeights", "[heightfield]") {
   const std::string fifo = (dir.path() / "pipe.exr").string();
   REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
   require_refused(run({"render", scene_with(fifo), "-o", out.string()}), "not a regular file", out);
+  // The extension names the format; a TIFF cut short is refused, not read as zeros.
+  require_refused(run({"render",
+                       scene_with(test::write_file(dir.path() / "png.exr",
+                                                   "P5\n2 2\n255\n" + std::string(4, '\1'))),
+                       "-o", out.string()}),
+                  "could not be read as an image", out);
+  const std::vector<unsigned char> tif_bytes = test::read_bytes(tif);
+  const std::string cut = test::write_file(
+      dir.path() / "cut.tif",
+      std::string(tif_bytes.begin(), tif_bytes.begin() + std::ptrdiff_t(tif_bytes.size() - 40)));
+  require_refused(run({"render", scene_with(cut), "-o", out.string()}),
+                  "could not be read as an image", out);
+  // Levels of detail are for a field without the fractal.
+  require_refused(run({"render", scene_with(exr), "--set", "terrain.heightfield.fractal=true",
+                       "--set", "terrain.heightfield.level_of_detail=true", "-o", out.string()}),
+                  "terrain.heightfield.level_of_detail = true with terrain.heightfield.fractal",
+                  out);
   CHECK(run({"render", scene_with(exr), "-o", out.string()}).code == 0);
 }
 

@@ -116,9 +116,19 @@ TEST_CASE("panoramaCommandRefusesBadOptionsAndIsTheSameForAnyThreadCount", "[pan
   require_refused(run({"panorama", "--width", "64", "-o", (dir.path() / "p.jpg").string()}),
                   "give a file name ending in .png", dir.path() / "p.jpg");
   require_refused(run({"panorama", "--width", "64", "-o", out.string(), "--json", out.string()}),
-                  "is the panorama's own file", out);
+                  "name the same file", out);
   require_refused(run({"panorama", "--width", "64", "--set", "camera.far=-1", "-o", out.string()}),
                   "camera.far", out);
+  // The same file under another spelling, a missing directory, an empty --json: refused before
+  // any work, nothing written.
+  const std::string dotted = (dir.path() / "." / "p.png").string();
+  require_refused(run({"panorama", "--width", "64", "-o", out.string(), "--json", dotted}),
+                  "same file", out);
+  require_refused(run({"panorama", "--width", "64", "-o", out.string(), "--json",
+                       (dir.path() / "missing" / "s.json").string()}),
+                  "its directory does not exist", out);
+  require_refused(run({"panorama", "--width", "64", "-o", out.string(), "--json", ""}),
+                  "--json is empty", out);
   const std::filesystem::path one = dir.path() / "one.png", two = dir.path() / "two.png";
   REQUIRE(run({"panorama", "lake", "--width", "96", "--threads", "1", "-o", one.string()}).code ==
           0);

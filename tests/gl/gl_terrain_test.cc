@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@
 #include "gpu/gl_terrain.h"
 #include "tests/gl/gl_terrain_support.h"
 #include "tests/gl/gl_test_context.h"
+#include "tests/support/heightfield_files.h"
 #include "tests/support/test_support.h"
 
 namespace relief {
@@ -79,6 +81,33 @@ TEST_CASE("glTerrainStagesMatchTheCpuWhereFloatIsStressed", "[gl]") {
     }
   }
   CHECK(exact_octaves > 0);  // the exact form was exercised
+}
+
+TEST_CASE("glTerrainStagesMatchTheCpuOnAHeightFieldWithItsLevels", "[gl]") {
+  // terrain.heightfield without the fractal, its levels of detail read from stage 2's count
+  // (sketch.comp's levels > 1 branch): near vertices on level 0, far ones blending coarser
+  // levels; with and without the levels.
+  test::TempDir dir("gl-heightfield");
+  std::vector<float> values(65 * 49);
+  test::TestRandom rng(17);
+  for (float& v : values) {
+    v = float(rng.uniform(0.0, 1.0));
+  }
+  const std::string file = (dir.path() / "f.pfm").string();
+  std::ofstream(file, std::ios::binary) << test::pfm_bytes(65, 49, values);
+  for (const std::string levels : {"true", "false"}) {
+    std::string field = "terrain.heightfield={\"file\":\"";
+    field.append(file)
+        .append("\",\"extent\":[-3000,-2000,3000,2000],\"height\":[0,900],")
+        .append("\"level_of_detail\":")
+        .append(levels)
+        .append("}");
+    const std::vector<std::string> overrides = {
+        field, "terrain.base_height=0", "camera.position=[0,1200,2500]", "camera.pitch_deg=-15"};
+    const test::GlTerrainRun run = test::run_cpu_and_gl("default", overrides, kWidth, kHeight);
+    std::string what = "heightfield, levels ";
+    test::check_gl_terrain(run, exact(), what.append(levels));
+  }
 }
 
 // Stage 3 alone, from stage 2's streams uploaded from the CPU: random positions out to 1e7

@@ -130,7 +130,7 @@ SunHorizonCache<Real> build_horizon_cache(const ShadowPlan& plan, const FramePla
                          {}, heights);
       if (sketch.enabled != 0) {
         add_sketch<Real>(sketch, resources.sketch_or_null()->heights, IndexRange{0, std::size_t(n)},
-                         dx, dz, {}, {}, heights);
+                         dx, dz, nu, {}, heights);
       }
     }
   }
