@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -87,6 +88,17 @@ TEST_CASE("fieldLevelsAreTheBinomialReduceOfTheLevelBelow", "[heightfield]") {
       CHECK(got >= field.min_height);
       CHECK(got <= field.max_height);
     }
+  }
+  // Degenerate sides: 2 x 2 has no coarser level (levels of detail then read level 0 only),
+  // 3 x 2 one (2 x 2), 2 x 9 shrinks along z alone (2 x 5, 2 x 3, 2 x 2).
+  for (const auto& [w, h, levels] :
+       {std::tuple{2, 2, 1}, std::tuple{3, 2, 2}, std::tuple{2, 9, 4}}) {
+    const std::vector<float> small(std::size_t(w * h), 0.5f);
+    const HeightSketch f = make_height_field(field_settings(), w, h, small, true);
+    INFO(w << " x " << h);
+    CHECK(f.levels() == levels);
+    CHECK(f.heights.size() == field_levels_samples(w, h));
+    CHECK(std::all_of(f.heights.begin(), f.heights.end(), [](float v) { return v == 0.5f; }));
   }
   // Level 0 is the samples, the blocks and extremes are level 0's.
   CHECK(std::equal(values.begin(), values.end(), field.heights.begin()));

@@ -88,11 +88,7 @@ TEST_CASE("glTerrainStagesMatchTheCpuOnAHeightFieldWithItsLevels", "[gl]") {
   // (sketch.comp's levels > 1 branch): near vertices on level 0, far ones blending coarser
   // levels; with and without the levels.
   test::TempDir dir("gl-heightfield");
-  std::vector<float> values(65 * 49);
-  test::TestRandom rng(17);
-  for (float& v : values) {
-    v = float(rng.uniform(0.0, 1.0));
-  }
+  const std::vector<float> values = test::random_unit_samples(65 * 49, 17);
   const std::string file = (dir.path() / "f.pfm").string();
   std::ofstream(file, std::ios::binary) << test::pfm_bytes(65, 49, values);
   for (const std::string levels : {"true", "false"}) {

@@ -143,11 +143,7 @@ double field_oracle(const HeightSketch& f, const HeightFieldSettings& s, double 
 
 TEST_CASE("heightfieldFrameHeightsAreTheFieldAloneUnlessTheFractalIsAsked", "[heightfield]") {
   test::TempDir dir("heightfield-frame");
-  std::vector<float> values(33 * 17);
-  test::TestRandom rng(41);
-  for (float& v : values) {
-    v = float(rng.uniform(0.0, 1.0));
-  }
+  const std::vector<float> values = test::random_unit_samples(33 * 17, 41);
   const std::string file = test::write_file(dir.path() / "f.pfm", test::pfm_bytes(33, 17, values));
   const std::vector<std::string> view = {
       "camera.position=[100,2500,300]",

@@ -7,7 +7,19 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/test_support.h"
+
 namespace relief::test {
+
+// `count` samples uniform in [0, 1) from the fixed-seed TestRandom: a rough field for a PFM.
+inline std::vector<float> random_unit_samples(std::size_t count, unsigned seed) {
+  std::vector<float> values(count);
+  TestRandom rng(seed);
+  for (float& v : values) {
+    v = float(rng.uniform(0.0, 1.0));
+  }
+  return values;
+}
 
 // A one-channel PFM (or `magic` PF), samples given top row first.
 inline std::string pfm_bytes(int width, int height, const std::vector<float>& top_row_first,
