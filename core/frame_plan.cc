@@ -39,8 +39,8 @@ LodPlan make_field_lod_plan(const TerrainSettings& terrain, const HeightSketch& 
   // the clamp of lambda to [0, levels - 1]. `cell` the coarser axis's sample spacing (> 0:
   // validate_scene keeps each side of the extent at least kMinSketchSpan long).
   const SketchSettings& s = *added_height_field(terrain);
-  const double cell = std::max((s.extent[2] - s.extent[0]) / field.width,
-                               (s.extent[3] - s.extent[1]) / field.height);
+  const auto& e = sketch_extent(s, field);
+  const double cell = std::max((e[2] - e[0]) / field.width, (e[3] - e[1]) / field.height);
   LodPlan lod;
   lod.nu_max = field.levels();
   lod.c0 = lod.nu_max + std::log2(cell) + terrain.lod.bias;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/field_prefilter.h"
 #include "core/interpolant.h"
 
 namespace relief {
@@ -60,11 +61,13 @@ void finish_height_sketch(HeightSketch& sketch) {
 
 namespace {
 
-// heights[k] = lo + (hi - lo) unit(k) in double, rounded once to float; then the extremes, the
-// blocks and, when asked, the levels of detail (one allocation for every level).
+// heights[k] = lo + (hi - lo) unit(k) in double, rounded once to float; when asked, replaced by
+// the coefficients the B-spline interpolates them with; then the extremes (the coefficients':
+// the surface's exact bounds), the blocks and, when asked, the levels of detail (one allocation
+// for every level).
 template <class Unit>
 HeightSketch make_field(const SketchSettings& settings, int width, int height, std::size_t count,
-                        Unit unit, bool levels_of_detail) {
+                        Unit unit, bool levels_of_detail, bool interpolating) {
   HeightSketch field;
   field.width = width;
   field.height = height;
@@ -75,6 +78,9 @@ HeightSketch make_field(const SketchSettings& settings, int width, int height, s
   const double lo = settings.height[0], hi = settings.height[1];
   for (std::size_t k = 0; k < count; ++k) {
     field.heights[k] = static_cast<float>(lo + (hi - lo) * unit(k));
+  }
+  if (interpolating) {
+    interpolating_coefficients(field.heights, width, height);
   }
   finish_height_sketch(field);
   if (levels_of_detail) {
@@ -87,22 +93,24 @@ HeightSketch make_field(const SketchSettings& settings, int width, int height, s
 
 HeightSketch make_height_sketch(const SketchSettings& settings, int width, int height,
                                 std::span<const std::uint16_t> grey, int max_grey,
-                                bool levels_of_detail) {
+                                bool levels_of_detail, bool interpolating) {
   return make_field(
       settings, width, height, grey.size(),
-      [&](std::size_t k) { return double(grey[k]) / double(max_grey); }, levels_of_detail);
+      [&](std::size_t k) { return double(grey[k]) / double(max_grey); }, levels_of_detail,
+      interpolating);
 }
 
 HeightSketch make_height_field(const SketchSettings& settings, int width, int height,
-                               std::span<const float> values, bool levels_of_detail) {
+                               std::span<const float> values, bool levels_of_detail,
+                               bool interpolating) {
   return make_field(
       settings, width, height, values.size(), [&](std::size_t k) { return double(values[k]); },
-      levels_of_detail);
+      levels_of_detail, interpolating);
 }
 
 SketchPlan make_sketch_plan(const SketchSettings& settings, const HeightSketch& sketch,
                             double camera_x, double camera_z) {
-  const auto& e = settings.extent;
+  const auto& e = sketch_extent(settings, sketch);
   SketchPlan plan;
   plan.enabled = true;
   plan.inv_cell_x = double(sketch.width) / (e[2] - e[0]);  // x1 > x0: validate_scene

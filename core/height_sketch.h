@@ -26,7 +26,9 @@
 // the camera, so a sketch a million units out is as accurate as one at the origin.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -67,7 +69,16 @@ struct HeightSketch {
   std::vector<int> level_width, level_height;
   std::vector<std::size_t> level_offset;
   int levels() const { return level_width.empty() ? 1 : int(level_width.size()); }
+  // A georeferenced field's extent from its file (terrain.heightfield.georeferenced,
+  // pipeline/geotiff_reference.h), in place of the settings' extent; nullopt: the settings'.
+  std::optional<std::array<double, 4>> placed_extent;
 };
+
+// The world rectangle the texels cover: the file's placement, or the settings' extent.
+inline const std::array<double, 4>& sketch_extent(const SketchSettings& settings,
+                                                  const HeightSketch& sketch) {
+  return sketch.placed_extent ? *sketch.placed_extent : settings.extent;
+}
 
 // Appends the levels of detail of a height field's samples, each the one before filtered by
 // the binomial [1 4 6 4 1] / 16 along x, then along z (taps clamped to the edge), and every
@@ -85,15 +96,19 @@ std::size_t field_levels_samples(int width, int height);
 // heights[k] = lo + (hi - lo) grey[k] / max_grey; grey has width x height values.
 // Precondition: validated settings (lo < hi finite), width, height >= 2, max_grey > 0.
 // `levels_of_detail`: also build_field_levels (a height field without the fractal).
+// `interpolating`: the heights replaced by the coefficients whose B-spline passes through them
+// at every texel centre (core/field_prefilter.h; terrain.heightfield.interpolating), before the
+// extremes, blocks and levels are formed from them.
 HeightSketch make_height_sketch(const SketchSettings& settings, int width, int height,
                                 std::span<const std::uint16_t> grey, int max_grey,
-                                bool levels_of_detail = false);
+                                bool levels_of_detail = false, bool interpolating = false);
 
 // heights[k] = lo + (hi - lo) values[k] (a float file's samples).
 // Precondition: validated settings, width, height >= 2, every value finite and every mapped
 // height within +-limits::kMaxBaseHeight (the loader refuses others, naming the sample).
 HeightSketch make_height_field(const SketchSettings& settings, int width, int height,
-                               std::span<const float> values, bool levels_of_detail = false);
+                               std::span<const float> values, bool levels_of_detail = false,
+                               bool interpolating = false);
 
 // The frame's sketch values in double (per frame, from the camera position).
 struct SketchPlan {

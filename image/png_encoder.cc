@@ -99,8 +99,17 @@ std::vector<unsigned char> encode_png_rgb8(int width, int height,
   assert(rgb.size() == row_bytes * static_cast<std::size_t>(std::max(height, 0)));
   // Colour type 2 (RGB), 8 bits; rows stored bottom row first.
   return encode_png(width, height, 3, 2, 8, [&](int y, unsigned char* out) {
-    std::memcpy(out, rgb.data() + static_cast<std::size_t>(height - 1 - y) * row_bytes,
-                row_bytes);
+    std::memcpy(out, rgb.data() + static_cast<std::size_t>(height - 1 - y) * row_bytes, row_bytes);
+  });
+}
+
+std::vector<unsigned char> encode_png_rgba8(int width, int height,
+                                            std::span<const std::uint8_t> rgba) {
+  const std::size_t row_bytes = static_cast<std::size_t>(std::max(width, 0)) * 4;
+  assert(rgba.size() == row_bytes * static_cast<std::size_t>(std::max(height, 0)));
+  // Colour type 6 (RGB with alpha), 8 bits; rows top row first.
+  return encode_png(width, height, 4, 6, 8, [&](int y, unsigned char* out) {
+    std::memcpy(out, rgba.data() + static_cast<std::size_t>(y) * row_bytes, row_bytes);
   });
 }
 

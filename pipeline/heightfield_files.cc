@@ -16,6 +16,7 @@
 #include "core/scene/json_input.h"
 #include "core/scene/scene_json.h"
 #include "image/png_header.h"
+#include "pipeline/geotiff_reference.h"
 #include "pipeline/heightfield_checks.h"
 #include "pipeline/png_checks.h"
 
@@ -275,7 +276,8 @@ HeightSketch load_pfm(const HeightFieldSettings& s, const HeightFieldPeek& peek)
                      values.begin() + std::ptrdiff_t(height - 1 - j) * width);
   }
   check_samples(s, values, width);
-  return make_height_field(s, width, height, values, !s.fractal && s.level_of_detail);
+  return make_height_field(s, width, height, values, !s.fractal && s.level_of_detail,
+                           s.interpolating);
 }
 
 HeightSketch load_raw16(const HeightFieldSettings& s, const HeightFieldPeek& peek) {
@@ -296,7 +298,7 @@ HeightSketch load_raw16(const HeightFieldSettings& s, const HeightFieldPeek& pee
   }
   // Levels map into terrain.heightfield.height, whose range holds every world height.
   return make_height_sketch(s, int(peek.width), int(peek.height), levels, 65535,
-                            !s.fractal && s.level_of_detail);
+                            !s.fractal && s.level_of_detail, s.interpolating);
 }
 
 HeightSketch load_image(const HeightFieldSettings& s, const HeightFieldPeek& peek) {
@@ -307,7 +309,7 @@ HeightSketch load_image(const HeightFieldSettings& s, const HeightFieldPeek& pee
   }
   check_samples(s, image.values, image.width);  // rows top first: row 0 at z0
   return make_height_field(s, image.width, image.height, image.values,
-                           !s.fractal && s.level_of_detail);
+                           !s.fractal && s.level_of_detail, s.interpolating);
 }
 
 HeightSketch load_png(const HeightFieldSettings& s) {
@@ -327,7 +329,21 @@ HeightSketch load_png(const HeightFieldSettings& s) {
       read_png_file(s.image, field, kPath, check_header, limits::kMaxHeightFieldFileBytes);
   const Grey16Image grey = decode_grey16_png(bytes, field, kPath, limits::kMaxHeightFieldFileBytes);
   return make_height_sketch(s, grey.width, grey.height, grey.levels, 65535,
-                            !s.fractal && s.level_of_detail);
+                            !s.fractal && s.level_of_detail, s.interpolating);
+}
+
+HeightSketch load_by_format(const HeightFieldSettings& settings, const HeightFieldPeek& peek) {
+  switch (peek.format) {
+    case HeightFieldFormat::kPng:
+      return load_png(settings);
+    case HeightFieldFormat::kPfm:
+      return load_pfm(settings, peek);
+    case HeightFieldFormat::kRaw16:
+      return load_raw16(settings, peek);
+    case HeightFieldFormat::kImage:
+      return load_image(settings, peek);
+  }
+  return {};
 }
 
 }  // namespace
@@ -361,17 +377,22 @@ std::uintmax_t height_field_load_bytes(const HeightFieldPeek& peek) {
 
 HeightSketch load_height_field(const HeightFieldSettings& settings) {
   const HeightFieldPeek peek = peek_or_throw(settings);
-  switch (peek.format) {
-    case HeightFieldFormat::kPng:
-      return load_png(settings);
-    case HeightFieldFormat::kPfm:
-      return load_pfm(settings, peek);
-    case HeightFieldFormat::kRaw16:
-      return load_raw16(settings, peek);
-    case HeightFieldFormat::kImage:
-      return load_image(settings, peek);
+  // The placement first: a file that cannot be placed is refused before its samples are read.
+  std::optional<std::array<double, 4>> placed;
+  if (settings.georeferenced) {
+    placed = georeferenced_extent(settings, int(peek.width), int(peek.height));
   }
-  return {};
+  HeightSketch field = load_by_format(settings, peek);
+  field.placed_extent = placed;
+  // Interpolating coefficients overshoot the samples (core/field_prefilter.h); every stored
+  // value must stay a height the stages are specified for.
+  const double reach = std::max(-double(field.min_height), double(field.max_height));
+  if (settings.interpolating && reach > limits::kMaxBaseHeight) {
+    refuse(settings, "needs coefficients up to " + format_number(reach) +
+                         " in magnitude for terrain.heightfield.interpolating; allowed: within "
+                         "+-1e7 (lower the height range, or set interpolating to false)");
+  }
+  return field;
 }
 
 }  // namespace relief

@@ -111,7 +111,18 @@ std::optional<std::string> output_path_problem(const std::filesystem::path& path
   return std::nullopt;
 }
 
-void OutputSet::add(const std::filesystem::path& path, std::span<const unsigned char> bytes) {
+void OutputSet::add(const std::filesystem::path& named, std::span<const unsigned char> bytes) {
+  // A symbolic link is written through: its target is replaced, the link kept (renaming over
+  // the link itself would have replaced the link, /dev/stdout's included).
+  std::error_code link_error;
+  std::filesystem::path path = named;
+  if (std::filesystem::is_symlink(std::filesystem::symlink_status(named, link_error))) {
+    path = std::filesystem::weakly_canonical(named, link_error);
+    if (link_error || path.empty()) {
+      discard();
+      throw OutputError("cannot write " + quoted(named) + ": it is a link that cannot be followed");
+    }
+  }
   if (path.filename().string().size() > 255) {  // NAME_MAX: the rename would fail at commit
     discard();
     throw OutputError("cannot write " + quoted(path) + ": the file name is longer than 255 bytes");

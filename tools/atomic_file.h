@@ -34,7 +34,7 @@ class OutputSet {
   OutputSet& operator=(const OutputSet&) = delete;
 
   // Throws OutputError (and removes the set's temporary files) when `path` is a directory or
-  // the bytes cannot be written.
+  // the bytes cannot be written. A symbolic link is written through (its target replaced).
   void add(const std::filesystem::path& path, std::span<const unsigned char> bytes);
   // Throws OutputError naming the files already renamed if a rename fails (rare: the
   // temporary files sit in the targets' directories, so a rename only fails for a target that

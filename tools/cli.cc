@@ -1,6 +1,7 @@
 #include "tools/cli.h"
 
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <new>
 #include <ostream>
@@ -22,6 +23,7 @@
 #include "tools/atomic_file.h"
 #include "tools/cli_options.h"
 #include "tools/commands.h"
+#include "tools/export_command.h"
 #include "tools/flicker_command.h"
 #include "tools/generate_command.h"
 #include "tools/image_library.h"
@@ -171,6 +173,8 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   PanoramaOptions panorama;  // the scene all around its camera (panorama_command.h)
   CLI::App* panorama_cmd = scene_job(add_panorama_command(app, panorama));
   add_backend(panorama_cmd, backend, simd_target);
+  ExportOptions export_options;  // the terrain as files other tools read (export_command.h)
+  CLI::App* export_cmd = scene_job(add_export_command(app, export_options));
   StitchOptions stitch;  // the parts of --shard put together (stitch_command.h)
   add_max_memory(add_stitch_command(app, stitch), max_memory);
   GenerateOptions generate;  // height maps by the seeds' generators (generate_command.h)
@@ -231,7 +235,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     return bad_input;
   }
   for (CLI::App* command : {scene_cmd, stages_cmd, render_cmd, crosscheck_cmd, reference_cmd,
-                            sweep_cmd, stress_cmd, path_cmd, panorama_cmd}) {
+                            sweep_cmd, stress_cmd, path_cmd, panorama_cmd, export_cmd}) {
     if (command->parsed() && given_empty(command->get_option("SCENE"), scene_args.scene)) {
       err << "relief: error: SCENE is empty; give a scene file or a preset name, or leave it "
              "out for the default scene\n";
@@ -250,9 +254,9 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
   const MemoryBudget budget = memory_budget(parse_memory_size(max_memory), max_memory);
   stages.budget = render.budget = raster_options.budget = crosscheck.budget = budget;
   reference.budget = flicker.budget = error_options.budget = sweep.budget = path.budget =
-      stitch.budget = generate.budget = panorama.budget = budget;
+      stitch.budget = generate.budget = panorama.budget = export_options.budget = budget;
   reference.scene_arg = crosscheck.scene_arg = flicker.scene_arg = panorama.scene_arg =
-      scene_args.scene;
+      export_options.scene_arg = scene_args.scene;
   if (error_cmd->parsed()) {
     return run_error_command(error_options, out, err);
   }
@@ -336,35 +340,25 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       }
       return kExitOk;
     }
-    if (stages_cmd->parsed()) {
-      return run_stages_command(scene, stages, out, err);
-    }
-    if (crosscheck_cmd->parsed()) {
-      return run_crosscheck_command(scene, crosscheck, out, err);
-    }
-    if (reference_cmd->parsed()) {
-      return run_reference_command(scene, reference, out, err);
-    }
-    if (flicker_cmd->parsed()) {
-      return run_flicker_command(scene, flicker, out, err);
-    }
-    if (sweep_cmd->parsed()) {
-      return run_sweep_command(scene, sweep, out, err);
-    }
-    if (stress_cmd->parsed()) {
-      return run_stress_command(scene, stress, out, err);
-    }
-    if (path_cmd->parsed()) {
-      return run_path_command(scene, path, out, err);
-    }
-    if (panorama_cmd->parsed()) {
-      return run_panorama_command(scene, panorama, out, err);
-    }
-    if (render_cmd->parsed()) {
-      if (const int refused = check_render_paths(scene, scene_args.scene, render, err)) {
-        return refused;
+    // The commands that take the validated scene; the first parsed one runs.
+    const std::vector<std::pair<CLI::App*, std::function<int()>>> scene_commands = {
+        {stages_cmd, [&] { return run_stages_command(scene, stages, out, err); }},
+        {crosscheck_cmd, [&] { return run_crosscheck_command(scene, crosscheck, out, err); }},
+        {reference_cmd, [&] { return run_reference_command(scene, reference, out, err); }},
+        {flicker_cmd, [&] { return run_flicker_command(scene, flicker, out, err); }},
+        {sweep_cmd, [&] { return run_sweep_command(scene, sweep, out, err); }},
+        {stress_cmd, [&] { return run_stress_command(scene, stress, out, err); }},
+        {path_cmd, [&] { return run_path_command(scene, path, out, err); }},
+        {panorama_cmd, [&] { return run_panorama_command(scene, panorama, out, err); }},
+        {export_cmd, [&] { return run_export_command(scene, export_options, out, err); }},
+        {render_cmd, [&] {
+           const int refused = check_render_paths(scene, scene_args.scene, render, err);
+           return refused != 0 ? refused : run_render_command(scene, render, out, err);
+         }}};
+    for (const auto& [command, run] : scene_commands) {
+      if (command->parsed()) {
+        return run();
       }
-      return run_render_command(scene, render, out, err);
     }
   } catch (const std::runtime_error& e) {
     // What the user can act on (the scene, the soup, the memory, GL or OpenImageIO missing, an

@@ -77,6 +77,11 @@ std::vector<CommandPath> scene_input_paths(const std::string& scene_arg, const S
       add(field + ".weight_image", scene.terrain.basis->images[k].weight_image);
     }
   }
+  if (scene.sky.skybox) {
+    for (std::size_t k = 0; k < scene.sky.skybox->faces.size(); ++k) {
+      add("sky.skybox.faces[" + std::to_string(k) + "]", scene.sky.skybox->faces[k]);
+    }
+  }
   return inputs;
 }
 

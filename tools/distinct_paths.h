@@ -30,8 +30,8 @@ bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
 std::optional<std::string> same_file_conflict(const std::vector<CommandPath>& paths);
 
 // The files a scene reads, as inputs: the scene file (when `scene_arg` names one rather than a
-// preset), the layers' textures, the sketch, the basis images and their weight images
-// ("builtin:" names are none).
+// preset), the layers' textures, the sketch or height field, the basis images and their weight
+// images, the skybox's faces ("builtin:" names are none).
 std::vector<CommandPath> scene_input_paths(const std::string& scene_arg, const Scene& scene);
 
 }  // namespace relief

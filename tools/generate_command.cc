@@ -29,6 +29,7 @@
 #include "tools/colormap.h"
 #include "tools/distinct_paths.h"
 #include "tools/float_image_file.h"
+#include "tools/height_file.h"
 #include "tools/terminal_progress.h"
 
 namespace relief {
@@ -45,62 +46,17 @@ std::string six_digits(double value) {
 // The lines of the first levels, where subdivision creases lie (creases.h).
 constexpr int kCreaseLevels = 3;
 
-enum class HeightFormat { kPng16, kPfm, kExr, kRaw16 };
-
-std::optional<HeightFormat> height_format(const std::string& name) {
-  if (has_extension(name, ".png")) {
-    return HeightFormat::kPng16;
-  }
-  if (has_extension(name, ".r16") || has_extension(name, ".raw")) {
-    return HeightFormat::kRaw16;
-  }
-  if (const std::optional<FloatFormat> f = float_format_of(name)) {
-    return *f == FloatFormat::kPfm ? HeightFormat::kPfm : HeightFormat::kExr;
-  }
-  return std::nullopt;
-}
-
 // The map's N x N heights (N = side + 1, the first row and column repeated last so that the
-// file tiles), row 0 = z0, as 16-bit levels from the lowest height (0) to the highest (65535).
-std::vector<std::uint16_t> levels_of(const PeriodicGrid& g, double low, double high) {
+// file tiles), row 0 = z0.
+std::vector<float> tiled_heights(const PeriodicGrid& g) {
   const int n = g.side + 1;
-  std::vector<std::uint16_t> out(std::size_t(n) * std::size_t(n));
-  const double scale = high > low ? 65535.0 / (high - low) : 0.0;  // the division's domain
+  std::vector<float> out(std::size_t(n) * std::size_t(n));
   for (int z = 0; z < n; ++z) {
     for (int x = 0; x < n; ++x) {
-      const double level = std::round((double(g.at(x, z)) - low) * scale);
-      out[std::size_t(z) * std::size_t(n) + std::size_t(x)] =
-          static_cast<std::uint16_t>(std::clamp(level, 0.0, 65535.0));
+      out[std::size_t(z) * std::size_t(n) + std::size_t(x)] = g.at(x, z);
     }
   }
   return out;
-}
-
-std::vector<unsigned char> encode_heights(HeightFormat format, const PeriodicGrid& g, double low,
-                                          double high, std::span<const ImageText> text) {
-  const int n = g.side + 1;
-  if (format == HeightFormat::kPng16) {
-    return encode_png_grey16_with_text(n, n, levels_of(g, low, high), text);
-  }
-  if (format == HeightFormat::kRaw16) {  // little-endian, top row first, no header
-    const std::vector<std::uint16_t> levels = levels_of(g, low, high);
-    std::vector<unsigned char> out(2 * levels.size());
-    for (std::size_t k = 0; k < levels.size(); ++k) {
-      out[2 * k] = static_cast<unsigned char>(levels[k] & 0xFF);
-      out[2 * k + 1] = static_cast<unsigned char>(levels[k] >> 8);
-    }
-    return out;
-  }
-  // Float files store rows bottom to top (float_image_file.h): z = N - 1 first, so that every
-  // format shows the same picture, z0 at the top.
-  std::vector<float> rows(std::size_t(n) * std::size_t(n));
-  for (int z = 0; z < n; ++z) {
-    for (int x = 0; x < n; ++x) {
-      rows[std::size_t(n - 1 - z) * std::size_t(n) + std::size_t(x)] = g.at(x, z);
-    }
-  }
-  return encode_float_image(format == HeightFormat::kPfm ? FloatFormat::kPfm : FloatFormat::kExr, n,
-                            n, 1, rows, std::size_t(n), text);
 }
 
 // The crease map as a magma heat map, scaled to its 99th percentile (a few extreme points would
@@ -260,7 +216,7 @@ int run_generate_command(const GenerateOptions& o, std::ostream& out, std::ostre
   MemoryEstimate estimate;
   estimate.add("the height map",
                4 * samples + (method == Subdivision::kSquareSquare ? samples : 0));
-  estimate.add("its file's encoding", 8 * samples);
+  estimate.add("its file's encoding", 12 * samples);
   if (!o.creases.empty()) {
     estimate.add("the crease map and its picture", (4 + 4 + 3 + 4) * samples);
   }
@@ -330,7 +286,8 @@ int run_generate_command(const GenerateOptions& o, std::ostream& out, std::ostre
     return bytes;
   };
   OutputSet files;
-  files.add(o.output, encoded(o.output, encode_heights(*format, grid, low, high, text)));
+  files.add(o.output, encoded(o.output, encode_heights(*format, grid.side + 1, grid.side + 1,
+                                                       tiled_heights(grid), low, high, text)));
   if (!o.creases.empty()) {
     files.add(o.creases, encoded(o.creases, crease_picture(method ? interpolant : grid)));
   }

@@ -100,6 +100,14 @@ struct HeightFieldSettings : SketchSettings {
   // (levels of detail, geomorphed; core/height_sketch.h); false: the samples themselves. Off by
   // default: on the measured scenes it sat farther from the ground truth (docs/heightfields.md).
   bool level_of_detail = false;
+  // Whether the surface passes through every sample (point heights: a DEM, a `relief export`
+  // map), the samples prefiltered into the cubic B-spline's coefficients once on loading
+  // (core/field_prefilter.h); false: the B-spline of the samples themselves, which smooths them
+  // (a peak keeps 4/9 of its height above its neighbours).
+  bool interpolating = false;
+  // Whether a GeoTIFF's own placement (ModelPixelScale and ModelTiePoint, projected metres or
+  // feet) gives the extent, which is then not read (pipeline/geotiff_reference.h).
+  bool georeferenced = false;
 };
 
 // §3 Eq. 2: the auxiliary function S as a convex combination of grey-scale basis images,

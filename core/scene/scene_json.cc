@@ -173,6 +173,14 @@ void validate_scene(const Scene& scene) {
          "terrain.heightfield and terrain.sketch are both given; allowed one of them (a "
          "heightfield with \"fractal\": true is a sketch of any size and format)");
   }
+  if (t.heightfield && t.heightfield->georeferenced &&
+      !has_extension(t.heightfield->image, ".tif") &&
+      !has_extension(t.heightfield->image, ".tiff")) {
+    fail(
+        "terrain.heightfield.georeferenced",
+        std::string("terrain.heightfield.georeferenced = true with terrain.heightfield.file = \"") +
+            brief_text(t.heightfield->image) + "\": allowed only for a GeoTIFF (.tif, .tiff)");
+  }
   if (t.heightfield && t.heightfield->fractal && t.heightfield->level_of_detail) {
     fail("terrain.heightfield.level_of_detail",
          "terrain.heightfield.level_of_detail = true with terrain.heightfield.fractal = true: the "

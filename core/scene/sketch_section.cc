@@ -88,6 +88,15 @@ const Schema<HeightFieldSettings>& heightfield_schema() {
                         "without the fractal, each vertex reads the field filtered to its grid "
                         "spacing (levels of detail, geomorphed; terrain.lod.bias finer); false: "
                         "the samples themselves"}),
+      boolean_field<S>("interpolating", &S::interpolating,
+                       {"",
+                        "the surface passes through every sample (point heights: real elevation "
+                        "data, a relief export map); false: the smoothing B-spline of the "
+                        "samples"}),
+      boolean_field<S>("georeferenced", &S::georeferenced,
+                       {"",
+                        "a GeoTIFF's own placement (projected metres or feet, north up) gives "
+                        "the extent, which is then not read"}),
   });
   return schema;
 }

@@ -122,6 +122,18 @@ TEST_CASE("hostileHeightfieldFilesAreRefusedNamingTheField", "[heightfield]") {
   const std::string giant = test::write_file(dir.path() / "giant.png", header);
   require_refused(run({"render", scene_with(giant), "--max-memory", "1G", "-o", out.string()}),
                   "The height field dominates: use a smaller terrain.heightfield.file", out);
+  // Interpolating coefficients of an alternating field overshoot it (core/field_prefilter.h):
+  // beyond +-1e7 they are refused; within, the field renders.
+  std::vector<float> checker(64);
+  for (std::size_t k = 0; k < checker.size(); ++k) {
+    checker[k] = float(((k % 8) + (k / 8)) % 2);
+  }
+  const std::string board = pfm("board.pfm", test::pfm_bytes(8, 8, checker));
+  refused(board, "needs coefficients up to", R"(, "height": [-5e6, 5e6], "interpolating": true)");
+  CHECK(run({"render", scene_with(board, R"(, "height": [-5e5, 5e5], "interpolating": true)"), "-o",
+             out.string()})
+            .code == 0);
+  std::filesystem::remove(out);
   // The good file renders.
   CHECK(run({"render", scene_with(good), "-o", out.string()}).code == 0);
 }
