@@ -26,10 +26,7 @@ namespace {
 using test::read_bytes;
 using test::run;
 
-void require_ok(const test::CliResult& r) {
-  INFO(r.err);
-  REQUIRE(r.code == 0);
-}
+using test::require_ok;
 
 std::vector<std::uint16_t> grey16(const std::string& file, int& w, int& h) {
   const std::vector<unsigned char> png = read_bytes(file);

@@ -23,10 +23,7 @@ namespace {
 using test::read_bytes;
 using test::run;
 
-void require_ok(const test::CliResult& r) {
-  INFO(r.err);
-  REQUIRE(r.code == 0);
-}
+using test::require_ok;
 
 // A PFM of one channel as relief writes it: rows bottom to top.
 std::vector<float> pfm_values(const std::vector<unsigned char>& bytes, int n) {

@@ -43,10 +43,7 @@ std::vector<std::string> with_size(std::vector<std::string> head, int width, int
   return head;
 }
 
-void require_ok(const test::CliResult& r) {
-  INFO(r.err);
-  REQUIRE(r.code == 0);
-}
+using test::require_ok;
 
 // Every extra output of relief render, in the format `ext` gives the float files, sharded in
 // `count` and stitched (shards given in reverse order) into `stitched_ext`.

@@ -22,6 +22,7 @@
 #include "image/png_encoder.h"
 #include "pipeline/heightfield_files.h"
 #include "pipeline/scene_resources.h"
+#include "tests/support/bspline_oracle.h"
 #include "tests/support/cli_support.h"
 #include "tests/support/heightfield_files.h"
 #include "tests/support/test_support.h"
@@ -109,25 +110,7 @@ double bspline_oracle(const HeightSketch& f, const HeightFieldSettings& s, doubl
   const int w = l == 0 ? f.width : f.level_width[std::size_t(l)];
   const int h = l == 0 ? f.height : f.level_height[std::size_t(l)];
   const float* samples = f.heights.data() + (l == 0 ? 0 : f.level_offset[std::size_t(l)]);
-  const auto weights = [](double t, double wt[4]) {
-    wt[0] = (1 - t) * (1 - t) * (1 - t) / 6;
-    wt[1] = (3 * t * t * t - 6 * t * t + 4) / 6;
-    wt[2] = (-3 * t * t * t + 3 * t * t + 3 * t + 1) / 6;
-    wt[3] = t * t * t / 6;
-  };
-  const double fx = std::floor(sx), fz = std::floor(sz);
-  double wx[4], wz[4];
-  weights(sx - fx, wx);
-  weights(sz - fz, wz);
-  double sum = 0;
-  for (int m = 0; m < 4; ++m) {
-    const int j = std::clamp(int(fz) + m - 1, 0, h - 1);
-    for (int n = 0; n < 4; ++n) {
-      const int i = std::clamp(int(fx) + n - 1, 0, w - 1);
-      sum += wz[m] * wx[n] * samples[std::size_t(j * w + i)];
-    }
-  }
-  return sum;
+  return test::bspline_at(samples, w, h, sx, sz);
 }
 
 // Without the fractal, the level a vertex reads: stage 2's count nu as levels - nu (the field's

@@ -16,6 +16,7 @@
 #include "core/frame_plan.h"
 #include "pipeline/scene_resources.h"
 #include "pipeline/terrain_samples.h"
+#include "tests/support/bspline_oracle.h"
 #include "tests/support/cli_support.h"
 #include "tests/support/heightfield_files.h"
 #include "tests/support/test_support.h"
@@ -28,30 +29,6 @@ double x_of(const SampleRegion& r, int i) {
 }
 double z_of(const SampleRegion& r, int j) {
   return r.rect[1] + (j + 0.5) * (r.rect[3] - r.rect[1]) / r.height;
-}
-
-// The test's own uniform cubic B-spline of `v` (w x h, row j at j * w) at texel coordinate
-// (s, t), texel centres at integers, taps clamped to the edge.
-double bspline(const std::vector<double>& v, int w, int h, double s, double t) {
-  const auto weights = [](double f, double out[4]) {
-    out[0] = (1 - f) * (1 - f) * (1 - f) / 6;
-    out[1] = (3 * f * f * f - 6 * f * f + 4) / 6;
-    out[2] = (-3 * f * f * f + 3 * f * f + 3 * f + 1) / 6;
-    out[3] = f * f * f / 6;
-  };
-  const double fs = std::floor(s), ft = std::floor(t);
-  double ws[4], wt[4];
-  weights(s - fs, ws);
-  weights(t - ft, wt);
-  double sum = 0;
-  for (int b = 0; b < 4; ++b) {
-    for (int a = 0; a < 4; ++a) {
-      const int x = std::clamp(int(fs) - 1 + a, 0, w - 1),
-                z = std::clamp(int(ft) - 1 + b, 0, h - 1);
-      sum += ws[a] * wt[b] * v[std::size_t(z) * w + x];
-    }
-  }
-  return sum;
 }
 
 TEST_CASE("proceduralSamplesAreTheTerrainAtTheirPointsWithTheirSpacingsOctaves", "[pipeline]") {
@@ -109,7 +86,7 @@ TEST_CASE("heightFieldSamplesAreItsBSplineInsideAndBeyondItsExtent", "[pipeline]
       const double s = (x_of(region, i) + 1000.0) * w / 2100.0 - 0.5;
       const double t = (z_of(region, j) - 200.0) * h / 1300.0 - 0.5;
       CHECK(samples.heights[std::size_t(j) * region.width + i] ==
-            Approx(bspline(heights, w, h, s, t)).margin(1e-3));
+            Approx(test::bspline_at(heights.data(), w, h, s, t)).margin(1e-3));
     }
   }
 }

@@ -64,6 +64,12 @@ inline CliResult render_preset(const std::string& preset, const std::vector<std:
   return run(args);
 }
 
+// A command that must succeed: its error output shown if it did not.
+inline void require_ok(const CliResult& r) {
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+}
+
 // The checks every refused command must pass: exit 2, an error message naming the problem,
 // and `out` not written.
 inline void require_refused(const CliResult& r, const std::string& message,
