@@ -35,7 +35,8 @@ namespace relief {
 CLI::App* add_export_command(CLI::App& app, ExportOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "export",
-      "Export the terrain over a world rectangle: the height map (16-bit PNG, RAW16, PFM, EXR), "
+      "Export the terrain over a world rectangle: the height map (16-bit PNG, RAW16, PFM, EXR, "
+      "GeoTIFF), "
       "the normal map, the layer weights as splat maps, a mesh (OBJ or glTF .glb) and a scene "
       "that renders the exported heights");
   cmd->add_option("--region", o.region,
@@ -48,7 +49,8 @@ CLI::App* add_export_command(CLI::App& app, ExportOptions& o) {
                       std::to_string(kMaxExportSize))
       ->required();
   const std::vector<std::tuple<const char*, std::string*, const char*>> files = {
-      {"-o,--heights", &o.heights, "The height map: .png (16 bits), .r16, .pfm or .exr"},
+      {"-o,--heights", &o.heights,
+       "The height map: .png (16 bits), .r16, .pfm, .exr or .tif (GeoTIFF, placed by its tags)"},
       {"--normals", &o.normals, "The normal map: .png (8-bit RGB) or .pfm/.exr (float)"},
       {"--splat", &o.splat,
        "Splat maps PREFIX_0.png, PREFIX_1.png: layers 0-3 and 4-7 as RGBA bytes summing to 255"},

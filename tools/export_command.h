@@ -1,7 +1,7 @@
 // `relief export [SCENE] --region x0 z0 x1 z1 --size N ...` (export_command.cc, docs/export.md):
 // the terrain of any scene over a world rectangle as files other tools read: the height map
-// (16-bit PNG, RAW16, PFM, EXR), the normal map, the layer weights as splat maps (8-bit RGBA
-// PNG per 4 layers), a mesh (OBJ or binary glTF), and a scene that renders the exported map
+// (16-bit PNG, RAW16, PFM, EXR, GeoTIFF), the normal map, the layer weights as splat maps (8-bit
+// RGBA PNG per 4 layers), a mesh (OBJ or binary glTF), and a scene that renders the exported map
 // with terrain.heightfield.
 #pragma once
 
@@ -25,7 +25,7 @@ inline constexpr int kMaxExportMeshSize = 4097;  // a mesh's samples a side
 struct ExportOptions {
   std::vector<double> region;  // x0 z0 x1 z1; empty: the scene's height field or sketch extent
   std::string size;            // "N" (along x; z from square cells) or "WxH"
-  std::string heights;         // .png (16-bit), .r16/.raw, .pfm or .exr
+  std::string heights;         // .png (16-bit), .r16/.raw, .pfm, .exr or .tif/.tiff
   std::string normals;         // .png (8-bit RGB) or .pfm/.exr (3 float channels)
   std::string splat;           // PREFIX: PREFIX_0.png holds layers 0-3, PREFIX_1.png 4-7
   std::string mesh;            // .obj or .glb

@@ -18,6 +18,7 @@
 #include "image/png_encoder.h"
 #include "pipeline/geotiff_reference.h"
 #include "pipeline/heightfield_files.h"
+#include "tools/geotiff_file.h"
 
 namespace relief {
 
@@ -137,7 +138,8 @@ std::optional<ExportPlan> plan_export(const Scene& scene, const ExportOptions& o
     plan.heights = height_format(o.heights);
     if (!plan.heights) {
       return bad("-o " + brief_text(o.heights) +
-                 ": give a file name ending in .png (16-bit grey), .r16, .pfm or .exr");
+                 ": give a file name ending in .png (16-bit grey), .r16, .pfm, .exr or .tif "
+                 "(GeoTIFF)");
     }
     plan.outputs.push_back({"-o", o.heights});
   }
@@ -253,8 +255,11 @@ ExportFigures write_export_files(const Scene& scene, const ExportOptions& o, con
   }
   if (plan.heights) {
     const std::vector<ImageText> text = {{"relief:heights", figures.dump()}};
-    outputs.add(o.heights, encoded(o.heights, encode_heights(*plan.heights, w, h, samples.heights,
-                                                             level_low, level_high, text)));
+    outputs.add(o.heights,
+                encoded(o.heights, *plan.heights == HeightFormat::kGeoTiff
+                                       ? encode_geotiff(w, h, samples.heights, r.rect)
+                                       : encode_heights(*plan.heights, w, h, samples.heights,
+                                                        level_low, level_high, text)));
   }
   if (!o.normals.empty()) {
     if (plan.float_normals) {  // rows bottom first: z = h - 1 first
@@ -310,7 +315,8 @@ ExportFigures write_export_files(const Scene& scene, const ExportOptions& o, con
     const std::filesystem::path map =
         std::filesystem::weakly_canonical(std::filesystem::absolute(o.heights));
     field.image = (real == spelled ? map.lexically_proximate(real) : map).generic_string();
-    field.extent = r.rect;
+    field.extent = r.rect;  // a GeoTIFF's own placement gives it again
+    field.georeferenced = *plan.heights == HeightFormat::kGeoTiff;
     field.height = levels ? field_range : Vec2d{0.0, 1.0};
     field.raw_width = *plan.heights == HeightFormat::kRaw16 && w != h ? w : 0;
     field.interpolating = true;

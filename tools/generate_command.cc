@@ -187,7 +187,7 @@ int run_generate_command(const GenerateOptions& o, std::ostream& out, std::ostre
                   " for --size " + std::to_string(o.size));
   }
   const std::optional<HeightFormat> format = height_format(o.output);
-  if (!format) {
+  if (!format || *format == HeightFormat::kGeoTiff) {  // a generated map has no place
     return refuse("-o " + brief_text(o.output) +
                   ": give a file name ending in .png (16-bit grey), .pfm, .exr or .r16");
   }

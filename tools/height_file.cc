@@ -17,6 +17,9 @@ std::optional<HeightFormat> height_format(const std::string& name) {
   if (has_extension(name, ".r16") || has_extension(name, ".raw")) {
     return HeightFormat::kRaw16;
   }
+  if (has_extension(name, ".tif") || has_extension(name, ".tiff")) {
+    return HeightFormat::kGeoTiff;
+  }
   if (const std::optional<FloatFormat> f = float_format_of(name)) {
     return *f == FloatFormat::kPfm ? HeightFormat::kPfm : HeightFormat::kExr;
   }

@@ -13,9 +13,11 @@
 
 namespace relief {
 
-enum class HeightFormat { kPng16, kPfm, kExr, kRaw16 };
+// kGeoTiff: float heights placed in the world (tools/geotiff_file.h), for relief export alone.
+enum class HeightFormat { kPng16, kPfm, kExr, kRaw16, kGeoTiff };
 
-// By the file name's extension (.png, .pfm, .exr, .r16 or .raw, any letter case), or nullopt.
+// By the file name's extension (.png, .pfm, .exr, .r16 or .raw, .tif or .tiff, any letter
+// case), or nullopt.
 std::optional<HeightFormat> height_format(const std::string& name);
 
 // Whether the format holds 16-bit levels (the heights then map to [low, high]).
@@ -29,8 +31,8 @@ std::uint16_t height_level(double height, double low, double high);
 
 // The file's bytes: `heights` width x height values, row 0 = z0 (the file's top row). `text`
 // goes into a PNG's text chunks or an EXR's attributes (PFM and RAW16 have none). Empty when
-// the encoder ran out of memory. Throws OutputError (tools/atomic_file.h) if OpenImageIO
-// cannot encode the EXR.
+// the encoder ran out of memory. Not for kGeoTiff (encode_geotiff). Throws OutputError
+// (tools/atomic_file.h) if OpenImageIO cannot encode the EXR.
 std::vector<unsigned char> encode_heights(HeightFormat format, int width, int height,
                                           std::span<const float> heights, double low, double high,
                                           std::span<const ImageText> text);

@@ -16,6 +16,7 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include "pipeline/geotiff_reference.h"
 #include "tests/support/cli_support.h"
 #include "tests/support/skybox_support.h"
 #include "tests/support/test_support.h"
@@ -111,6 +112,36 @@ TEST_CASE("a16BitFieldExportedAtItsSamplesGivesBackItsLevels", "[cli]") {
   const std::vector<float> second = pfm_top_first(file("again.pfm"), 65, 65);
   for (std::size_t k = 0; k < first.size(); ++k) {
     CHECK(second[k] == Approx(first[k]).margin(2e-3));
+  }
+}
+
+TEST_CASE("aGeoTiffExportIsPlacedWhereItWasTaken", "[cli]") {
+  test::TempDir dir("export");
+  const auto file = [&](const std::string& name) { return (dir.path() / name).string(); };
+  const std::vector<std::string> region = {"--region", "-1250",  "300",  "1750",
+                                           "2100",     "--size", "40x24"};
+  const auto export_with = [&](std::vector<std::string> args) {
+    args.insert(args.begin(), region.begin(), region.end());
+    args.insert(args.begin(), "export");
+    return run(args);
+  };
+  require_ok(export_with({"-o", file("h.pfm")}));
+  require_ok(export_with({"-o", file("h.tif"), "--scene-out", file("tif.json")}));
+  HeightFieldSettings s;
+  s.image = file("h.tif");
+  s.georeferenced = true;
+  const std::array<double, 4> placed = georeferenced_extent(s, 40, 24);
+  CHECK(placed[0] == -1250.0);
+  CHECK(placed[1] == 300.0);
+  CHECK(placed[2] == Approx(1750.0).epsilon(1e-15));
+  CHECK(placed[3] == Approx(2100.0).epsilon(1e-15));
+  // Read back through its own placement (the scene names no extent it would use): the heights
+  // again, within the interpolation's float rounding.
+  require_ok(run({"export", file("tif.json"), "--size", "40x24", "-o", file("again.pfm")}));
+  const std::vector<float> first = pfm_top_first(file("h.pfm"), 40, 24);
+  const std::vector<float> again = pfm_top_first(file("again.pfm"), 40, 24);
+  for (std::size_t k = 0; k < first.size(); ++k) {
+    CHECK(again[k] == Approx(first[k]).margin(2e-3));
   }
 }
 
