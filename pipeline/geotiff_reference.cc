@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <vector>
 
@@ -130,8 +131,8 @@ double geo_key(const std::vector<double>& directory, int id, double absent) {
   const std::size_t keys = std::size_t(directory[3]);
   for (std::size_t k = 0; k < keys && 4 + 4 * k + 3 < directory.size(); ++k) {
     const double* key = &directory[4 + 4 * k];
-    if (key[0] == id && key[1] == 0) {  // location 0: the value is in the key itself
-      return key[3];
+    if (key[0] == id) {  // location 0: the value is in the key itself; elsewhere: NaN, refused
+      return key[1] == 0 ? key[3] : std::numeric_limits<double>::quiet_NaN();
     }
   }
   return absent;
@@ -167,13 +168,24 @@ std::array<double, 4> georeferenced_extent(const HeightFieldSettings& s, int wid
     refuse_geo(s, "has ProjLinearUnitsGeoKey " + format_number(linear_units) +
                       "; allowed 9001 (metre), 9002 (foot), 9003 (US survey foot)");
   }
+  // Heights are read as the samples' own numbers, which `height` maps: only metres say so.
+  const double vertical_units = geo_key(tags.key_directory, 4099, 9001.0);
+  if (vertical_units != 9001.0) {
+    refuse_geo(s, "has VerticalUnitsGeoKey " + format_number(vertical_units) +
+                      "; allowed 9001 (metre) or none");
+  }
+  const double raster_type = geo_key(tags.key_directory, 1025, 1.0);
+  if (raster_type != 1.0 && raster_type != 2.0) {
+    refuse_geo(s, "has GTRasterTypeGeoKey " + format_number(raster_type) +
+                      "; allowed 1 (PixelIsArea) or 2 (PixelIsPoint)");
+  }
   const double sx = tags.pixel_scale[0], sy = tags.pixel_scale[1];
   if (!(std::isfinite(sx) && std::isfinite(sy) && sx > 0 && sy > 0)) {
     refuse_geo(s, "has ModelPixelScale " + format_number(sx) + ", " + format_number(sy) +
                       "; allowed positive and finite");
   }
   // Raster point (0, 0): the top-left pixel's corner (PixelIsArea) or centre (PixelIsPoint).
-  const double shift = geo_key(tags.key_directory, 1025, 1.0) == 2.0 ? 0.5 : 0.0;
+  const double shift = raster_type == 2.0 ? 0.5 : 0.0;
   const double I = tags.tie_points[0], J = tags.tie_points[1];
   const double X = tags.tie_points[3], Y = tags.tie_points[4];
   const double left = (X + (-shift - I) * sx) * metres;
@@ -188,7 +200,8 @@ std::array<double, 4> georeferenced_extent(const HeightFieldSettings& s, int wid
   }
   if (!(extent[2] - extent[0] >= limits::kMinSketchSpan &&
         extent[3] - extent[1] >= limits::kMinSketchSpan)) {
-    refuse_geo(s, "spans less than 0.001 m");
+    refuse_geo(s, "spans " + format_number(extent[2] - extent[0]) + " x " +
+                      format_number(extent[3] - extent[1]) + " m; allowed at least 0.001 m a side");
   }
   return extent;
 }

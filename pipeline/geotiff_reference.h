@@ -8,7 +8,9 @@
 // geocentric is refused; ProjLinearUnitsGeoKey 9001 metre, 9002 foot, 9003 US survey foot,
 // absent: metres) and refuses the rest naming why: a geographic space (degrees: a field is
 // flat, so it would need a map projection first), a ModelTransformation (33920: rotation or
-// shear), several tie points (a warp), a scale that is not positive and finite.
+// shear), several tie points (a warp), a scale that is not positive and finite, vertical
+// units other than metres (VerticalUnitsGeoKey 4099), and a key Relief reads whose value is
+// stored outside the directory. An absent ProjLinearUnitsGeoKey is taken as metres.
 // Raster space: with PixelIsArea (GTRasterTypeGeoKey 1025 = 1, the default) raster point
 // (0, 0) is the top-left pixel's corner, so the extent's corners are raster points (0, 0) and
 // (W, H); with PixelIsPoint (2) it is the first pixel's centre, half a pixel further in.

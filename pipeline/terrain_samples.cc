@@ -7,6 +7,7 @@
 #include <mutex>
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "core/fbm.h"
 #include "core/frame_plan.h"
@@ -63,9 +64,13 @@ std::uintmax_t terrain_samples_bytes(const Scene& scene, const SampleRegion& reg
   const std::uintmax_t samples = std::uintmax_t(region.width) * std::uintmax_t(region.height);
   const std::uintmax_t per_sample =
       4 + (request.normals ? 12 : 0) + (request.weights ? scene.shading.layers.size() : 0);
-  // A band's four double rows per sample (dx, dz, nu, height) on each of up to 64 threads.
+  // A band's four double rows per sample (dx, dz, nu, height) on each thread at once (at most
+  // one band each, and no more than there are bands).
+  const std::uintmax_t bands = std::uintmax_t((region.height + kBandRows - 1) / kBandRows);
+  const std::uintmax_t threads =
+      std::min<std::uintmax_t>(std::uintmax_t(tbb::this_task_arena::max_concurrency()), bands);
   const std::uintmax_t band =
-      4 * 8 * std::uintmax_t(region.width + 2) * std::uintmax_t(kBandRows + 2) * 64;
+      4 * 8 * std::uintmax_t(region.width + 2) * std::uintmax_t(kBandRows + 2) * threads;
   return samples * per_sample + band;
 }
 

@@ -97,6 +97,11 @@ std::optional<std::string> output_path_problem(const std::filesystem::path& path
   }
   std::error_code ec;
   const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (std::filesystem::is_symlink(std::filesystem::symlink_status(path, ec)) &&
+      !std::filesystem::exists(status)) {
+    return quoted(path) + " is a link to " + quoted(std::filesystem::read_symlink(path, ec)) +
+           ", which does not exist; give the link a target or another name";
+  }
   if (std::filesystem::is_directory(status)) {
     return quoted(path) + " is a directory; give a file name";
   }
@@ -118,9 +123,10 @@ void OutputSet::add(const std::filesystem::path& named, std::span<const unsigned
   std::filesystem::path path = named;
   if (std::filesystem::is_symlink(std::filesystem::symlink_status(named, link_error))) {
     path = std::filesystem::weakly_canonical(named, link_error);
-    if (link_error || path.empty()) {
+    if (link_error || path.empty() || !std::filesystem::exists(path, link_error)) {
       discard();
-      throw OutputError("cannot write " + quoted(named) + ": it is a link that cannot be followed");
+      throw OutputError("cannot write " + quoted(named) +
+                        ": it is a link to a file that does not exist (or cannot be followed)");
     }
   }
   if (path.filename().string().size() > 255) {  // NAME_MAX: the rename would fail at commit

@@ -311,7 +311,9 @@ ExportFigures write_export_files(const Scene& scene, const ExportOptions& o, con
     // spelled, so the map's real path then, which every spelling finds.
     const std::filesystem::path spelled =
         std::filesystem::absolute(o.scene_out).lexically_normal().parent_path();
-    const std::filesystem::path real = std::filesystem::weakly_canonical(spelled);
+    // The scene's real directory: its file may itself be a link (written through).
+    const std::filesystem::path real =
+        std::filesystem::weakly_canonical(std::filesystem::absolute(o.scene_out)).parent_path();
     const std::filesystem::path map =
         std::filesystem::weakly_canonical(std::filesystem::absolute(o.heights));
     field.image = (real == spelled ? map.lexically_proximate(real) : map).generic_string();
@@ -326,6 +328,15 @@ ExportFigures write_export_files(const Scene& scene, const ExportOptions& o, con
     field.level_of_detail =
         field_alone ? scene.terrain.heightfield && scene.terrain.heightfield->level_of_detail
                     : true;
+    // A height field holds world heights within +-1e7 (its loader's rule): checked here, before
+    // anything is written, rather than when the scene is read back.
+    const double reach = std::max(std::abs(low), std::abs(high));
+    if (!(reach <= limits::kMaxBaseHeight)) {
+      throw SceneError("--scene-out", "--scene-out: the exported heights reach " +
+                                          format_number(reach) +
+                                          ", beyond the +-1e7 a height field holds; nothing was "
+                                          "written (export without --scene-out)");
+    }
     round_trip.terrain.sketch.reset();
     round_trip.terrain.heightfield = field;
     round_trip.terrain.base_height = (levels ? base : 0.0) + 0.0;  // -0 as 0

@@ -18,6 +18,7 @@ struct Vertex {
   double x, z;  // world
 };
 
+// width, height >= 2 (MeshGrid): the divisions' domain.
 Vertex vertex(const MeshGrid& g, int i, int j) {
   const auto& r = g.rect;
   return {r[0] + (double(i) + 0.5) * ((r[2] - r[0]) / g.width),
@@ -72,7 +73,8 @@ std::vector<unsigned char> encode_obj(const MeshGrid& g) {
       append_number(text, g.normals[3 * k + 2], '\n');
       text += "vt ";
       append_number(text, static_cast<float>((double(i) + 0.5) / g.width), ' ');
-      append_number(text, static_cast<float>((double(j) + 0.5) / g.height), '\n');
+      // OBJ's v runs up the image (OpenGL's convention): the top row, z0, at v near 1.
+      append_number(text, static_cast<float>(1.0 - (double(j) + 0.5) / g.height), '\n');
     }
   }
   for_each_triangle(g, [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {

@@ -2,7 +2,8 @@
 // binary glTF 2.0 (.glb). Two triangles per cell of the samples, counter-clockwise seen from
 // above (+y, glTF's and Relief's up), the cell split along the same diagonal as Relief's grid
 // (from (i, j + 1) to (i + 1, j)); positions, unit normals and texture coordinates (u along x,
-// v along z, 0 to 1 over the region, so the splat and normal maps drape over it).
+// 0 to 1 over the region; v down the image in glTF, up it in OBJ, as each format defines v, so
+// the splat and normal maps drape over it the same way).
 #pragma once
 
 #include <array>

@@ -1,8 +1,8 @@
 // relief export (tools/export_command.h): a 16-bit height field exported at its own samples
 // gives back its levels bit for bit, and the exported scene renders what the field renders and
 // exports the same levels again; every file holds the samples (PFM, OBJ, glTF read back here
-// from the formats' own specifications, PNGs by stb); and every bad request is refused with
-// nothing written.
+// from the formats' own specifications, PNGs by stb), a plane's normal map in its stated
+// channels; outputs respect links and the scene's inputs (refusals: export_refusals_test.cc).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -18,12 +18,14 @@
 
 #include "pipeline/geotiff_reference.h"
 #include "tests/support/cli_support.h"
+#include "tests/support/heightfield_files.h"
 #include "tests/support/skybox_support.h"
 #include "tests/support/test_support.h"
 
 namespace relief {
 namespace {
 
+using test::concat;
 using test::read_bytes;
 using test::run;
 
@@ -162,6 +164,7 @@ TEST_CASE("everyExportedFileHoldsTheSamples", "[cli]") {
     std::string line;
     std::vector<std::array<double, 3>> v;
     std::vector<std::array<int, 3>> faces;
+    std::vector<std::array<double, 2>> vt;
     while (std::getline(in, line)) {
       std::istringstream s(line);
       std::string kind;
@@ -170,6 +173,10 @@ TEST_CASE("everyExportedFileHoldsTheSamples", "[cli]") {
         std::array<double, 3> p{};
         s >> p[0] >> p[1] >> p[2];
         v.push_back(p);
+      } else if (kind == "vt") {
+        std::array<double, 2> t{};
+        s >> t[0] >> t[1];
+        vt.push_back(t);
       } else if (kind == "f") {
         std::array<int, 3> f{};
         for (int& index : f) {
@@ -181,6 +188,13 @@ TEST_CASE("everyExportedFileHoldsTheSamples", "[cli]") {
       }
     }
     REQUIRE(v.size() == std::size_t(w * h));
+    REQUIRE(vt.size() == v.size());
+    for (int j = 0; j < h; ++j) {  // OBJ's v runs up the picture: row 0 (z0, the top) near 1
+      for (int i = 0; i < w; ++i) {
+        CHECK(vt[std::size_t(j * w + i)][0] == Approx((i + 0.5) / w).margin(1e-6));
+        CHECK(vt[std::size_t(j * w + i)][1] == Approx(1.0 - (j + 0.5) / h).margin(1e-6));
+      }
+    }
     CHECK(faces.size() == std::size_t(2 * (w - 1) * (h - 1)));
     for (int j = 0; j < h; ++j) {
       for (int i = 0; i < w; ++i) {
@@ -248,69 +262,36 @@ TEST_CASE("everyExportedFileHoldsTheSamples", "[cli]") {
   }
 }
 
-TEST_CASE("badExportRequestsAreRefusedWithNothingWritten", "[cli]") {
+TEST_CASE("theNormalMapOfAPlaneHoldsItsNormalInTheStatedChannels", "[cli]") {
   test::TempDir dir("export");
-  const std::string out = (dir.path() / "h.png").string();
-  const std::string region[] = {"--region", "0", "0", "100", "100"};
-  const auto refused = [&](std::vector<std::string> args, const std::string& message) {
-    args.insert(args.begin(), "export");
-    args.push_back("-o");
-    args.push_back(out);
-    test::require_refused(run(args), message, out);
-  };
-  refused({"--size", "64"}, "--region is required");
-  refused({"planet", region[0], region[1], region[2], region[3], region[4], "--size", "8"},
-          "terrain.planet");
-  refused({"--region", "0", "0", "0", "100", "--size", "8"}, "reversed or narrower than 0.001");
-  refused({"--region", "100", "0", "0", "100", "--size", "8"}, "reversed or narrower than 0.001");
-  refused({"--region", "0", "0", "2e12", "100", "--size", "8"}, "x1 2e+12 is out of range");
-  refused({"--region", "0", "0", "nan", "100", "--size", "8"}, "--region");
-  refused({"--region", "0", "0", "inf", "100", "--size", "8"}, "--region");
-  for (const std::string size :
-       {"1", "16386", "8x1", "8x", "x8", "1e3", "99999999999", "-4", "8x8x8"}) {
-    refused({region[0], region[1], region[2], region[3], region[4], "--size", size},
-            "--size " + size + " is not N or WxH with each side 2 to 16385");
+  const auto file = [&](const std::string& name) { return (dir.path() / name).string(); };
+  const int n = 40;
+  std::vector<float> ramp(std::size_t(n) * n);
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      ramp[std::size_t(j) * n + i] = float(i) / 64.0f + float(j) / 256.0f;
+    }
   }
-  refused({"--region", "0", "0", "1", "1000", "--size", "100"}, "give both");
-  refused({region[0], region[1], region[2], region[3], region[4], "--size", "8", "--mesh",
-           (dir.path() / "m.stl").string()},
-          ".obj or .glb");
-  refused({region[0], region[1], region[2], region[3], region[4], "--size", "5000", "--mesh",
-           (dir.path() / "m.obj").string()},
-          "too large for a mesh");
-  refused({region[0], region[1], region[2], region[3], region[4], "--size", "8", "--normals",
-           (dir.path() / "n.bmp").string()},
-          ".png (8 bits), .pfm or .exr");
-  refused({region[0], region[1], region[2], region[3], region[4], "--size", "8", "--json", out},
-          "same file");
-  refused({region[0], region[1], region[2], region[3], region[4], "--size", "8", "--normals",
-           (dir.path() / "no" / "n.png").string()},
-          "--normals");
-  refused({region[0], region[1], region[2], region[3], region[4], "--size", "16385", "--max-memory",
-           "64M"},
-          "memory");
-  const auto refused_alone = [&](std::vector<std::string> args, const std::string& message) {
-    args.insert(args.begin(), "export");
-    test::require_refused(run(args), message, out);
-  };
-  refused_alone({region[0], region[1], region[2], region[3], region[4], "--size", "8"},
-                "nothing to export");
-  refused_alone({region[0], region[1], region[2], region[3], region[4], "--size", "8", "--normals",
-                 (dir.path() / "n.png").string(), "--scene-out", (dir.path() / "s.json").string()},
-                "--scene-out needs -o");
-  refused({region[0], region[1], region[2], region[3], region[4], "--size", "8", "--splat",
-           (dir.path() / "").string()},
-          "no file name part");
-  refused({region[0], region[1], region[2], region[3], region[4], "--size", "4", "--size", "8"},
-          "--size");  // given twice
-  // Cells a double cannot tell apart so far out (found by a hostile pass: zero-area triangles).
-  refused({"--region", "999999999999.998", "0", "1e12", "0.002", "--size", "64"},
-          "too fine for coordinates near 1e+12");
-  refused_alone(
-      {region[0], region[1], region[2], region[3], region[4], "--size", "8", "--scene-out",
-       (dir.path() / "s.json").string(), "-o", (dir.path() / "\xff.png").string()},
-      "UTF-8");
-  CHECK(dir.empty());
+  const std::string pfm = test::write_file(dir.path() / "ramp.pfm", test::pfm_bytes(n, n, ramp));
+  // 100 units a texel, 12800 units of height: rises 2 along x and 0.5 along z (height grows
+  // with z, row j; no byte of the normal falls on a rounding tie); well inside the extent the
+  // B-spline keeps the plane exactly.
+  require_ok(run({"export", "--set",
+                  concat({R"(terrain.heightfield={"file": ")", pfm,
+                          R"(", "extent": [0, 0, 4000, 4000], "height": [0, 12800]})"}),
+                  "--region", "1000", "1000", "3000", "3000", "--size", "16", "--normals",
+                  file("n.png"), "--splat", file("s")}));
+  const double norm = std::sqrt(4.0 + 1.0 + 0.25);
+  const double nx = -2.0 / norm, ny = 1.0 / norm, nz = -0.5 / norm;
+  const auto byte = [](double v) { return int(std::lround((v + 1.0) * 127.5)); };
+  int w = 0, h = 0;
+  const std::vector<unsigned char> rgba = rgba8(file("n.png"), w, h);
+  REQUIRE((w == 16 && h == 16));
+  for (std::size_t k = 0; k < rgba.size() / 4; ++k) {
+    CHECK(int(rgba[4 * k]) == byte(nx));       // R = n_x
+    CHECK(int(rgba[4 * k + 1]) == byte(-nz));  // G = -n_z: the picture's up is -z
+    CHECK(int(rgba[4 * k + 2]) == byte(ny));   // B = n_y
+  }
 }
 
 TEST_CASE("exportOutputsRespectLinksAndEveryInputOfTheScene", "[cli]") {
@@ -329,6 +310,18 @@ TEST_CASE("exportOutputsRespectLinksAndEveryInputOfTheScene", "[cli]") {
   CHECK(std::filesystem::is_symlink(file("link.json")));
   const std::vector<unsigned char> json = read_bytes(file("target.json"));
   CHECK(nlohmann::json::parse(json.begin(), json.end())["samples"][0] == 8);
+  // A link to nothing is refused up front, not replaced by a file.
+  std::filesystem::create_symlink("nothere.json", file("dangling.json"));
+  test::require_refused(export_with({"-o", file("d.png"), "--json", file("dangling.json")}),
+                        "which does not exist", file("d.png"));
+  CHECK(std::filesystem::is_symlink(file("dangling.json")));
+  // Heights a height field cannot hold (below -1e7 here, where the fractal dips 1100 to 1600):
+  // --scene-out refused before anything is written.
+  test::require_refused(
+      export_with({"--set", "terrain.base_height=-1e7", "--set", "terrain.amplitude=2000", "-o",
+                   file("hi.png"), "--scene-out", file("hi.json")}),
+      "beyond the +-1e7", file("hi.png"));
+  CHECK_FALSE(std::filesystem::exists(file("hi.json")));
   // A skybox face is an input of the scene: never an output.
   const std::array<std::string, 6> faces = test::write_checker_faces(dir.path(), 8);
   const std::vector<unsigned char> face = read_bytes(faces[0]);

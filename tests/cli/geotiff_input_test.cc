@@ -132,6 +132,12 @@ TEST_CASE("unusableGeoreferencingIsRefusedNamingTheField", "[heightfield]") {
   test::GeoTiff miles = g;
   miles.geo_keys = {3076, 0, 1, 9035};
   refused(miles, "ProjLinearUnitsGeoKey 9035");
+  test::GeoTiff vertical_feet = g;
+  vertical_feet.geo_keys = {4099, 0, 1, 9002};
+  refused(vertical_feet, "VerticalUnitsGeoKey 9002");
+  test::GeoTiff elsewhere = g;  // the model type's value stored outside the directory
+  elsewhere.geo_keys = {1024, 34736, 1, 0};
+  refused(elsewhere, "GTModelTypeGeoKey nan");
   test::GeoTiff flat = g;
   flat.pixel_scale = {0.0, 10.0, 0.0};
   refused(flat, "ModelPixelScale 0, 10");
