@@ -97,6 +97,10 @@ inline constexpr double kMaxWarpComponent = 100.0;
 // Material layers are blended per pixel; 8 is more than any of the seeds uses (Scape: 4) and
 // keeps the per-pixel weight arrays on the stack.
 inline constexpr std::size_t kMaxMaterialLayers = 8;
+// shading.gradient.stops: castledragmire's four bands with a shading direction each take 8
+// stops; 16 leave room for finer ramps and keep the per-frame parameter arrays small.
+inline constexpr std::size_t kMinGradientStops = 2;
+inline constexpr std::size_t kMaxGradientStops = 16;
 // Loaded proto-textures: square powers of two (the mip chain halves them exactly).
 inline constexpr int kMinTextureSize = 4;
 inline constexpr int kMaxTextureSize = 4096;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/det_math.h"
+#include "core/gradient_shade.h"
 #include "core/interpolant.h"
 #include "core/layer_weights.h"
 #include "core/planet_shading.h"
@@ -159,16 +160,15 @@ Vec3<Real> facing_normal(const Vec3<Real>& n, const Vec3<Real>& view, ShadeWork&
   return normalize_or(n - view * away, view * Real(-1));
 }
 
+namespace {
+
+// §4.2's proto-texture shading of a covered pixel (shading.mode = textures): the layers'
+// albedo, lit per pixel (Scape). `distance` and unit `view`: the pixel's from the camera.
 template <class Real>
-Vec3<Real> terrain_radiance(const ShadeParams<Real>& p, const ShadeResources& r,
-                            const PixelAttributes<Real>& a, ShadeWork& work) {
-  ++work.terrain_pixels;
+Vec3<Real> textured_radiance(const ShadeParams<Real>& p, const ShadeResources& r,
+                             const PixelAttributes<Real>& a, Real distance, const Vec3<Real>& view,
+                             ShadeWork& work) {
   const Real relative_y = a.height;  // camera-relative (stage 3)
-  // On a planet the position is the bent one: (dx, dz) hold it, and the height lies a.drop
-  // above it (x - 0 is x: the plane's bits are unchanged).
-  const Vec3<Real> position{a.dx, relative_y - a.drop, a.dz};
-  const Real distance = std::sqrt(dot(position, position));
-  const Vec3<Real> view = normalize_or(position, p.camera_forward);
   const Vec3<Real> n =
       normalize_or(Vec3<Real>{a.nx, a.ny, a.nz}, Vec3<Real>{Real(0), Real(1), Real(0)});
 
@@ -206,8 +206,24 @@ Vec3<Real> terrain_radiance(const ShadeParams<Real>& p, const ShadeResources& r,
   }
   // Domain: the largest weight is >= 1/8 > kMinLayerWeight, so used > 0.
   albedo = albedo * (Real(1) / used);
+  return light(p, albedo, facing_normal(n, view, work), view, specular / used, a.sun, work);
+}
+
+}  // namespace
+
+template <class Real>
+Vec3<Real> terrain_radiance(const ShadeParams<Real>& p, const ShadeResources& r,
+                            const PixelAttributes<Real>& a, ShadeWork& work) {
+  ++work.terrain_pixels;
+  const Real relative_y = a.height;  // camera-relative (stage 3)
+  // On a planet the position is the bent one: (dx, dz) hold it, and the height lies a.drop
+  // above it (x - 0 is x: the plane's bits are unchanged).
+  const Vec3<Real> position{a.dx, relative_y - a.drop, a.dz};
+  const Real distance = std::sqrt(dot(position, position));
+  const Vec3<Real> view = normalize_or(position, p.camera_forward);
   Vec3<Real> radiance =
-      light(p, albedo, facing_normal(n, view, work), view, specular / used, a.sun, work);
+      p.gradient_enabled ? gouraud_light(p, gradient_albedo(p, relative_y), a.lambert, a.ny, a.sun)
+                         : textured_radiance(p, r, a, distance, view, work);
 
   Real fog_distance = distance;
   if (p.water_enabled && p.terrain_water && relative_y < p.water_level && view.y < Real(0)) {

@@ -41,6 +41,9 @@ struct PixelAttributes {
   Real water_depth;                                             // §4.3, interpolated
   Real drop;  // a planet's curvature drop below the height (planet_bend.h); 0 on the plane
   Real sun;   // the sun disc's visible share (sun_visibility.h); 1 without cast shadows
+  // shading.mode = gradient: the vertices' Lambert terms interpolated (gradient_shade.h);
+  // not read otherwise.
+  Real lambert;
 };
 
 // The work stage 8 did, counted per pixel (docs/stages.md, "Skipped work").
@@ -95,9 +98,10 @@ struct ShadingInputs {
   std::span<const float> dx_ddx, dx_ddy, dz_ddx, dz_ddy, height_ddx, height_ddy;
   std::span<const float> nx, ny, nz;  // interpolated normal (renormalised here)
   std::span<const float> slope;
-  std::span<const float> water_depth;  // interpolated per-vertex depth (§4.3)
-  std::span<const float> drop = {};    // a planet's curvature drop; empty: 0 (the plane)
-  std::span<const float> sun = {};     // the sun disc's visible share; empty: 1 (no shadows)
+  std::span<const float> water_depth;   // interpolated per-vertex depth (§4.3)
+  std::span<const float> drop = {};     // a planet's curvature drop; empty: 0 (the plane)
+  std::span<const float> sun = {};      // the sun disc's visible share; empty: 1 (no shadows)
+  std::span<const float> lambert = {};  // gradient mode's interpolated Lambert term; empty: 0
 
   template <class Real>
   PixelAttributes<Real> at(std::size_t k) const {
@@ -116,7 +120,8 @@ struct ShadingInputs {
             Real(slope[k]),
             Real(water_depth[k]),
             drop.empty() ? Real(0) : Real(drop[k]),
-            sun.empty() ? Real(1) : Real(sun[k])};
+            sun.empty() ? Real(1) : Real(sun[k]),
+            lambert.empty() ? Real(0) : Real(lambert[k])};
   }
 };
 

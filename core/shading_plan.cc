@@ -65,6 +65,19 @@ ShadingPlan make_shading_plan(const Scene& scene, const FramePlan& frame, int la
     plan.layers.push_back(layer);
   }
 
+  GradientPlan& gradient = plan.gradient;
+  gradient.enabled = scene.shading.mode == ShadingMode::kGradient;
+  if (gradient.enabled) {
+    const GradientSettings& g = scene.shading.gradient;
+    const double low = g.range ? (*g.range)[0] : frame.bounds.world_min;
+    const double high = g.range ? (*g.range)[1] : frame.bounds.world_max;
+    for (const GradientStop& stop : g.stops) {
+      // low + at (high - low): between low and high for at in [0, 1] (high >= low).
+      gradient.height.push_back((low + stop.at * (high - low)) - camera.y);
+      gradient.color.push_back(vec(stop.color));
+    }
+  }
+
   const LightingSettings& l = scene.lighting;
   const double azimuth = l.sun_azimuth_deg * kDegree, elevation = l.sun_elevation_deg * kDegree;
   plan.light.sun_direction =

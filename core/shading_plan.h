@@ -68,7 +68,17 @@ struct DitherPlan {
   double offset_x = 0, offset_z = 0;  // camera in lattice cells, mod P
 };
 
+// castledragmire's height-to-colour gradient (shading.mode = gradient): its stops at heights
+// relative to the camera, formed in double from shading.gradient's `at` and range (the
+// terrain's height bounds where the range is null).
+struct GradientPlan {
+  bool enabled = false;
+  std::vector<double> height;  // non-decreasing
+  std::vector<glm::dvec3> color;
+};
+
 struct ShadingPlan {
+  GradientPlan gradient;
   std::vector<LayerPlan> layers;
   bool triplanar = true;
   bool nearest_mip = false;  // shading.texture_filter = bilinear

@@ -129,7 +129,11 @@
   A(Real, row_x, [3], {}) E                                                                     \
   A(Real, row_y, [3], {}) E                                                                     \
   A(Real, row_w, [3], {}) E                                                                     \
-  F(Real, z_clip, 0) E /* the near distance */
+  F(Real, z_clip, 0) E /* the near distance */                                                 \
+  /* shading.mode = gradient: Gouraud shading lights each drawn vertex here, as GL's         \
+     fixed-function vertex stage did: lambert = max(0, n . sun) (core/vertex_transform.h). */  \
+  F(std::int32_t, gouraud, 0) E                                                                 \
+  F(Real, sun_x, 0) F(Real, sun_y, 1) F(Real, sun_z, 0) E /* unit, toward the sun */
 
 // RampParams<Real> and LayerParams<Real>, stage 8: one material layer.
 #define RELIEF_RAMP_PARAMS_FIELDS(F, A, E)                                                      \
@@ -182,9 +186,16 @@
   F(std::int32_t, nearest_mip, 0) E /* 1: GL_LINEAR_MIPMAP_NEAREST (nearest_mip_lod) */         \
   /* The skybox (core/skybox.h) in place of the gradient, and the sun drawn over it. */       \
   F(std::int32_t, skybox, 0) F(std::int32_t, skybox_sun, 1) E                                   \
+  /* castledragmire's height gradient (shading.mode = gradient, core/gradient_shade.h): the   \
+     stops at camera-relative heights, 1 / (height[i + 1] - height[i]) per segment (0 for a  \
+     step), the colours (linear RGB). */                                                       \
+  F(std::int32_t, gradient_enabled, 0) F(std::int32_t, gradient_count, 0) E                     \
+  A(Real, gradient_height, [limits::kMaxGradientStops], {}) E                                   \
+  A(Real, gradient_inv_span, [limits::kMaxGradientStops], {}) E                                 \
+  A(Vec3<Real>, gradient_color, [limits::kMaxGradientStops]) E                                  \
   /* Unused: keeps the float struct's size a multiple of 16 bytes, the size GL gives the     \
      std430 block that mirrors it (gpu/shaders/shade_params.glsl.in). */                        \
-  A(std::int32_t, reserved, [1], {}) E                                                          \
+  A(std::int32_t, reserved, [3], {}) E                                                          \
   F(Vec3<Real>, camera_forward, {}) E                                                           \
   /* The background's view ray per pixel is formed in double (it is the sky's direction to   \
      a thousandth of a pixel at any field of view) and rounded once: these stay double. */     \

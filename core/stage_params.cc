@@ -125,6 +125,23 @@ TerrainParams<Real> make_terrain_params(const FramePlan& plan) {
   return p;
 }
 
+// The gradient's stops rounded once; each segment's 1 / span from the rounded heights, so
+// that a step stays a step (0) and a ramp's t = (h - height[i]) inv_span reaches 1 at its end.
+template <class Real>
+void add_gradient(const GradientPlan& gradient, ShadeParams<Real>& p) {
+  p.gradient_enabled = gradient.enabled ? 1 : 0;
+  const std::size_t count = std::min(gradient.height.size(), limits::kMaxGradientStops);
+  p.gradient_count = gradient.enabled ? static_cast<std::int32_t>(count) : 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    p.gradient_height[k] = Real(gradient.height[k]);
+    p.gradient_color[k] = rounded<Real>(gradient.color[k]);
+  }
+  for (std::size_t k = 0; k + 1 < count; ++k) {
+    const double span = double(p.gradient_height[k + 1]) - double(p.gradient_height[k]);
+    p.gradient_inv_span[k] = span > 0.0 ? Real(1.0 / span) : Real(0);  // domain: span > 0
+  }
+}
+
 template <class Real>
 ShadeParams<Real> make_shade_params(const ShadingPlan& plan) {
   ShadeParams<Real> p;
@@ -146,6 +163,7 @@ ShadeParams<Real> make_shade_params(const ShadingPlan& plan) {
     q.slope_down = rounded<Real>(l.slope_down);
     q.specular = Real(l.specular);
   }
+  add_gradient(plan.gradient, p);
   const LightPlan& light = plan.light;
   p.sun_direction = rounded<Real>(light.sun_direction);
   p.sun = rounded<Real>(light.sun);
@@ -220,6 +238,16 @@ template TerrainParams<float> make_terrain_params<float>(const FramePlan&);
 template TerrainParams<double> make_terrain_params<double>(const FramePlan&);
 template ShadeParams<float> make_shade_params<float>(const ShadingPlan&);
 template ShadeParams<double> make_shade_params<double>(const ShadingPlan&);
+template <class Real>
+void add_gouraud_lighting(const ShadingPlan& plan, TransformParams<Real>& t) {
+  t.gouraud = plan.gradient.enabled ? 1 : 0;
+  t.sun_x = Real(plan.light.sun_direction.x);
+  t.sun_y = Real(plan.light.sun_direction.y);
+  t.sun_z = Real(plan.light.sun_direction.z);
+}
+
+template void add_gouraud_lighting<float>(const ShadingPlan&, TransformParams<float>&);
+template void add_gouraud_lighting<double>(const ShadingPlan&, TransformParams<double>&);
 template void add_planet_shading<float>(const FramePlan&, double, ShadeParams<float>&);
 template void add_planet_shading<double>(const FramePlan&, double, ShadeParams<double>&);
 

@@ -104,4 +104,9 @@ TerrainParams<Real> make_terrain_params(const FramePlan& plan);
 template <class Real>
 ShadeParams<Real> make_shade_params(const ShadingPlan& plan);
 
+// Stage 5's share of Gouraud shading (shading.mode = gradient): the flag and the sun's
+// direction, from the frame's shading plan (make_terrain_params has no light).
+template <class Real>
+void add_gouraud_lighting(const ShadingPlan& plan, TransformParams<Real>& transform);
+
 }  // namespace relief

@@ -41,6 +41,28 @@ void transform_vertices(const TransformParams<Real>& t, IndexRange range, std::s
   }
 }
 
+template <class Real>
+void light_vertices(const TransformParams<Real>& t, IndexRange range, std::span<const Real> nx,
+                    std::span<const Real> ny, std::span<const Real> nz,
+                    std::span<const std::uint8_t> need, std::span<Real> lambert) {
+  for (std::size_t k = range.begin; k < range.end; ++k) {
+    if (!need.empty() && !(need[k] & kDraw)) {
+      lambert[k] = Real(0);
+      continue;
+    }
+    const Real ndl = (nx[k] * t.sun_x + ny[k] * t.sun_y) + nz[k] * t.sun_z;
+    lambert[k] = ndl > Real(0) ? ndl : Real(0);
+  }
+}
+
+template void light_vertices<float>(const TransformParams<float>&, IndexRange,
+                                    std::span<const float>, std::span<const float>,
+                                    std::span<const float>, std::span<const std::uint8_t>,
+                                    std::span<float>);
+template void light_vertices<double>(const TransformParams<double>&, IndexRange,
+                                     std::span<const double>, std::span<const double>,
+                                     std::span<const double>, std::span<const std::uint8_t>,
+                                     std::span<double>);
 template void transform_vertices<float>(const TransformParams<float>&, IndexRange,
                                         std::span<const float>, std::span<const float>,
                                         std::span<const float>, std::span<const std::uint8_t>,

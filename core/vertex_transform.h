@@ -44,4 +44,15 @@ void transform_vertices(const TransformParams<Real>& params, IndexRange range,
                         std::span<const Real> height, std::span<const std::uint8_t> need,
                         ClipSpans<Real> clip);
 
+// Gouraud shading (shading.mode = gradient; castledragmire lights each vertex and lets the
+// triangle interpolate): the Lambert term of each drawn vertex,
+//   lambert[k] = max(0, (nx sun_x + ny sun_y) + nz sun_z)
+// from its stage-4 normal (a planet's bent one) and params.sun_*, where need[k] has kDraw
+// (`need` empty: everywhere), else 0. Stage 5 runs it beside the transform where
+// params.gouraud is set, as GL's fixed-function vertex stage lit vertices.
+template <class Real>
+void light_vertices(const TransformParams<Real>& params, IndexRange range, std::span<const Real> nx,
+                    std::span<const Real> ny, std::span<const Real> nz,
+                    std::span<const std::uint8_t> need, std::span<Real> lambert);
+
 }  // namespace relief

@@ -235,8 +235,10 @@ GlFrameImage GlTerrainDraw::draw(const GlGridStreams& grid, const TransformParam
   if ((grid.position_y != 0) != (grid.drop != 0)) {
     throw std::invalid_argument("gpu: a planet's grid needs both position_y and drop streams");
   }
+  // Gradient shading samples no texture (the scene's resources hold none).
   if (shade.layer_count < 1 ||
-      static_cast<std::size_t>(shade.layer_count) > resources.textures().size() ||
+      (shade.gradient_enabled == 0 &&
+       static_cast<std::size_t>(shade.layer_count) > resources.textures().size()) ||
       static_cast<std::size_t>(shade.layer_count) > limits::kMaxMaterialLayers) {
     throw std::invalid_argument("gpu: shade.layer_count is " + std::to_string(shade.layer_count) +
                                 "; there are " + std::to_string(resources.textures().size()) +

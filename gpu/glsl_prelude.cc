@@ -91,6 +91,7 @@ std::vector<GlslSource> shading_sources() {
           {"proto_texture.glsl", glsl::kProtoTexture},
           {"sky_water.glsl", glsl::kSkyWater},
           {"planet_shading.glsl", glsl::kPlanetShading},
+          {"gradient_shading.glsl", glsl::kGradientShading},
           {"terrain_shading.glsl", glsl::kTerrainShading}};
 }
 
@@ -103,6 +104,7 @@ std::string glsl_prelude() {
   // The skybox's texture unit: after the layers' (gl_shading.h, kSkyboxUnit).
   out += "#define RELIEF_SKYBOX_UNIT " + std::to_string(limits::kMaxMaterialLayers) + "\n";
   out += "const int kWaveOctaves = " + std::to_string(kWaveOctaves) + ";\n";
+  out += "const int kMaxGradientStops = " + std::to_string(limits::kMaxGradientStops) + ";\n";
   // det_math.h, exp2_det<float>.
   const int exp2_terms = det_math_detail::Exp2Terms<float>::kTerms;
   out += "const int kExp2Terms = " + std::to_string(exp2_terms) + ";\n";

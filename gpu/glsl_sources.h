@@ -12,20 +12,21 @@
 namespace relief::gpu {
 
 namespace glsl {
-extern const char* const kCommon;          // shaders/common.glsl
-extern const char* const kLog2Det;         // shaders/log2_det.glsl
-extern const char* const kWrapPeriod;      // shaders/wrap_period.glsl
-extern const char* const kShadeParams;     // shaders/shade_params.glsl.in, generated
-extern const char* const kLattice;         // shaders/shading_lattice.glsl
-extern const char* const kProtoTexture;    // shaders/proto_texture.glsl
-extern const char* const kSkyWater;        // shaders/sky_water.glsl
-extern const char* const kPlanetShading;   // shaders/planet_shading.glsl.in, generated
-extern const char* const kTerrainShading;  // shaders/terrain_shading.glsl
-extern const char* const kTerrainVert;     // shaders/terrain.vert.in, generated
-extern const char* const kTerrainFrag;     // shaders/terrain.frag
-extern const char* const kBackgroundVert;  // shaders/background.vert
-extern const char* const kBackgroundFrag;  // shaders/background.frag
-extern const char* const kTriangles;       // shaders/triangles.comp
+extern const char* const kCommon;           // shaders/common.glsl
+extern const char* const kLog2Det;          // shaders/log2_det.glsl
+extern const char* const kWrapPeriod;       // shaders/wrap_period.glsl
+extern const char* const kShadeParams;      // shaders/shade_params.glsl.in, generated
+extern const char* const kLattice;          // shaders/shading_lattice.glsl
+extern const char* const kProtoTexture;     // shaders/proto_texture.glsl
+extern const char* const kSkyWater;         // shaders/sky_water.glsl
+extern const char* const kPlanetShading;    // shaders/planet_shading.glsl.in, generated
+extern const char* const kGradientShading;  // shaders/gradient_shading.glsl
+extern const char* const kTerrainShading;   // shaders/terrain_shading.glsl
+extern const char* const kTerrainVert;      // shaders/terrain.vert.in, generated
+extern const char* const kTerrainFrag;      // shaders/terrain.frag
+extern const char* const kBackgroundVert;   // shaders/background.vert
+extern const char* const kBackgroundFrag;   // shaders/background.frag
+extern const char* const kTriangles;        // shaders/triangles.comp
 }  // namespace glsl
 
 // "#version 450 core" and the constants of stage 8 as the CPU rounds them (each literal is the

@@ -109,10 +109,11 @@ std::string glsl_type() {
 // An array's dimensions in GLSL: the C++ extents' names as the preludes define them.
 std::string glsl_dims(const std::string& dims) {
   static const std::map<std::string, std::string> kNames = {
-      {"limits::kMaxOctaves", "RELIEF_MAX_OCTAVES"},  // gl_shader_prelude.cc
+      {"limits::kMaxOctaves", "RELIEF_MAX_OCTAVES"},           // gl_shader_prelude.cc
       {"limits::kMaxFieldLevels", "RELIEF_MAX_FIELD_LEVELS"},  // gl_shader_prelude.cc
-      {"limits::kMaxMaterialLayers", "kMaxLayers"},   // glsl_prelude.cc
-      {"kWaveOctaves", "kWaveOctaves"},               // glsl_prelude.cc
+      {"limits::kMaxMaterialLayers", "kMaxLayers"},            // glsl_prelude.cc
+      {"kWaveOctaves", "kWaveOctaves"},                        // glsl_prelude.cc
+      {"limits::kMaxGradientStops", "kMaxGradientStops"},      // glsl_prelude.cc
   };
   std::string out;
   // Each "[ extent ]" of the C++ declaration, its extent trimmed of white space.

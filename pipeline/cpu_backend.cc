@@ -189,6 +189,10 @@ void CpuBackend<Real>::run(StageId id, std::size_t begin, std::size_t end) {
       const std::span<const Real> y = planet() ? grid_.bent_y : grid_.height;
       const std::span<const Real> z = planet() ? grid_.bent_z : grid_.dz;
       kernels_.transform(params_.transform, IndexRange{begin, end}, x, z, y, need_, clip);
+      if (params_.transform.gouraud != 0) {  // Gouraud shading lights the vertex here
+        kernels_.light_vertices(params_.transform, IndexRange{begin, end}, grid_.nx, grid_.ny,
+                                grid_.nz, need_, lambert_);
+      }
       std::uint64_t transformed = 0;
       for (std::size_t k = begin; k < end; ++k) {
         transformed += (need_[k] & kDraw) != 0;
@@ -256,6 +260,10 @@ void CpuBackend<Real>::prepare(StageId id) {
           v->resize(vertices);
         }
       }
+      // Gradient mode lights the vertices in this stage (gradient_shade.h): its flag and the
+      // sun from the frame's shading plan.
+      add_gouraud_lighting(make_shading_plan(scene_, plan_, lattice_.size), params_.transform);
+      lambert_.resize(params_.transform.gouraud != 0 ? vertices : 0);
       return;
     }
     case StageId::kTriangleSetup:
@@ -303,7 +311,8 @@ void CpuBackend<Real>::prepare(StageId id) {
           grid_.slope,
           grid_.water_depth,
           grid_.nu,
-          bent ? std::span<const Real>(grid_.bent_drop) : std::span<const Real>{}};
+          bent ? std::span<const Real>(grid_.bent_drop) : std::span<const Real>{},
+          lambert_};
       if (shade_.skybox != 0 && skybox_ == nullptr) {
         // The sky would fall back to the gradient without a word (GL refuses it too).
         throw std::invalid_argument("cpu backend: sky.skybox is set; no faces were loaded");

@@ -103,6 +103,7 @@ class CpuBackend final : public FrameBackend {
   std::uint64_t transformed_ = 0;
   std::int32_t scene_octaves_ = 0;
   AlignedVector<Real> clip_x_, clip_y_, clip_z_, clip_w_;
+  AlignedVector<Real> lambert_;  // gradient mode: each vertex's Lambert term (stage 5)
   // The rasteriser's float positions: the clip coordinates themselves in float, rounded once
   // in double (empty in float, where clip_* are used directly).
   AlignedVector<float> raster_x_, raster_y_, raster_z_, raster_w_;

@@ -130,6 +130,9 @@ void CpuBackend<Real>::describe(StageId id, StageTime& time) const {
       return;
     case StageId::kVertexTransform:
       count("vertices transformed", transformed_);
+      if (params_.transform.gouraud != 0) {  // gradient mode lit the same vertices
+        count("vertices lit (Gouraud)", transformed_);
+      }
       return;
     case StageId::kTriangleSetup: {
       std::uint64_t submitted = 0;

@@ -64,6 +64,10 @@ struct CpuKernels {
   void (*transform)(const TransformParams<Real>&, IndexRange, std::span<const Real> dx,
                     std::span<const Real> dz, std::span<const Real> height,
                     std::span<const std::uint8_t> need, ClipSpans<Real>) = nullptr;
+  // Stage 5's Gouraud lighting in gradient mode (core/vertex_transform.h).
+  void (*light_vertices)(const TransformParams<Real>&, IndexRange, std::span<const Real> nx,
+                         std::span<const Real> ny, std::span<const Real> nz,
+                         std::span<const std::uint8_t> need, std::span<Real> lambert) = nullptr;
   // Stage 6's vertex snap (raster/triangle_setup.h); null: raster's portable loops.
   const raster::SnapKernels* snap = nullptr;
   // Stages 6-9 per tile.

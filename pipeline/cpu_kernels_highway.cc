@@ -43,6 +43,7 @@ CpuKernels<float> highway_kernels(bool planet) {
   k.sketch = &simd::add_sketch;
   k.surface = &simd::surface_pass;
   k.transform = &simd::transform_vertices;
+  k.light_vertices = &simd::light_vertices;
   k.snap = &simd_snap_kernels();
   const KernelKind h = KernelKind::kHighway;
   k.tiles.raster = h;

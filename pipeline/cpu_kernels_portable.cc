@@ -20,6 +20,7 @@ CpuKernels<Real> portable_kernels(bool planet) {
   k.sketch = &add_sketch<Real>;
   k.surface = &surface_pass<Real>;
   k.transform = &transform_vertices<Real>;
+  k.light_vertices = &light_vertices<Real>;
   k.snap = nullptr;
   k.tiles = TileKernels{};
   const KernelKind p = KernelKind::kPortable;
@@ -34,6 +35,7 @@ CpuKernels<Real> portable_kernels(bool planet) {
       {StageId::kShadowHeights, "sketch", p, ""},
       {StageId::kSunHorizons, "hull sweep", p, ""},
       {StageId::kVertexTransform, "vertex transform", p, ""},
+      {StageId::kVertexTransform, "vertex lighting", p, ""},
       {StageId::kTriangleSetup, "vertex snap", p, ""},
       {StageId::kTriangleSetup, "clip and edge set-up", p, ""},
       {StageId::kBinning, "binning", p, ""},

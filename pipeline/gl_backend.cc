@@ -196,9 +196,11 @@ class GlBackend final : public FrameBackend {
     gpu::GlDrawOptions options;
     options.readback = {o.linear, o.depth, o.primitive, o.normal, o.world_height, o.octaves};
     options.timer = timer_;
-    gpu::GlFrameImage gl =
-        s.cache.draw().draw(streams, params_.transform, shade, s.cache.shading(resources_),
-                            plan_.camera.position.y, options);
+    // Gradient shading lights the vertices in the vertex shader (terrain.vert, stage 5).
+    TransformParams<float> transform = params_.transform;
+    add_gouraud_lighting(shading, transform);
+    gpu::GlFrameImage gl = s.cache.draw().draw(
+        streams, transform, shade, s.cache.shading(resources_), plan_.camera.position.y, options);
     for (gpu::GlPassTime& pass : timer_->collect()) {
       passes_.push_back({std::move(pass.name), pass.ms, true, {}});
     }

@@ -98,7 +98,10 @@ void add_resources(const Scene& scene, MemoryEstimate& estimate) {
   estimate.add("noise lattice " + size_text(scene.terrain.lattice_size, scene.terrain.lattice_size),
                lattice * lattice * sizeof(float));
   std::uintmax_t textures = 0;
-  for (const MaterialLayer& layer : scene.shading.layers) {
+  // Gradient shading reads no texture: none is built (load_scene_resources).
+  const bool textured = scene.shading.mode == ShadingMode::kTextures;
+  for (const MaterialLayer& layer :
+       textured ? scene.shading.layers : std::vector<MaterialLayer>{}) {
     if (layer.texture.rfind("builtin:", 0) == 0) {
       const std::uintmax_t side = std::uintmax_t(scene.shading.texture_size);
       textures += side * side * kTexelBytes;

@@ -159,12 +159,13 @@ void check_planet_depth(const Scene& scene, const SceneResources& resources) {
             : "no radius up to terrain.planet.radius's maximum " +
                   format_number(limits::kMaxPlanetRadius) +
                   " holds it: lower terrain.amplitude or the sketch's or height field's heights";
-    throw SceneError("terrain.planet.radius",
-                     "scene: terrain.planet.radius = " + format_number(t.planet->radius) +
-                         " is not above the depth the terrain can reach below the datum, " + depth +
-                         " (terrain.amplitude, the octaves' sum and the sketch's or height field's heights), so "
-                         "the surface would pass through the planet's centre; " +
-                         advice);
+    throw SceneError(
+        "terrain.planet.radius",
+        "scene: terrain.planet.radius = " + format_number(t.planet->radius) +
+            " is not above the depth the terrain can reach below the datum, " + depth +
+            " (terrain.amplitude, the octaves' sum and the sketch's or height field's heights), so "
+            "the surface would pass through the planet's centre; " +
+            advice);
   }
 }
 
@@ -184,7 +185,11 @@ SceneResources load_scene_resources(const Scene& scene) {
   // which counts them all). The other resources follow one by one: built beside the layers
   // (tbb::parallel_invoke) they saved no measurable time, and LeakSanitizer's exit check then
   // crashed in every process that had loaded OpenImageIO.
-  const std::size_t layers = scene.shading.layers.size();
+  // Gradient shading (shading.mode = gradient) samples no proto-texture: none is read or
+  // synthesised, and a frame's set-up skips their cost (the layers still weigh the export's
+  // splat maps, which read no texel).
+  const std::size_t layers =
+      scene.shading.mode == ShadingMode::kTextures ? scene.shading.layers.size() : 0;
   resources.textures.resize(layers);
   std::vector<std::exception_ptr> failures(layers);
   tbb::parallel_for(std::size_t(0), layers, [&](std::size_t k) {

@@ -170,6 +170,7 @@ void TilePass<Real>::resolve(const raster::TileVisibility& visibility, TileAttri
         out.slope[k] = static_cast<Real>(at(s.slope, q.b));
         out.water_depth[k] = with_water ? static_cast<Real>(at(s.water_depth, q.b)) : Real(0);
         out.drop[k] = s.drop.empty() ? Real(0) : static_cast<Real>(at(s.drop, q.b));
+        out.lambert[k] = s.lambert.empty() ? Real(0) : static_cast<Real>(at(s.lambert, q.b));
         if (with_nu) {
           out.nu[k] = static_cast<Real>(at(s.nu, q.b));
         }
@@ -223,7 +224,8 @@ void TilePass<Real>::resolve_simd(const raster::TileVisibility& visibility,
                                        s.nz.data(),
                                        s.slope.data(),
                                        shade_.terrain_water != 0 ? s.water_depth.data() : nullptr,
-                                       with_nu ? s.nu.data() : nullptr};
+                                       with_nu ? s.nu.data() : nullptr,
+                                       s.lambert.empty() ? nullptr : s.lambert.data()};
     simd::gather_slot_records(streams, vertex, static_cast<std::size_t>(slots), scratch->records);
     const simd::ResolveSlots table{{scratch->k[0], scratch->k[1], scratch->k[2]},
                                    {scratch->ku[0], scratch->ku[1], scratch->ku[2]},
@@ -232,7 +234,7 @@ void TilePass<Real>::resolve_simd(const raster::TileVisibility& visibility,
     const simd::ResolveTargets targets{out.dx,         out.dz,          out.height, out.dx_ddx,
                                        out.dx_ddy,     out.dz_ddx,      out.dz_ddy, out.height_ddx,
                                        out.height_ddy, out.nx,          out.ny,     out.nz,
-                                       out.slope,      out.water_depth, out.nu};
+                                       out.slope,      out.water_depth, out.nu,     out.lambert};
     simd::resolve_rect(table, streams, scratch->slot, visibility.x0, visibility.y0,
                        visibility.width, visibility.height, raster::kTileSize, targets);
   }
@@ -299,7 +301,9 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
           {a.slope, n},
           {a.water_depth, n},
           {},
-          shadows_.params != nullptr ? std::span<const float>(a.sun, n) : std::span<const float>{}};
+          shadows_.params != nullptr ? std::span<const float>(a.sun, n) : std::span<const float>{},
+          streams_.lambert.empty() ? std::span<const float>{}
+                                   : std::span<const float>(a.lambert, n)};
       simd::shade_rect(shade_, resources_, in, vis.x0, vis.y0, vis.width, vis.height,
                        raster::kTileSize, std::span<float>(scratch->rgb), work.shade);
       shaded_simd = true;

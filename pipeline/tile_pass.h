@@ -36,6 +36,8 @@ struct VertexStreams {
   // A planet's curvature drop (planet_bend.h); empty on the plane. Read by the portable
   // resolve alone: a planet frame's resolve is portable (cpu_kernels_highway.cc).
   std::span<const Real> drop = {};
+  // Gradient mode's per-vertex Lambert term (stage 5, gradient_shade.h); empty otherwise.
+  std::span<const Real> lambert = {};
 };
 
 // Stage 7's output for one tile: one named array per field, kTileSize x kTileSize each, row-
@@ -48,13 +50,14 @@ struct TileAttributes {
   Real height_ddx[kPixels], height_ddy[kPixels];
   Real nx[kPixels], ny[kPixels], nz[kPixels];
   Real slope[kPixels], water_depth[kPixels], nu[kPixels];
-  Real drop[kPixels];  // a planet's (resolve() only); 0 on the plane
-  Real sun[kPixels];   // the sun disc's visible share (sun_visibility.h); 1 without shadows
+  Real drop[kPixels];     // a planet's (resolve() only); 0 on the plane
+  Real sun[kPixels];      // the sun disc's visible share (sun_visibility.h); 1 without shadows
+  Real lambert[kPixels];  // gradient mode's interpolated Lambert term (gradient_shade.h)
 
   PixelAttributes<Real> at(std::size_t k) const {
     return {dx[k],     dz[k],          height[k],     dx_ddx[k], dx_ddy[k], dz_ddx[k],
             dz_ddy[k], height_ddx[k],  height_ddy[k], nx[k],     ny[k],     nz[k],
-            slope[k],  water_depth[k], drop[k],       sun[k]};
+            slope[k],  water_depth[k], drop[k],       sun[k],    lambert[k]};
   }
 };
 

@@ -133,11 +133,11 @@ void ResolveRect(const ResolveSlots& slots, const ResolveStreams& streams,
         t.ku[c] = hn::GatherIndex(d, slots.ku[c], wide_index);
         t.kv[c] = hn::GatherIndex(d, slots.kv[c], wide_index);
       }
-      // The lanes' records: column 3 f + c is stream f at vertex c (the nu group only when
-      // resolved).
+      // The lanes' records: column 3 f + c is stream f at vertex c (the group of nu and
+      // lambert only when one of them is resolved).
       const auto record = hn::ShiftLeft<5>(index);
       static_assert(kSlotRecordFloats == 32);
-      const int groups = streams.nu != nullptr ? 4 : 3;
+      const int groups = streams.nu != nullptr || streams.lambert != nullptr ? 4 : 3;
       hn::Vec<decltype(df)> column[32];
 #if RELIEF_LANE_LOADS
       HWY_ALIGN std::int32_t lane_record[HWY_MAX_BYTES / sizeof(double)];
@@ -202,6 +202,9 @@ void ResolveRect(const ResolveSlots& slots, const ResolveStreams& streams,
       }
       if (streams.nu != nullptr) {
         plain(8, out.nu);
+      }
+      if (streams.lambert != nullptr) {
+        plain(9, out.lambert);
       }
     }
   }

@@ -20,27 +20,33 @@ struct ResolveSlots {
   const float* records;
 };
 
-// Per grid vertex, the streams the resolve interpolates (stage 2-4 buffers, float). nu may be
-// null (not resolved); water_depth null resolves zero depths.
+// Per grid vertex, the streams the resolve interpolates (stage 2-5 buffers, float). nu and
+// lambert (gradient mode's per-vertex Lambert term) may be null (not resolved); water_depth
+// null resolves zero depths.
 struct ResolveStreams {
   const float *dx, *dz, *height, *nx, *ny, *nz, *slope, *water_depth, *nu;
+  const float* lambert = nullptr;
 };
+inline constexpr int kResolveStreams = 10;
 
 // A slot's record: the value of stream f (in ResolveStreams' order) at the triangle's vertex c
 // at float 3 f + c (a null stream's values 0), padded to 32 floats. The resolve reads a
-// pixel's 27 values from its slot's record in four 8-float loads, where gathering them from
-// the streams took 27 gathers (the record is written once per slot, read by every pixel of it).
+// pixel's 30 values from its slot's record in four 8-float loads (three where neither nu nor
+// lambert is resolved), where gathering them from the streams took 30 gathers (the record is
+// written once per slot, read by every pixel of it).
 inline constexpr int kSlotRecordFloats = 32;
+static_assert(3 * kResolveStreams <= kSlotRecordFloats);
 
 // Fills records [0, count) (count * kSlotRecordFloats floats) from the slots' vertices.
 void gather_slot_records(const ResolveStreams& streams, const std::int32_t* const vertex[3],
                          std::size_t count, float* records);
 
 // The resolved fields (pipeline/tile_pass.h's TileAttributes<float>), written at covered
-// pixels only; nu only when streams.nu is not null.
+// pixels only; nu only when streams.nu is not null, lambert only when streams.lambert is not.
 struct ResolveTargets {
   float *dx, *dz, *height, *dx_ddx, *dx_ddy, *dz_ddx, *dz_ddy, *height_ddx, *height_ddy;
   float *nx, *ny, *nz, *slope, *water_depth, *nu;
+  float* lambert = nullptr;  // written when streams.lambert is not null
 };
 
 // The window transform of the clip coordinates (raster::VertexPositions): X = x scale_x +

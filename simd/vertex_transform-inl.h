@@ -1,5 +1,6 @@
 // Per-target body of simd/vertex_transform.h: x = (r0 px + r1 py) + r2 pz per clip row, and
-// zeros where no drawn triangle needs the vertex (core/vertex_culling.h, kDraw).
+// zeros where no drawn triangle needs the vertex (core/vertex_culling.h, kDraw); gradient
+// mode's per-vertex Lambert term likewise.
 #if defined(RELIEF_SIMD_VERTEX_TRANSFORM_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef RELIEF_SIMD_VERTEX_TRANSFORM_INL_H_
 #undef RELIEF_SIMD_VERTEX_TRANSFORM_INL_H_
@@ -71,6 +72,59 @@ void TransformVertices(const TransformParams<float>& t, IndexRange range,
         for (std::size_t l = 0; l < count; ++l) {
           targets[c][k + l] = out[c][l];
         }
+      }
+    }
+  };
+  std::size_t k = range.begin;
+  for (; k + lanes <= range.end; k += lanes) {
+    one_vector(k, lanes);
+  }
+  if (k < range.end) {
+    one_vector(k, range.end - k);
+  }
+}
+
+// light_vertices (core/vertex_transform.h): lambert = ndl > 0 ? ndl : 0 with
+// ndl = (nx sun_x + ny sun_y) + nz sun_z, and 0 where no drawn triangle needs the vertex.
+void LightVertices(const TransformParams<float>& t, IndexRange range, const float* HWY_RESTRICT nx,
+                   const float* HWY_RESTRICT ny, const float* HWY_RESTRICT nz,
+                   const std::uint8_t* HWY_RESTRICT need, float* HWY_RESTRICT lambert) {
+  const hn::ScalableTag<float> d;
+  const hn::RebindToSigned<decltype(d)> di;
+  const hn::Rebind<std::uint8_t, decltype(d)> d8;
+  using V = hn::Vec<decltype(d)>;
+  const std::size_t lanes = hn::Lanes(d);
+  const V sun_x = hn::Set(d, t.sun_x), sun_y = hn::Set(d, t.sun_y), sun_z = hn::Set(d, t.sun_z);
+  const auto draw_bit = hn::Set(di, kDraw);
+  const auto one_vector = [&](std::size_t k, std::size_t count) {
+    HWY_ALIGN float in[3][HWY_MAX_BYTES / sizeof(float)] = {};
+    HWY_ALIGN std::uint8_t flags[HWY_MAX_BYTES / sizeof(float)] = {};
+    HWY_ALIGN float out[HWY_MAX_BYTES / sizeof(float)];
+    const bool whole = count == lanes;
+    if (!whole) {
+      for (std::size_t l = 0; l < count; ++l) {
+        in[0][l] = nx[k + l];
+        in[1][l] = ny[k + l];
+        in[2][l] = nz[k + l];
+        flags[l] = need == nullptr ? std::uint8_t(kDraw) : need[k + l];
+      }
+    }
+    const V x = whole ? hn::LoadU(d, nx + k) : hn::Load(d, in[0]);
+    const V y = whole ? hn::LoadU(d, ny + k) : hn::Load(d, in[1]);
+    const V z = whole ? hn::LoadU(d, nz + k) : hn::Load(d, in[2]);
+    auto drawn = hn::FirstN(d, count);
+    if (need != nullptr || !whole) {
+      const auto bits = hn::PromoteTo(di, whole ? hn::LoadU(d8, need + k) : hn::Load(d8, flags));
+      drawn = hn::RebindMask(d, hn::Ne(hn::And(bits, draw_bit), hn::Zero(di)));
+    }
+    const V ndl = hn::Add(hn::Add(hn::Mul(x, sun_x), hn::Mul(y, sun_y)), hn::Mul(z, sun_z));
+    const V value = hn::IfThenElseZero(hn::And(drawn, hn::Gt(ndl, hn::Zero(d))), ndl);
+    if (whole) {
+      hn::StoreU(value, d, lambert + k);
+    } else {
+      hn::Store(value, d, out);
+      for (std::size_t l = 0; l < count; ++l) {
+        lambert[k + l] = out[l];
       }
     }
   };

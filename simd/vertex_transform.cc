@@ -12,6 +12,7 @@
 namespace relief::simd {
 
 HWY_EXPORT(TransformVertices);
+HWY_EXPORT(LightVertices);
 
 void transform_vertices(const TransformParams<float>& params, IndexRange range,
                         std::span<const float> dx, std::span<const float> dz,
@@ -20,6 +21,14 @@ void transform_vertices(const TransformParams<float>& params, IndexRange range,
   HWY_DYNAMIC_DISPATCH(TransformVertices)
   (params, range, dx.data(), dz.data(), height.data(), need.empty() ? nullptr : need.data(),
    clip.x.data(), clip.y.data(), clip.z.data(), clip.w.data());
+}
+
+void light_vertices(const TransformParams<float>& params, IndexRange range,
+                    std::span<const float> nx, std::span<const float> ny, std::span<const float> nz,
+                    std::span<const std::uint8_t> need, std::span<float> lambert) {
+  HWY_DYNAMIC_DISPATCH(LightVertices)
+  (params, range, nx.data(), ny.data(), nz.data(), need.empty() ? nullptr : need.data(),
+   lambert.data());
 }
 
 }  // namespace relief::simd

@@ -207,7 +207,26 @@ struct MaterialLayer {
   double specular = 0.0;                  // Phong specular strength in [0, 1]
 };
 
+// How the terrain gets its colour: the paper's proto-textures (§4.2), or castledragmire's
+// height-to-colour gradient lit per vertex (Gouraud shading).
+enum class ShadingMode { kTextures, kGradient };
+
+// One colour stop of the height gradient: at `at` (0 at the gradient's low height, 1 at its
+// high one) the colour is `color` (linear RGB). Two stops at the same height make a step.
+struct GradientStop {
+  double at = 0.0;
+  Vec3d color = {0.0, 0.0, 0.0};
+};
+
+struct GradientSettings {
+  // World heights of at = 0 and at = 1; none: the terrain's height bounds (core/height_bounds.h).
+  std::optional<Vec2d> range;
+  std::vector<GradientStop> stops;  // at non-decreasing; the default set is in scene_defaults.cc
+};
+
 struct ShadingSettings {
+  ShadingMode mode = ShadingMode::kTextures;
+  GradientSettings gradient;          // read where mode is kGradient
   std::vector<MaterialLayer> layers;  // the default set is in scene_defaults.cc
   int texture_size = 256;             // side of the built-in textures, power of two
   double mip_blend = 0.3;  // §4.2: each mip level blended this far toward the mean colour

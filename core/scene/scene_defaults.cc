@@ -45,6 +45,16 @@ ShadingSettings Scene::default_shading() {
        .slope_spread_deg = 6.0,
        .specular = 0.35},
   };
+  // castledragmire's height-to-colour table (heights on a 0 to 1 scale): 0 to 1/8 blue, dark
+  // to light; 1/8 to 4/8 green, light to dark; 4/8 to 7/8 brown, light to dark; 7/8 to 1
+  // white, dark to light. Each band's ends are the two stops of its ramp; the bands meet in
+  // steps (two stops at one height). Linear RGB.
+  shading.gradient.stops = {
+      {0.0, {0.010, 0.030, 0.180}},   {0.125, {0.060, 0.200, 0.550}},
+      {0.125, {0.180, 0.420, 0.080}}, {0.5, {0.040, 0.150, 0.025}},
+      {0.5, {0.330, 0.220, 0.110}},   {0.875, {0.110, 0.065, 0.030}},
+      {0.875, {0.560, 0.560, 0.580}}, {1.0, {0.950, 0.950, 0.970}},
+  };
   return shading;
 }
 

@@ -1,8 +1,9 @@
 // Each scene section's field list (scene_schema.h), and the rules across fields that
 // validate_scene runs. One function per section; the lists live beside their rules:
 // view_sections.cc (camera, viewport, grid), terrain_sections.cc (terrain, lod, warp),
-// sketch_section.cc (sketch, heightfield), basis_section.cc, planet_section.cc, shading_section.cc,
-// light_sections.cc (lighting, water, sky, output), scene_schema.cc (the whole scene).
+// sketch_section.cc (sketch, heightfield), basis_section.cc, planet_section.cc, shading_section.cc
+// and gradient_section.cc, light_sections.cc (lighting, water, sky, output), scene_schema.cc
+// (the whole scene).
 #pragma once
 
 #include "core/scene/scene.h"
@@ -21,6 +22,7 @@ const Schema<HeightFieldSettings>& heightfield_schema();
 const Schema<BasisSettings>& basis_schema();
 const Schema<PlanetSettings>& planet_schema();
 const Schema<ShadingSettings>& shading_schema();
+const Schema<GradientSettings>& gradient_schema();
 const Schema<LightingSettings>& lighting_schema();
 const Schema<WaterSettings>& water_schema();
 const Schema<SkySettings>& sky_schema();

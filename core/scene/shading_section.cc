@@ -135,6 +135,13 @@ Field<ShadingSettings> layers_field() {
 const Schema<ShadingSettings>& shading_schema() {
   using S = ShadingSettings;
   static const Schema<S> schema({
+      choice_field("mode", &S::mode,
+                   {{"textures", ShadingMode::kTextures}, {"gradient", ShadingMode::kGradient}},
+                   {"",
+                    "the terrain's colour: the layers' proto-textures (§4.2), or castledragmire's "
+                    "height-to-colour gradient lit per vertex (Gouraud shading)"}),
+      section_field("gradient", &S::gradient, gradient_schema(),
+                    {"", "the height gradient of mode `gradient`"}),
       layers_field(),
       power_of_two_field("texture_size", &S::texture_size, limits::kMinBuiltinTextureSize,
                          limits::kMaxBuiltinTextureSize,

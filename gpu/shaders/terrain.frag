@@ -5,6 +5,7 @@ in float v_dx, v_dz, v_height;
 in float v_nx, v_ny, v_nz;
 in float v_slope, v_water_depth, v_nu;
 in float v_drop;
+in float v_lambert;
 
 uniform double u_camera_y;  // world height = camera y + the camera-relative height, in double
 uniform float u_height_origin;  // v_height is the height less this (terrain.vert)
@@ -34,6 +35,7 @@ void main() {
   a.slope = v_slope;
   a.water_depth = v_water_depth;
   a.drop = v_drop;
+  a.lambert = v_lambert;
   const vec3 radiance = terrain_radiance(a);
   precise vec3 rgb = radiance * P.exposure;
   out_linear = vec4(rgb, 1.0);

@@ -8,7 +8,8 @@ struct Attributes {
   float nx, ny, nz;
   float slope;
   float water_depth;
-  float drop;  // a planet's curvature drop (core/planet_bend.h); 0 on the plane
+  float drop;     // a planet's curvature drop (core/planet_bend.h); 0 on the plane
+  float lambert;  // gradient mode's interpolated per-vertex Lambert term (terrain.vert)
 };
 
 float ramp_weight(Ramp ramp, float x, float dither_offset) {
@@ -116,14 +117,9 @@ vec3 light(vec3 albedo, vec3 n, vec3 view, float specular) {
   return radiance;
 }
 
-vec3 terrain_radiance(Attributes a) {
+// §4.2's proto-texture shading (shading.mode = textures, shade.cc's textured_radiance).
+vec3 textured_radiance(Attributes a, float distance, vec3 view) {
   const float relative_y = a.height;
-  // On a planet (dx, dz) are the bent position's and the height lies a.drop above it (shade.cc;
-  // x - 0 is x: the plane's bits are unchanged).
-  precise float position_y = relative_y - a.drop;
-  const vec3 position = vec3(a.dx, position_y, a.dz);
-  precise float distance = square_root(dot3(position, position));
-  const vec3 view = normalize_or(position, f3(P.camera_forward));
   const vec3 n = normalize_or(vec3(a.nx, a.ny, a.nz), vec3(0.0, 1.0, 0.0));
 
   // Scape's dithered transitions, faded out where the noise would alias (shade.cc).
@@ -153,7 +149,23 @@ vec3 terrain_radiance(Attributes a) {
   }
   albedo = albedo * divide(1.0, used);
   precise float shininess_weight = divide(specular, used);
-  precise vec3 radiance = light(albedo, facing_normal(n, view), view, shininess_weight);
+  return light(albedo, facing_normal(n, view), view, shininess_weight);
+}
+
+vec3 terrain_radiance(Attributes a) {
+  const float relative_y = a.height;
+  // On a planet (dx, dz) are the bent position's and the height lies a.drop above it (shade.cc;
+  // x - 0 is x: the plane's bits are unchanged).
+  precise float position_y = relative_y - a.drop;
+  const vec3 position = vec3(a.dx, position_y, a.dz);
+  precise float distance = square_root(dot3(position, position));
+  const vec3 view = normalize_or(position, f3(P.camera_forward));
+  precise vec3 radiance;
+  if (P.gradient_enabled != 0) {  // gradient_shading.glsl
+    radiance = gouraud_light(gradient_albedo(relative_y), a.lambert, a.ny);
+  } else {
+    radiance = textured_radiance(a, distance, view);
+  }
 
   precise float fog_distance = distance;
   if (P.water_enabled != 0 && P.terrain_water != 0 && relative_y < P.water_level && view.y < 0.0) {

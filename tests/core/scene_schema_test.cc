@@ -51,7 +51,8 @@ std::string base_scene_for(const std::string& path) {
 }
 
 // `value` at `path` as a one-field layer; "[k]" is element 0 (shading.layers patches it by
-// index, terrain.basis.images is replaced whole by one image with `value` in it).
+// index, terrain.basis.images is replaced whole by one image with `value` in it,
+// shading.gradient.stops by two stops, the first with `value` in it).
 json layer_at(const std::string& path, const json& value) {
   const std::size_t element = path.find("[k].");
   if (element != std::string::npos) {
@@ -59,6 +60,11 @@ json layer_at(const std::string& path, const json& value) {
     const std::string key = path.substr(element + 4);
     if (array == "shading.layers") {
       return layer_at(array, json{{"0", json{{key, value}}}});
+    }
+    if (array == "shading.gradient.stops") {  // replaced whole: two complete stops
+      json first{{"at", 0}, {"color", {0, 0, 0}}};
+      first[key] = value;
+      return layer_at(array, json::array({first, json{{"at", 1}, {"color", {1, 1, 1}}}}));
     }
     json image{{"image", "builtin:basis/craters"}};
     image[key] = value;

@@ -105,6 +105,11 @@ Offsets<ShadeParams<float>> shade_offsets() {
   o.add("nearest_mip", &p.nearest_mip);
   o.add("skybox", &p.skybox);
   o.add("skybox_sun", &p.skybox_sun);
+  o.add("gradient_enabled", &p.gradient_enabled);
+  o.add("gradient_count", &p.gradient_count);
+  o.add("gradient_height[0]", &p.gradient_height[0], sizeof(float));
+  o.add("gradient_inv_span[0]", &p.gradient_inv_span[0], sizeof(float));
+  o.add3("gradient_color[0]", p.gradient_color[0]);
   o.add("reserved[0]", &p.reserved[0], sizeof(std::int32_t));
   o.add3("camera_forward", p.camera_forward);
   o.add("forward[0]", &p.forward[0], sizeof(double));
@@ -130,6 +135,10 @@ Offsets<TransformParams<float>> transform_offsets() {
     o.add("row_w" + std::to_string(c), &t.row_w[c]);
   }
   o.add("z_clip", &t.z_clip);
+  o.add("gouraud", &t.gouraud);
+  o.add("sun_x", &t.sun_x);
+  o.add("sun_y", &t.sun_y);
+  o.add("sun_z", &t.sun_z);
   return o;
 }
 

@@ -48,10 +48,11 @@ struct FrameInputs {
 
 FrameInputs frame_inputs(const Scene& scene, const SceneResources& resources) {
   FrameInputs in{rasterize_terrain(scene, resources), {}, {}, 0.0};
-  in.shade =
-      make_shade_params<float>(make_shading_plan(scene, in.terrain.plan, resources.lattice.size));
+  const ShadingPlan shading = make_shading_plan(scene, in.terrain.plan, resources.lattice.size);
+  in.shade = make_shade_params<float>(shading);
   add_planet_shading(in.terrain.plan, scene.terrain.base_height, in.shade);  // the plane: none
   in.transform = make_terrain_params<float>(in.terrain.plan).transform;
+  add_gouraud_lighting(shading, in.transform);  // gradient mode lights the vertices
   in.camera_y = in.terrain.plan.camera.position.y;
   return in;
 }
@@ -231,6 +232,12 @@ TEST_CASE("glFramesOfEveryPresetMatchTheCpuFrameWithinTheDocumentedBounds", "[gl
   std::vector<std::string> bilinear = kSize;
   bilinear.push_back("shading.texture_filter=\"bilinear\"");
   check_preset("alpine", bilinear);
+  // Gradient shading: the vertex shader's Lambert term, its interpolation and the gradient.
+  for (const char* preset : {"default", "lake", "planet"}) {
+    std::vector<std::string> gradient = kSize;
+    gradient.push_back("shading.mode=\"gradient\"");
+    check_preset(preset, gradient);
+  }
 }
 
 TEST_CASE("glDrawsOnlyTheTrianglesWhoseVerticesAllHaveKDraw", "[gl]") {

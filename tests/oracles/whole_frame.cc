@@ -180,6 +180,20 @@ FrameImage render_whole_frame(const Scene& scene, const SceneResources& resource
   ShadingInputs inputs = shading_inputs(frame, resolved);
   const std::vector<float> shares = sun_shares(scene, resources, frame, inputs);
   inputs.sun = shares;
+  // Gradient mode: every vertex lit (core/vertex_transform.h), its Lambert term resolved.
+  raster::ResolvedFrame lambert_resolved;
+  if (plan.gradient.enabled) {
+    TransformParams<float> transform = make_terrain_params<float>(frame.plan).transform;
+    add_gouraud_lighting(plan, transform);
+    const GridBuffers<float>& g = frame.grid;
+    AlignedVector<float> lambert(frame.plan.layout.size());
+    light_vertices<float>(transform, IndexRange{0, lambert.size()}, g.nx, g.ny, g.nz, {}, lambert);
+    const std::span<const float> stream[] = {lambert};
+    raster::resolve(
+        frame.visibility, raster::VertexPositions::from_clip(frame.clip(), frame.state.viewport),
+        frame.triangles(), std::span<const std::span<const float>>(stream, 1), 0, lambert_resolved);
+    inputs.lambert = lambert_resolved.value[0];
+  }
   FrameImage image;
   image.width = frame.state.width;
   image.height = frame.state.height;

@@ -90,6 +90,8 @@ void check_pointers_match_kinds(const CpuKernels<Real>& table, const CpuKernels<
       CHECK((table.surface != portable.surface) == highway);
     } else if (name == "vertex transform") {
       CHECK((table.transform != portable.transform) == highway);
+    } else if (name == "vertex lighting") {
+      CHECK((table.light_vertices != portable.light_vertices) == highway);
     } else if (name == "vertex snap") {
       CHECK((table.snap != nullptr) == highway);
     } else if (name == "tile raster") {

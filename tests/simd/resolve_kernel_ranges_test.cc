@@ -21,7 +21,7 @@ namespace relief {
 namespace {
 
 constexpr int kVertices = 64;
-constexpr int kStreams = 9;  // dx, dz, height, nx, ny, nz, slope, water_depth, nu
+constexpr int kStreams = 10;  // dx, dz, height, nx, ny, nz, slope, water_depth, nu, lambert
 constexpr std::size_t kMaxSlots = 5 + 53 + test::kGuardElements;
 
 // Per-vertex clip positions in front of the camera, the streams the resolve interpolates, and
@@ -105,25 +105,26 @@ TEST_CASE("simdPlaneSetUpForAwkwardSlotCountsIsRastersPlaneAndWritesOnlyItsSlots
   }
 }
 
-simd::ResolveStreams streams_of(const TileTriangles& t, bool water_and_nu) {
-  const auto at = [&](int s) { return t.stream[s].data(); };
-  return {at(0),
-          at(1),
-          at(2),
-          at(3),
-          at(4),
-          at(5),
-          at(6),
-          water_and_nu ? at(7) : nullptr,
-          water_and_nu ? at(8) : nullptr};
+// Which of the optional streams (7-9) are given: none, all, or lambert alone (gradient
+// shading without the octave output: the fourth group of a record read for lambert alone).
+enum class Optional { kNone, kAll, kLambert };
+
+bool present(Optional optional, int stream) {
+  return stream < 7 || optional == Optional::kAll ||
+         (optional == Optional::kLambert && stream == 9);
+}
+
+simd::ResolveStreams streams_of(const TileTriangles& t, Optional optional) {
+  const auto at = [&](int s) { return present(optional, s) ? t.stream[s].data() : nullptr; };
+  return {at(0), at(1), at(2), at(3), at(4), at(5), at(6), at(7), at(8), at(9)};
 }
 
 TEST_CASE("slotRecordsForAwkwardSlotCountsHoldTheirVerticesValuesAndNothingBeyond", "[simd]") {
   // simd/resolve.h's layout: stream f at vertex c of slot s at s * 32 + 3 f + c, 0 for a null
   // stream. (Plain C++ shared by every target, tried with the other kernels of the family.)
   const TileTriangles t;
-  for (const bool water_and_nu : {false, true}) {
-    const simd::ResolveStreams streams = streams_of(t, water_and_nu);
+  for (const Optional optional : {Optional::kNone, Optional::kAll, Optional::kLambert}) {
+    const simd::ResolveStreams streams = streams_of(t, optional);
     for (const std::size_t start : test::kRangeStarts) {
       for (const std::size_t count : test::awkward_lengths()) {
         const std::int32_t* const vertex[3] = {
@@ -131,13 +132,13 @@ TEST_CASE("slotRecordsForAwkwardSlotCountsHoldTheirVerticesValuesAndNothingBeyon
         std::vector<float> records =
             test::sentinel_buffer<float>(start, count * simd::kSlotRecordFloats);
         simd::gather_slot_records(streams, vertex, count, records.data() + start);
-        INFO("water and nu " << water_and_nu << ", start " << start << ", slots " << count);
+        INFO("optional streams " << int(optional) << ", start " << start << ", slots " << count);
         CHECK(test::untouched_outside(records, start, start + count * simd::kSlotRecordFloats));
         for (std::size_t s = 0; s < count; ++s) {
           for (int f = 0; f < kStreams; ++f) {
             for (int c = 0; c < 3; ++c) {
-              const bool present = f < 7 || water_and_nu;
-              const float value = present ? t.stream[f][std::size_t(vertex[c][s])] : 0.0f;
+              const float value =
+                  present(optional, f) ? t.stream[f][std::size_t(vertex[c][s])] : 0.0f;
               REQUIRE(records[start + s * simd::kSlotRecordFloats + 3 * std::size_t(f) +
                               std::size_t(c)] == value);
             }
@@ -148,16 +149,16 @@ TEST_CASE("slotRecordsForAwkwardSlotCountsHoldTheirVerticesValuesAndNothingBeyon
   }
 }
 
-// The fifteen resolved fields in ResolveTargets' order.
-constexpr int kTargets = 15;
+// The sixteen resolved fields in ResolveTargets' order.
+constexpr int kTargets = 16;
 
 simd::ResolveTargets targets_of(std::vector<float> (&out)[kTargets], std::size_t start) {
   float* p[kTargets];
   for (int f = 0; f < kTargets; ++f) {
     p[f] = out[f].data() + start;
   }
-  return {p[0], p[1], p[2],  p[3],  p[4],  p[5],  p[6], p[7],
-          p[8], p[9], p[10], p[11], p[12], p[13], p[14]};
+  return {p[0], p[1], p[2],  p[3],  p[4],  p[5],  p[6],  p[7],
+          p[8], p[9], p[10], p[11], p[12], p[13], p[14], p[15]};
 }
 
 // The scalar tile resolve of pipeline/tile_pass.cc at one pixel: raster's quad weights of the
@@ -185,14 +186,17 @@ void resolve_pixel(const TileTriangles& t, const simd::ResolveStreams& streams, 
   if (streams.nu != nullptr) {
     out[14][k] = float(at(streams.nu, q.b));
   }
+  if (streams.lambert != nullptr) {
+    out[15][k] = float(at(streams.lambert, q.b));
+  }
 }
 
 TEST_CASE("simdResolveOfAwkwardRectanglesIsTheScalarResolveAndWritesOnlyCoveredPixels", "[simd]") {
   const EachTarget targets;
   const TileTriangles t;
   test::TestRandom random(71);
-  for (const bool water_and_nu : {false, true}) {
-    const simd::ResolveStreams streams = streams_of(t, water_and_nu);
+  for (const Optional optional : {Optional::kNone, Optional::kAll, Optional::kLambert}) {
+    const simd::ResolveStreams streams = streams_of(t, optional);
     for (const std::size_t width : test::awkward_lengths()) {
       // Rows of whole 16-pixel groups (the kernel reads whole vectors of a row); the
       // rectangle's origin at even and odd pixels, so its first pixel is either of a quad's.
@@ -241,8 +245,8 @@ TEST_CASE("simdResolveOfAwkwardRectanglesIsTheScalarResolveAndWritesOnlyCoveredP
           }
           simd::resolve_rect(slots, streams, slot.data() + start, x0, y0, int(width), height,
                              stride, targets_of(got, start));
-          INFO(target << ", water and nu " << water_and_nu << ", width " << width << ", origin "
-                      << x0 << ", " << y0);
+          INFO(target << ", optional streams " << int(optional) << ", width " << width
+                      << ", origin " << x0 << ", " << y0);
           for (int f = 0; f < kTargets; ++f) {
             INFO("field " << f);
             CHECK(test::same_bits(got[f], expected[f]));

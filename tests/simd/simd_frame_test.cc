@@ -76,7 +76,11 @@ TEST_CASE("simdFramesMatchTheReferenceWithEverySkipOffAndAtOddSizes", "[simd]") 
            {"alpine", {"shading.triplanar=false", "viewport.width=131", "viewport.height=67"}},
            {"lake", {"camera.pitch_deg=-35", "viewport.width=100", "viewport.height=71"}},
            {"default", {"camera.pitch_deg=12", "viewport.width=97", "viewport.height=65"}},
-           {"dunes", {"shading.texture_filter=\"bilinear\"", "viewport.width=90"}}}) {
+           {"dunes", {"shading.texture_filter=\"bilinear\"", "viewport.width=90"}},
+           // Gradient shading: the vertices' light (stage 5), its resolve and the gradient.
+           {"default", {"shading.mode=\"gradient\"", "lighting.shadows=true"}},
+           {"lake", {"shading.mode=\"gradient\"", "shading.gradient.range=[-30, 300]"}},
+           {"planet", {"shading.mode=\"gradient\"", "viewport.width=96"}}}) {
     std::vector<std::string> all = {"grid.width=61", "grid.height=53"};
     all.insert(all.end(), overrides.begin(), overrides.end());
     const Scene scene = resolve_scene(preset, all);

@@ -1,9 +1,11 @@
-// The per-vertex Highway kernels of stages 5 and 6 (simd/vertex_transform.h,
-// simd/vertex_snap.h) over ranges of every awkward length (tests/simd/kernel_ranges.h) on every
+// The per-vertex Highway kernels of stages 5 and 6 (simd/vertex_transform.h: the transform and
+// gradient shading's vertex light; simd/vertex_snap.h) over ranges of every awkward length
+// (tests/simd/kernel_ranges.h) on every
 // target this CPU runs: every value inside the range is the scalar one (core/vertex_transform.h,
 // raster's portable per-vertex loops) bit for bit, and no element outside the range is written.
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -39,6 +41,47 @@ struct ClipOutputs {
         w(kCapacity, test::sentinel<float>()) {}
   ClipSpans<float> spans() { return {x, y, z, w}; }
 };
+
+TEST_CASE("simdVertexLightingAtAwkwardLengthsIsTheScalarOneAndWritesOnlyItsRange", "[simd]") {
+  const EachTarget targets;
+  test::TestRandom random(67);
+  TransformParams<float> params;
+  params.gouraud = 1;
+  params.sun_x = 0.48f;
+  params.sun_y = 0.6f;
+  params.sun_z = -0.64f;
+  std::vector<float> nx(kCapacity), ny(kCapacity), nz(kCapacity);
+  std::vector<std::uint8_t> need(kCapacity);
+  for (std::size_t k = 0; k < kCapacity; ++k) {
+    // Unit normals and exact edge cases: facing away (clamped), -0, and NaN (0, as the
+    // scalar ndl > 0 decides).
+    nx[k] = float(random.uniform(-1, 1));
+    ny[k] = float(random.uniform(-1, 1));
+    nz[k] = float(random.uniform(-1, 1));
+    need[k] = static_cast<std::uint8_t>(random.uniform(0, 4));
+  }
+  nx[7] = ny[7] = nz[7] = -0.0f;
+  ny[11] = std::numeric_limits<float>::quiet_NaN();
+  for (const std::span<const std::uint8_t> mask :
+       {std::span<const std::uint8_t>(), std::span<const std::uint8_t>(need)}) {
+    for (const std::size_t start : test::kRangeStarts) {
+      for (const std::size_t length : test::awkward_lengths()) {
+        const IndexRange range{start, start + length};
+        std::vector<float> expected(kCapacity, test::sentinel<float>());
+        light_vertices<float>(params, range, nx, ny, nz, mask, expected);
+        INFO("mask " << mask.size() << ", start " << start << ", length " << length);
+        REQUIRE(test::untouched_outside(expected, range.begin, range.end));
+        for (const std::string& target : targets.runnable()) {
+          simd::force_target(target);
+          std::vector<float> got(kCapacity, test::sentinel<float>());
+          simd::light_vertices(params, range, nx, ny, nz, mask, got);
+          INFO(target);
+          CHECK(test::same_bits(got, expected));
+        }
+      }
+    }
+  }
+}
 
 TEST_CASE("simdVertexTransformAtAwkwardLengthsIsTheScalarTransformAndWritesOnlyItsRange",
           "[simd]") {
