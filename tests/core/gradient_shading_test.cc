@@ -21,6 +21,7 @@
 #include "pipeline/scene_resources.h"
 #include "raster/topology.h"
 #include "tests/oracles/whole_frame.h"
+#include "tests/support/frame_counters.h"
 #include "tests/support/test_support.h"
 
 namespace relief {
@@ -294,18 +295,6 @@ TEST_CASE("gradientPixelsAreLitByTheirTrianglesVertexLight", "[gradient][frame]"
   }
 }
 
-std::uint64_t counter(const Frame& frame, const std::string& name) {
-  for (const StageTime& stage : frame.stats.stages) {
-    for (const WorkCounter& c : stage.counters) {
-      if (c.name == name) {
-        return c.value;
-      }
-    }
-  }
-  FAIL("no counter " << name);
-  return 0;
-}
-
 TEST_CASE("gradientFramesFetchNoTextureAndEqualTheUnfusedOracle", "[gradient][frame]") {
   for (const std::vector<std::string>& extra :
        {std::vector<std::string>{},
@@ -320,11 +309,11 @@ TEST_CASE("gradientFramesFetchNoTextureAndEqualTheUnfusedOracle", "[gradient][fr
     const Frame frame = render_frame(scene, resources, request);
     const Frame with_textures = render_frame(textured, load_scene_resources(textured), request);
     INFO((extra.empty() ? "plain" : extra.front()));
-    CHECK(counter(frame, "pixels shaded as terrain") > 0);
-    CHECK(counter(frame, "texture fetches") == 0);
-    CHECK(counter(frame, "dither samples") == 0);
-    CHECK(counter(frame, "specular terms") == 0);
-    CHECK(counter(with_textures, "texture fetches") > 0);
+    CHECK(test::frame_counter(frame, "pixels shaded as terrain") > 0);
+    CHECK(test::frame_counter(frame, "texture fetches") == 0);
+    CHECK(test::frame_counter(frame, "dither samples") == 0);
+    CHECK(test::frame_counter(frame, "specular terms") == 0);
+    CHECK(test::frame_counter(with_textures, "texture fetches") > 0);
     CHECK(frame.image.srgb != with_textures.image.srgb);
     const FrameImage whole = render_whole_frame(scene, resources);
     CHECK(frame.image.srgb == whole.srgb);

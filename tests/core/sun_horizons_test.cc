@@ -19,6 +19,7 @@
 #include "pipeline/scene_resources.h"
 #include "tests/oracles/whole_frame.h"
 #include "tests/support/cli_support.h"
+#include "tests/support/frame_counters.h"
 #include "tests/support/hashed_draws.h"
 
 namespace relief {
@@ -287,18 +288,6 @@ TEST_CASE("shadowsAreRefusedOnAPlanetAndTheirResolutionIsChecked", "[shadows]") 
                     Catch::Contains("lighting.shadows"));
 }
 
-std::uint64_t counter(const Frame& frame, const std::string& name) {
-  for (const StageTime& stage : frame.stats.stages) {
-    for (const WorkCounter& c : stage.counters) {
-      if (c.name == name) {
-        return c.value;
-      }
-    }
-  }
-  FAIL("no counter " << name);
-  return 0;
-}
-
 TEST_CASE("aFarPlaneFarAwayKeepsTheShadowsAndEveryPixelInTheCache", "[shadows]") {
   // The levels are laid out to the far plane (a hostile pass found a far plane of 1e9 diluting
   // twelve levels until no shadow was left): the pixels in full shadow stay, none falls beyond
@@ -306,13 +295,13 @@ TEST_CASE("aFarPlaneFarAwayKeepsTheShadowsAndEveryPixelInTheCache", "[shadows]")
   // short of the pixels past the far plane's corner).
   const Frame near = render_linear(resolve_scene("sunset", small({})));
   const Frame far = render_linear(resolve_scene("sunset", small({"camera.far=1e9"})));
-  const std::uint64_t dark = counter(near, "pixels in full shadow");
+  const std::uint64_t dark = test::frame_counter(near, "pixels in full shadow");
   CHECK(dark > 1000);
-  CHECK(counter(far, "pixels in full shadow") > dark * 9 / 10);
-  CHECK(counter(far, "pixels beyond the shadow cache") == 0);
+  CHECK(test::frame_counter(far, "pixels in full shadow") > dark * 9 / 10);
+  CHECK(test::frame_counter(far, "pixels beyond the shadow cache") == 0);
   const Frame side = render_linear(
       resolve_scene("sunset", small({"terrain.amplitude=50", "lighting.sun_azimuth_deg=260"})));
-  CHECK(counter(side, "pixels beyond the shadow cache") == 0);
+  CHECK(test::frame_counter(side, "pixels beyond the shadow cache") == 0);
 }
 
 TEST_CASE("leavingOutUnreadLevelsChangesNoBitWhereTheOccludersReachFar", "[shadows]") {
@@ -331,7 +320,8 @@ TEST_CASE("leavingOutUnreadLevelsChangesNoBitWhereTheOccludersReachFar", "[shado
       request.skips.unread_shadow_levels = false;
       const Frame full = render_frame(scene, resources, request);
       INFO(elevation << ", " << far);
-      CHECK(counter(skipped, "cache levels built") < counter(full, "cache levels built"));
+      CHECK(test::frame_counter(skipped, "cache levels built") <
+            test::frame_counter(full, "cache levels built"));
       CHECK(skipped.image.linear == full.image.linear);
     }
   }
@@ -359,8 +349,9 @@ TEST_CASE("theMemoryEstimateCountsTheShadowCacheOnlyWhereOneIsBuilt", "[shadows]
   CHECK_THAT(render_memory_advice(set), !Catch::Contains("shadow"));
   // A frame builds no more levels than the estimate counts.
   const Frame frame = render_linear(resolve_scene("sunset", small({})));
-  CHECK(counter(frame, "cache levels built") <= counter(frame, "cache levels"));
-  CHECK(counter(frame, "cache levels") ==
+  CHECK(test::frame_counter(frame, "cache levels built") <=
+        test::frame_counter(frame, "cache levels"));
+  CHECK(test::frame_counter(frame, "cache levels") ==
         std::uint64_t(shadow_cache_levels(resolve_scene("sunset", small({})))));
 }
 

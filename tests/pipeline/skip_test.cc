@@ -13,6 +13,7 @@
 #include "core/vertex_transform.h"
 #include "pipeline/frame.h"
 #include "pipeline/scene_resources.h"
+#include "tests/support/frame_counters.h"
 #include "tests/support/test_support.h"
 
 namespace relief {
@@ -34,23 +35,6 @@ FrameRequest request_for(Backend backend, const FrameSkips& skips) {
   request.outputs = {true, true, true, true, true, true};
   request.skips = skips;
   return request;
-}
-
-// The sum of the counters named `name` over the frame's stages; fails if there is none.
-std::uint64_t counter(const Frame& frame, const std::string& name) {
-  std::uint64_t sum = 0;
-  bool found = false;
-  for (const StageTime& stage : frame.stats.stages) {
-    for (const WorkCounter& c : stage.counters) {
-      if (c.name == name) {
-        sum += c.value;
-        found = true;
-      }
-    }
-  }
-  INFO("counter " << name);
-  REQUIRE(found);
-  return sum;
 }
 
 void require_same_outputs(const FrameImage& a, const FrameImage& b) {
@@ -177,7 +161,7 @@ TEST_CASE("everySkipLowersTheCountersOfTheWorkItSaves", "[skip]") {
     require_same_outputs(on.image, off.image);
     for (const std::string& name : c.counters) {
       INFO(name);
-      CHECK(counter(on, name) < counter(off, name));
+      CHECK(test::frame_counter(on, name) < test::frame_counter(off, name));
     }
   }
 }
@@ -190,26 +174,31 @@ TEST_CASE("theCountersOfAFrameAddUp", "[skip]") {
     INFO(preset);
     const std::uint64_t pixels = 200u * 150u;
     // Every pixel is shaded once, as terrain exactly where a triangle covers it.
-    CHECK(counter(frame, "pixels shaded as terrain") == counter(frame, "pixels covered"));
-    CHECK(counter(frame, "pixels shaded as terrain") +
-              counter(frame, "pixels shaded as background") ==
+    CHECK(test::frame_counter(frame, "pixels shaded as terrain") ==
+          test::frame_counter(frame, "pixels covered"));
+    CHECK(test::frame_counter(frame, "pixels shaded as terrain") +
+              test::frame_counter(frame, "pixels shaded as background") ==
           pixels);
     // Vertices: drawn ones are evaluated, and transformed, and get normals.
-    const std::uint64_t drawn = counter(frame, "vertices to draw");
-    CHECK(drawn <= counter(frame, "vertices to evaluate"));
-    CHECK(counter(frame, "vertices evaluated") == counter(frame, "vertices to evaluate"));
-    CHECK(counter(frame, "vertices transformed") == drawn);
-    CHECK(counter(frame, "normals computed") == drawn);
-    CHECK(counter(frame, "vertices evaluated") <= counter(frame, "grid vertices"));
+    const std::uint64_t drawn = test::frame_counter(frame, "vertices to draw");
+    CHECK(drawn <= test::frame_counter(frame, "vertices to evaluate"));
+    CHECK(test::frame_counter(frame, "vertices evaluated") ==
+          test::frame_counter(frame, "vertices to evaluate"));
+    CHECK(test::frame_counter(frame, "vertices transformed") == drawn);
+    CHECK(test::frame_counter(frame, "normals computed") == drawn);
+    CHECK(test::frame_counter(frame, "vertices evaluated") <=
+          test::frame_counter(frame, "grid vertices"));
     // A vertex sums at most the table's octaves.
-    CHECK(counter(frame, "point-octaves summed") <=
-          counter(frame, "vertices evaluated") * counter(frame, "octaves in the table"));
-    CHECK(counter(frame, "octaves in the table") <=
+    CHECK(test::frame_counter(frame, "point-octaves summed") <=
+          test::frame_counter(frame, "vertices evaluated") *
+              test::frame_counter(frame, "octaves in the table"));
+    CHECK(test::frame_counter(frame, "octaves in the table") <=
           std::uint64_t(scene.terrain.last_octave - scene.terrain.first_octave + 1));
     // Triangles: submitted within the grid, set up within those (clipping can split one
     // triangle into a few pieces, but the frame culls far more than it splits).
-    CHECK(counter(frame, "triangles submitted") <= counter(frame, "triangles in the grid"));
-    CHECK(counter(frame, "tiles rasterised") <= counter(frame, "tiles"));
+    CHECK(test::frame_counter(frame, "triangles submitted") <=
+          test::frame_counter(frame, "triangles in the grid"));
+    CHECK(test::frame_counter(frame, "tiles rasterised") <= test::frame_counter(frame, "tiles"));
     // The stages that ran, by name, in the order of the table (a planet frame evaluates every
     // valid vertex: no outcodes of the height bounds, docs/planet.md; cast shadows' stages run
     // where the scene has them).
