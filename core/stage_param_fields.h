@@ -192,7 +192,7 @@
   F(std::int32_t, gradient_enabled, 0) F(std::int32_t, gradient_count, 0) E                     \
   A(Real, gradient_height, [limits::kMaxGradientStops], {}) E                                   \
   A(Real, gradient_inv_span, [limits::kMaxGradientStops], {}) E                                 \
-  A(Vec3<Real>, gradient_color, [limits::kMaxGradientStops]) E                                  \
+  A(Vec3<Real>, gradient_color, [limits::kMaxGradientStops], {}) E                                  \
   /* Unused: keeps the float struct's size a multiple of 16 bytes, the size GL gives the     \
      std430 block that mirrors it (gpu/shaders/shade_params.glsl.in). */                        \
   A(std::int32_t, reserved, [3], {}) E                                                          \

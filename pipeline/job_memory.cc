@@ -181,10 +181,14 @@ MemoryEstimate estimate_render_memory(const Scene& scene, Backend backend,
   const std::uintmax_t vertices = grid_vertices(scene);
   // A planet frame adds its four bent streams (x, y, z, drop: core/grid_buffers.h).
   const bool planet = scene.terrain.planet && scene.terrain.planet->radius != 0.0;
+  // Gradient shading adds each vertex's Lambert term (stage 5: core/vertex_transform.h).
+  const bool gouraud = scene.shading.mode == ShadingMode::kGradient;
+  const std::uintmax_t real_bytes =
+      backend != Backend::kReferenceDouble ? sizeof(float) : sizeof(double);
   const std::uintmax_t vertex_bytes =
       (backend != Backend::kReferenceDouble ? kGridVertexBytes + kClipVertexBytes
                                             : kDoubleVertexBytes) +
-      (planet ? 4 * (backend != Backend::kReferenceDouble ? sizeof(float) : sizeof(double)) : 0);
+      (planet ? 4 * real_bytes : 0) + (gouraud ? real_bytes : 0);
   // The set-up triangles are not counted here: culling, clipping and the coverage test leave
   // few of a fine grid's triangles at a small viewport (a 4096^2 grid at 256 x 192 sets up
   // 173,349 of 33.5 million), so their worst case refused jobs that fit; the backend counts

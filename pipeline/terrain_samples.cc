@@ -117,6 +117,8 @@ TerrainSamples sample_terrain(const Scene& scene, const SceneResources& resource
   const ShadeParams<double> shade = make_shade_params<double>(shading);
 
   TerrainSamples out;
+  out.bound_low = plan.bounds.world_min;
+  out.bound_high = plan.bounds.world_max;
   out.width = region.width;
   out.height = region.height;
   out.layers = int(scene.shading.layers.size());

@@ -46,6 +46,9 @@ struct TerrainSamples {
   int layers = 0;                     // scene.shading.layers
   std::vector<std::uint8_t> weights;  // `layers` bytes per sample summing to 255, when requested
   double low = 0, high = 0;           // extremes of `heights`
+  // The scene's height bounds (core/height_bounds.h): what a null shading.gradient.range
+  // spans, which an exported scene must keep (its field has bounds of its own).
+  double bound_low = 0, bound_high = 0;
 };
 
 // Bytes a sampling of `region` holds at its peak (outputs and working rows).

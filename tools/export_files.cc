@@ -337,6 +337,22 @@ ExportFigures write_export_files(const Scene& scene, const ExportOptions& o, con
                                           ", beyond the +-1e7 a height field holds; nothing was "
                                           "written (export without --scene-out)");
     }
+    // A gradient over the terrain's height bounds keeps the source's bounds: the exported
+    // field's own would move every stop.
+    GradientSettings& gradient = round_trip.shading.gradient;
+    if (round_trip.shading.mode == ShadingMode::kGradient && !gradient.range &&
+        samples.bound_low < samples.bound_high) {
+      if (!(std::max(std::abs(samples.bound_low), std::abs(samples.bound_high)) <=
+            limits::kMaxBaseHeight)) {
+        throw SceneError("--scene-out",
+                         "--scene-out: the gradient spans the terrain's height bounds [" +
+                             format_number(samples.bound_low) + ", " +
+                             format_number(samples.bound_high) +
+                             "], beyond the +-1e7 shading.gradient.range holds; nothing was "
+                             "written (set shading.gradient.range)");
+      }
+      gradient.range = Vec2d{samples.bound_low, samples.bound_high};
+    }
     round_trip.terrain.sketch.reset();
     round_trip.terrain.heightfield = field;
     round_trip.terrain.base_height = (levels ? base : 0.0) + 0.0;  // -0 as 0

@@ -110,7 +110,8 @@ int run_render_command(const Scene& scene, const RenderOptions& options, std::os
   request.max_bin_bytes = memory_left(estimate, options.budget);
 
   const auto setup_start = std::chrono::steady_clock::now();
-  const SceneResources resources = load_scene_resources(scene);  // validates texture files
+  // Validates the files it reads (a gradient reads no layer texture).
+  const SceneResources resources = load_scene_resources(scene);
   print_scene_notes(resources.notes, err);
   const double setup_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - setup_start)

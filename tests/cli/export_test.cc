@@ -16,6 +16,9 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include "core/height_bounds.h"
+#include "core/lattice.h"
+#include "core/scene/scene_json.h"
 #include "pipeline/geotiff_reference.h"
 #include "tests/support/cli_support.h"
 #include "tests/support/heightfield_files.h"
@@ -145,6 +148,34 @@ TEST_CASE("aGeoTiffExportIsPlacedWhereItWasTaken", "[cli]") {
   for (std::size_t k = 0; k < first.size(); ++k) {
     CHECK(again[k] == Approx(first[k]).margin(2e-3));
   }
+}
+
+// A gradient over the terrain's height bounds (shading.gradient.range null) keeps the source's
+// bounds in the exported scene: the exported field's own bounds would move every stop.
+TEST_CASE("anExportedSceneKeepsTheGradientsHeights", "[cli]") {
+  test::TempDir dir("export");
+  const auto file = [&](const std::string& name) { return (dir.path() / name).string(); };
+  const std::vector<std::string> region = {
+      "export", "--region", "-2000", "-2000", "2000",
+      "2000",   "--size",   "33",    "--set", "shading.mode=\"gradient\""};
+  const auto export_with = [&](std::vector<std::string> args) {
+    args.insert(args.begin(), region.begin(), region.end());
+    return run(args);
+  };
+  require_ok(export_with({"-o", file("h.pfm"), "--scene-out", file("bounds.json")}));
+  const Scene source = resolve_scene("default", {"shading.mode=\"gradient\""});
+  const HeightBounds bounds = derive_height_bounds(
+      make_noise_lattice(source.terrain.seed, source.terrain.lattice_size), source.terrain);
+  const Scene exported = resolve_scene(file("bounds.json"), {});
+  REQUIRE(exported.shading.gradient.range);
+  CHECK((*exported.shading.gradient.range)[0] == bounds.world_min);
+  CHECK((*exported.shading.gradient.range)[1] == bounds.world_max);
+  // A range the scene gives is kept as it is.
+  require_ok(export_with({"-o", file("r.pfm"), "--scene-out", file("range.json"), "--set",
+                          "shading.gradient.range=[-5, 600]"}));
+  const Scene ranged = resolve_scene(file("range.json"), {});
+  REQUIRE(ranged.shading.gradient.range);
+  CHECK((*ranged.shading.gradient.range)[1] == 600.0);
 }
 
 TEST_CASE("everyExportedFileHoldsTheSamples", "[cli]") {

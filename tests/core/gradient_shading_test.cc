@@ -18,6 +18,7 @@
 #include "core/vertex_culling.h"
 #include "core/vertex_transform.h"
 #include "pipeline/frame.h"
+#include "pipeline/job_memory.h"
 #include "pipeline/scene_resources.h"
 #include "raster/topology.h"
 #include "tests/oracles/whole_frame.h"
@@ -319,6 +320,28 @@ TEST_CASE("gradientFramesFetchNoTextureAndEqualTheUnfusedOracle", "[gradient][fr
     CHECK(frame.image.srgb == whole.srgb);
     CHECK(frame.image.linear == whole.linear);
   }
+}
+
+// The per-vertex Lambert term is counted in the render's memory estimate: one value a grid
+// vertex in the frame's precision.
+TEST_CASE("theRenderEstimateCountsTheVertexLight", "[gradient]") {
+  const Scene textured = resolve_scene("default", kSmall);
+  const Scene gradient = resolve_scene("default", with(kSmall, {"shading.mode=\"gradient\""}));
+  const auto grid_bytes = [](const Scene& scene, Backend backend) {
+    for (const auto& [part, size] : estimate_render_memory(scene, backend, {}).parts) {
+      if (part.rfind("grid ", 0) == 0) {
+        return size;
+      }
+    }
+    FAIL("no grid in the estimate");
+    return std::uintmax_t(0);
+  };
+  const std::uintmax_t vertices = std::uintmax_t(textured.grid.width) * textured.grid.height;
+  CHECK(grid_bytes(gradient, Backend::kSimd) - grid_bytes(textured, Backend::kSimd) >=
+        vertices * sizeof(float));
+  CHECK(grid_bytes(gradient, Backend::kReferenceDouble) -
+            grid_bytes(textured, Backend::kReferenceDouble) >=
+        vertices * sizeof(double));
 }
 
 }  // namespace
