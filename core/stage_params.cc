@@ -213,6 +213,14 @@ ShadeParams<Real> make_shade_params(const ShadingPlan& plan) {
 }
 
 template <class Real>
+void add_gouraud_lighting(const ShadingPlan& plan, TransformParams<Real>& t) {
+  t.gouraud = plan.gradient.enabled ? 1 : 0;
+  t.sun_x = Real(plan.light.sun_direction.x);
+  t.sun_y = Real(plan.light.sun_direction.y);
+  t.sun_z = Real(plan.light.sun_direction.z);
+}
+
+template <class Real>
 void add_planet_shading(const FramePlan& plan, double base_height, ShadeParams<Real>& p) {
   const PlanetPlan& planet = plan.planet;
   if (!planet.enabled || !(planet.center_distance > 0.0)) {
@@ -238,14 +246,6 @@ template TerrainParams<float> make_terrain_params<float>(const FramePlan&);
 template TerrainParams<double> make_terrain_params<double>(const FramePlan&);
 template ShadeParams<float> make_shade_params<float>(const ShadingPlan&);
 template ShadeParams<double> make_shade_params<double>(const ShadingPlan&);
-template <class Real>
-void add_gouraud_lighting(const ShadingPlan& plan, TransformParams<Real>& t) {
-  t.gouraud = plan.gradient.enabled ? 1 : 0;
-  t.sun_x = Real(plan.light.sun_direction.x);
-  t.sun_y = Real(plan.light.sun_direction.y);
-  t.sun_z = Real(plan.light.sun_direction.z);
-}
-
 template void add_gouraud_lighting<float>(const ShadingPlan&, TransformParams<float>&);
 template void add_gouraud_lighting<double>(const ShadingPlan&, TransformParams<double>&);
 template void add_planet_shading<float>(const FramePlan&, double, ShadeParams<float>&);

@@ -100,7 +100,6 @@ TEST_CASE("theHeightGradientIsPiecewiseLinearWithStepsAtRepeatedStops", "[gradie
 }
 
 TEST_CASE("theGouraudLightIsTheSceneLightOfTheInterpolatedTerms", "[gradient]") {
-  const Scene scene = resolve_scene("default", {"shading.mode=\"gradient\""});
   ShadingPlan plan;
   plan.light.sun = {1.8, 1.6, 1.4};
   plan.light.sky = {0.1, 0.15, 0.2};
@@ -121,7 +120,6 @@ TEST_CASE("theGouraudLightIsTheSceneLightOfTheInterpolatedTerms", "[gradient]") 
     CHECK(got.y == Approx(want[1]).epsilon(1e-14));
     CHECK(got.z == Approx(want[2]).epsilon(1e-14));
   }
-  (void)scene;
 }
 
 TEST_CASE("eachDrawnVertexGetsItsLambertTermAndTheOthersZero", "[gradient]") {
