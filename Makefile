@@ -32,9 +32,12 @@ RENDER_PACKAGES := cmake make g++ pkg-config \
 # (tests/oracles/, standard library only). slurm-wlm and munge: the test that starts a
 # one-node Slurm and renders shards on it (tests/slurm/slurm_test.sh). pybind11-dev,
 # python3-dev, python3-numpy and python3-pytest: `import relief` and its pytest suite (python/).
+# python-matplotlib-data (data files alone, no Python code) ships a real elevation model that
+# tests/heightfield/real_dem_test.py renders (mpl-data/sample_data/jacksboro_fault_dem.npz).
 PACKAGES := $(RENDER_PACKAGES) catch2 libbenchmark-dev \
             libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri gnuplot-nox python3 \
-            slurm-wlm munge pybind11-dev python3-dev python3-numpy python3-pytest
+            slurm-wlm munge pybind11-dev python3-dev python3-numpy python3-pytest \
+            python-matplotlib-data
 
 # make fuzz alone: libFuzzer comes with clang (Debian's clang is clang 14; its runtime
 # libraries, libFuzzer among them, are libclang-rt-14-dev). Not needed by make test.
