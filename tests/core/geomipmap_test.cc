@@ -1,0 +1,248 @@
+// GeoMipMapping's tiles, quadtree culling, levels and stitched mesh (core/heightfield/geomipmap.h),
+// each against an independent check: the mesh's edges counted (watertight: no crack, no
+// T-junction), its area summed, culled boxes tested point by point against the camera's own
+// frustum, and the levels against de Boer's rule recomputed.
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <utility>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "core/camera.h"
+#include "core/frustum_polytope.h"
+#include "core/heightfield/geomipmap.h"
+
+namespace relief::geomipmap {
+namespace {
+
+// A rough field: hashed heights (a 64-bit mix of the index) plus a slope and waves of `waves`
+// metres (their curvature makes each level's error about four times the one below).
+std::vector<float> rough_heights(int columns, int rows, double amplitude, double waves = 0) {
+  std::vector<float> h(static_cast<std::size_t>(columns) * rows);
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < columns; ++c) {
+      std::uint64_t x = static_cast<std::uint64_t>(r) * 1000003u + static_cast<std::uint64_t>(c);
+      x ^= x >> 33;
+      x *= 0xff51afd7ed558ccdull;
+      x ^= x >> 33;
+      const double noise = static_cast<double>(x % 10007) / 10007.0 - 0.5;
+      h[static_cast<std::size_t>(r) * columns + c] = static_cast<float>(
+          amplitude * noise + 3.0 * c - 2.0 * r + waves * std::sin(0.35 * c) * std::cos(0.27 * r));
+    }
+  }
+  return h;
+}
+
+struct Field {
+  std::vector<float> heights;
+  FieldLattice lattice;
+};
+
+Field make_field(int tiles_x, int tiles_z, int tile_cells, double amplitude, double waves = 0) {
+  Field f;
+  const int columns = tiles_x * tile_cells + 1, rows = tiles_z * tile_cells + 1;
+  f.heights = rough_heights(columns, rows, amplitude, waves);
+  f.lattice.columns = columns;
+  f.lattice.rows = rows;
+  f.lattice.extent = {-1000.0, -800.0, 1000.0, 800.0};
+  f.lattice.heights = f.heights;
+  return f;
+}
+
+// Every undirected edge of the mesh and how many triangles use it; every triangle's doubled
+// signed area in lattice steps (positive: counter-clockwise seen from +y).
+void require_watertight(const GeoMipMap& map, const Selection& selection, const Mesh& mesh) {
+  std::map<std::pair<std::uint64_t, std::uint64_t>, int> edges;
+  const auto key = [&](std::uint32_t i) {
+    return (static_cast<std::uint64_t>(mesh.vertex_row[i]) << 32) |
+           static_cast<std::uint32_t>(mesh.vertex_column[i]);
+  };
+  long long doubled_area = 0;
+  for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const std::uint32_t v[3] = {mesh.indices[t], mesh.indices[t + 1], mesh.indices[t + 2]};
+    const long long ax = mesh.vertex_column[v[0]], az = mesh.vertex_row[v[0]];
+    const long long cross_y = (mesh.vertex_row[v[1]] - az) * (mesh.vertex_column[v[2]] - ax) -
+                              (mesh.vertex_column[v[1]] - ax) * (mesh.vertex_row[v[2]] - az);
+    REQUIRE(cross_y > 0);  // counter-clockwise from above, never degenerate
+    doubled_area += cross_y;
+    for (int e = 0; e < 3; ++e) {
+      std::uint64_t a = key(v[e]), b = key(v[(e + 1) % 3]);
+      if (b < a)
+        std::swap(a, b);
+      ++edges[{a, b}];
+    }
+  }
+  std::uint64_t drawn = 0;
+  for (const int level : selection.level)
+    drawn += level >= 0 ? 1 : 0;
+  const long long T = map.tile_cells;
+  CHECK(doubled_area == static_cast<long long>(drawn) * 2 * T * T);  // covered once, no overlap
+  const auto drawn_tile = [&](long long tx, long long tz) {
+    return tx >= 0 && tz >= 0 && tx < map.tiles_x && tz < map.tiles_z &&
+           selection.level[static_cast<std::size_t>(tz * map.tiles_x + tx)] >= 0;
+  };
+  for (const auto& [edge, count] : edges) {
+    INFO("edge (" << (edge.first & 0xffffffffu) << ", " << (edge.first >> 32) << ") - ("
+                  << (edge.second & 0xffffffffu) << ", " << (edge.second >> 32) << ")");
+    REQUIRE(count <= 2);
+    if (count == 2)
+      continue;
+    // Used once: it must lie on a tile boundary with a drawn tile on one side only.
+    const long long c0 = edge.first & 0xffffffffu, r0 = edge.first >> 32;
+    const long long c1 = edge.second & 0xffffffffu, r1 = edge.second >> 32;
+    if (r0 == r1) {
+      REQUIRE(r0 % T == 0);
+      const long long tx = std::min(c0, c1) / T;
+      REQUIRE(drawn_tile(tx, r0 / T - 1) != drawn_tile(tx, r0 / T));
+    } else {
+      REQUIRE(c0 == c1);
+      REQUIRE(c0 % T == 0);
+      const long long tz = std::min(r0, r1) / T;
+      REQUIRE(drawn_tile(c0 / T - 1, tz) != drawn_tile(c0 / T, tz));
+    }
+  }
+}
+
+TEST_CASE("geomipmapErrorsGrowWithTheLevelAndVanishOnAPlane", "[geomipmap]") {
+  Field rough = make_field(3, 2, 16, 40.0);
+  const GeoMipMap map = build_geomipmap(rough.lattice, 16);
+  REQUIRE(map.levels == 5);
+  REQUIRE(map.quadtree.back().size() == 1);
+  for (const TileBounds& t : map.tiles) {
+    CHECK(t.error[0] == 0.0);
+    for (int l = 1; l < map.levels; ++l)
+      CHECK(t.error[l] >= t.error[l - 1]);
+    CHECK(t.error[1] > 0.0);
+  }
+  // A plane is reproduced exactly by every level's triangles.
+  Field plane = make_field(2, 2, 8, 0.0);
+  const GeoMipMap flat = build_geomipmap(plane.lattice, 8);
+  for (const TileBounds& t : flat.tiles) {
+    for (const double e : t.error)
+      CHECK(e <= 1e-9);
+  }
+  // The quadtree's root holds the whole field's range.
+  const auto [lo, hi] = std::minmax_element(rough.heights.begin(), rough.heights.end());
+  CHECK(map.quadtree.back()[0].low == *lo);
+  CHECK(map.quadtree.back()[0].high == *hi);
+}
+
+TEST_CASE("geomipmapRefusesLatticesThatDoNotFitItsTiles", "[geomipmap]") {
+  Field f = make_field(2, 2, 8, 1.0);
+  CHECK_THROWS_WITH(build_geomipmap(f.lattice, 12), Catch::Contains("a power of two"));
+  CHECK_THROWS_WITH(build_geomipmap(f.lattice, 512), Catch::Contains("[2, 256]"));
+  CHECK_THROWS_WITH(build_geomipmap(f.lattice, 32), Catch::Contains("allowed k 32 + 1"));
+  f.heights[5] = std::nanf("");
+  CHECK_THROWS_WITH(build_geomipmap(f.lattice, 8), Catch::Contains("column 5, row 0"));
+  f.heights[5] = 0;
+  f.lattice.extent = {1, 0, 0, 1};
+  CHECK_THROWS_WITH(build_geomipmap(f.lattice, 8), Catch::Contains("x1 > x0"));
+}
+
+TEST_CASE("stitchedGeomipmapMeshesAreWatertightForAnyLevels", "[geomipmap]") {
+  const Field f = make_field(5, 4, 16, 10.0);
+  const GeoMipMap map = build_geomipmap(f.lattice, 16);
+  // Every assignment of levels (culled tiles included) from a fixed sequence: neighbours from
+  // equal to four levels apart.
+  for (int trial = 0; trial < 60; ++trial) {
+    Selection s;
+    s.level.resize(map.tiles.size());
+    for (std::size_t t = 0; t < s.level.size(); ++t) {
+      const std::uint64_t x = (t + 1) * 2654435761u + static_cast<std::uint64_t>(trial) * 40503u;
+      s.level[t] = static_cast<int>((x >> 7) % 6) - 1;  // -1 (culled) ... 4
+    }
+    if (trial == 0)
+      std::fill(s.level.begin(), s.level.end(), 0);
+    if (trial == 1)
+      std::fill(s.level.begin(), s.level.end(), 4);
+    INFO("trial " << trial);
+    const Mesh mesh = stitched_mesh(map, s);
+    require_watertight(map, s, mesh);
+    // Each lattice point once.
+    std::map<std::pair<int, int>, int> points;
+    for (std::size_t v = 0; v < mesh.vertex_column.size(); ++v) {
+      REQUIRE(++points[{mesh.vertex_column[v], mesh.vertex_row[v]}] == 1);
+    }
+  }
+}
+
+// Whether a world point is inside the camera's view frustum, from the camera's own vectors
+// (core/camera.h), not from the planes the selection used.
+bool in_view(const CameraFrame& cam, glm::dvec3 p) {
+  const glm::dvec3 d = p - cam.position;
+  const double depth = glm::dot(d, cam.forward);
+  if (depth < cam.near || depth > cam.far)
+    return false;
+  return std::abs(glm::dot(d, cam.right)) <= cam.tan_half_fov_x * depth &&
+         std::abs(glm::dot(d, cam.up)) <= cam.tan_half_fov_y * depth;
+}
+
+TEST_CASE("geomipmapCullsOnlyTilesOutsideTheFrustumAndPicksDeBoersLevels", "[geomipmap]") {
+  const Field f = make_field(16, 12, 8, 0.2, 25.0);
+  const GeoMipMap map = build_geomipmap(f.lattice, 8);
+  const double tile_x = 2000.0 / 16, tile_z = 1600.0 / 12;
+  std::uint64_t culled_somewhere = 0;
+  std::uint64_t drawn_at_level[4] = {};
+  for (int view_index = 0; view_index < 24; ++view_index) {
+    CameraSettings settings;
+    settings.position = {-900.0 + 80.0 * view_index, 150.0 + 20.0 * (view_index % 5),
+                         700.0 - 50.0 * view_index};
+    settings.yaw_deg = 15.0 * view_index;
+    settings.pitch_deg = -10.0 - 3.0 * (view_index % 7);
+    settings.far = 900.0 + 100.0 * (view_index % 4);
+    ViewportSettings viewport;
+    viewport.width = 640;
+    viewport.height = 480;
+    const CameraFrame cam = make_camera_frame(settings, viewport);
+    View view;
+    view.camera = cam.position;
+    view.planes = frustum_polytope(cam).planes;
+    view.pixels_per_tangent = viewport.height / (2 * cam.tan_half_fov_y);
+    view.pixel_error = 6.0;
+    const Selection s = select_levels(map, view);
+    INFO("view " << view_index);
+    REQUIRE(s.counts.tiles_drawn + s.counts.tiles_culled == map.tiles.size());
+    culled_somewhere += s.counts.tiles_culled;
+    for (int l = 0; l < 4; ++l)
+      drawn_at_level[l] += s.counts.tiles_per_level[l];
+    for (int tz = 0; tz < map.tiles_z; ++tz) {
+      for (int tx = 0; tx < map.tiles_x; ++tx) {
+        const int level = s.level[static_cast<std::size_t>(tz) * map.tiles_x + tx];
+        const TileBounds& t = map.tiles[static_cast<std::size_t>(tz) * map.tiles_x + tx];
+        const glm::dvec3 low(-1000.0 + tile_x * tx, t.low, -800.0 + tile_z * tz);
+        const glm::dvec3 high(low.x + tile_x, t.high, low.z + tile_z);
+        if (level < 0) {
+          // No point of a culled tile's box is in view (a 9 x 5 x 9 lattice of points).
+          for (int i = 0; i <= 8; ++i) {
+            for (int j = 0; j <= 4; ++j) {
+              for (int k = 0; k <= 8; ++k) {
+                const glm::dvec3 p = low + (high - low) * glm::dvec3(i / 8.0, j / 4.0, k / 8.0);
+                REQUIRE_FALSE(in_view(cam, p));
+              }
+            }
+          }
+          continue;
+        }
+        // de Boer: the coarsest level whose error, seen from the box's nearest point, is at
+        // most tau pixels.
+        const glm::dvec3 nearest = glm::clamp(cam.position, low, high);
+        const double distance = glm::length(nearest - cam.position);
+        const auto fits = [&](int l) {
+          return t.error[l] * view.pixels_per_tangent <= view.pixel_error * distance;
+        };
+        CHECK(fits(level));
+        if (level + 1 < map.levels)
+          CHECK_FALSE(fits(level + 1));
+      }
+    }
+    require_watertight(map, s, stitched_mesh(map, s));
+  }
+  CHECK(culled_somewhere > 0);
+  for (int l = 0; l < 4; ++l)
+    CHECK(drawn_at_level[l] > 0);  // every level chosen somewhere
+}
+
+}  // namespace
+}  // namespace relief::geomipmap
