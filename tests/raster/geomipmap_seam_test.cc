@@ -1,0 +1,166 @@
+// The seam test of GeoMipMapping (core/heightfield/geomipmap.h): over a sweep of cameras, the
+// stitched mesh of the tiles the quadtree keeps, at the levels de Boer's rule picks, drawn by
+// Relief's rasteriser (GL's rules), leaves no pixel uncovered whose ray must meet the terrain.
+//
+// Which pixels must be covered, independently of the mesh: the camera is above the field's
+// highest vertex and over the field, so a ray that reaches the plane of its lowest vertex
+// inside the field's extent crosses the surface on the way (the surface is continuous over the
+// extent and lies between the two planes). The same tiles each stitched alone (no neighbour
+// known: T-junctions wherever levels differ) must leave holes, or the test could not see one.
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "core/camera.h"
+#include "core/frustum_polytope.h"
+#include "core/heightfield/geomipmap.h"
+#include "raster/rasterize.h"
+
+namespace relief::geomipmap {
+namespace {
+
+constexpr int kTiles = 16, kTileCells = 16, kSide = kTiles * kTileCells + 1;
+constexpr double kHalfExtent = 2000.0;
+
+// Ridges at several scales and a little noise: levels differ between neighbours everywhere.
+std::vector<float> seam_field() {
+  std::vector<float> h(static_cast<std::size_t>(kSide) * kSide);
+  for (int r = 0; r < kSide; ++r) {
+    for (int c = 0; c < kSide; ++c) {
+      std::uint64_t x = static_cast<std::uint64_t>(r) * 7919u + static_cast<std::uint64_t>(c);
+      x = (x ^ (x >> 31)) * 0xbf58476d1ce4e5b9ull;
+      x ^= x >> 29;
+      const double noise = static_cast<double>(x % 4096) / 4096.0 - 0.5;
+      h[static_cast<std::size_t>(r) * kSide + c] =
+          static_cast<float>(120.0 * std::sin(0.031 * c) * std::cos(0.027 * r) +
+                             35.0 * std::sin(0.19 * c + 0.11 * r) + 4.0 * noise);
+    }
+  }
+  return h;
+}
+
+struct Frame {
+  std::uint64_t must_cover = 0, holes = 0;
+};
+
+Frame draw(const FieldLattice& lattice, const Mesh& mesh, const CameraFrame& cam, int width,
+           int height, double lowest) {
+  std::vector<float> x(mesh.vertex_column.size()), y(x.size()), z(x.size()), w(x.size());
+  for (std::size_t v = 0; v < x.size(); ++v) {
+    const int c = mesh.vertex_column[v], r = mesh.vertex_row[v];
+    const glm::dvec2 p = lattice.position(c, r);
+    const glm::dvec3 d =
+        glm::dvec3(p.x, lattice.heights[static_cast<std::size_t>(r) * lattice.columns + c], p.y) -
+        cam.position;
+    // Reverse-Z with an infinite far plane: clip (x / tan_x, y / tan_y, near, depth).
+    x[v] = static_cast<float>(glm::dot(d, cam.right) / cam.tan_half_fov_x);
+    y[v] = static_cast<float>(glm::dot(d, cam.up) / cam.tan_half_fov_y);
+    z[v] = static_cast<float>(cam.near);
+    w[v] = static_cast<float>(glm::dot(d, cam.forward));
+  }
+  raster::RasterState state;
+  state.width = width;
+  state.height = height;
+  state.viewport = {0.0, 0.0, double(width), double(height)};
+  raster::VisibilityBuffer visibility;
+  raster::rasterize(state, raster::ClipVertices{x, y, z, w}, raster::IndexedTriangles{mesh.indices},
+                    visibility);
+  Frame frame;
+  for (int py = 0; py < height; ++py) {
+    for (int px = 0; px < width; ++px) {
+      const double ndc_x = (px + 0.5) / width * 2 - 1, ndc_y = (py + 0.5) / height * 2 - 1;
+      const glm::dvec3 ray = cam.forward + ndc_x * cam.tan_half_fov_x * cam.right +
+                             ndc_y * cam.tan_half_fov_y * cam.up;
+      if (!(ray.y < 0))
+        continue;
+      const double t = (lowest - cam.position.y) / ray.y;  // ray.y < 0: the plane below
+      const glm::dvec3 hit = cam.position + t * ray;
+      const double margin = 1e-6 * kHalfExtent;
+      if (std::abs(hit.x) >= kHalfExtent - margin || std::abs(hit.z) >= kHalfExtent - margin) {
+        continue;
+      }
+      ++frame.must_cover;
+      if (visibility.primitive[visibility.index(px, py)] == raster::kNoPrimitive)
+        ++frame.holes;
+    }
+  }
+  return frame;
+}
+
+// Each drawn tile stitched alone, its lattice points merged: T-junctions where levels differ.
+Mesh unstitched_mesh(const GeoMipMap& map, const Selection& selection) {
+  Mesh all;
+  std::unordered_map<std::uint64_t, std::uint32_t> ids;
+  for (std::size_t t = 0; t < selection.level.size(); ++t) {
+    if (selection.level[t] < 0)
+      continue;
+    Selection alone;
+    alone.level.assign(selection.level.size(), -1);
+    alone.level[t] = selection.level[t];
+    const Mesh tile = stitched_mesh(map, alone);
+    for (const std::uint32_t i : tile.indices) {
+      const std::uint64_t key = (static_cast<std::uint64_t>(tile.vertex_row[i]) << 32) |
+                                static_cast<std::uint32_t>(tile.vertex_column[i]);
+      const auto [it, inserted] = ids.try_emplace(key, static_cast<std::uint32_t>(ids.size()));
+      if (inserted) {
+        all.vertex_column.push_back(tile.vertex_column[i]);
+        all.vertex_row.push_back(tile.vertex_row[i]);
+      }
+      all.indices.push_back(it->second);
+    }
+  }
+  return all;
+}
+
+TEST_CASE("geomipmapSeamsShowNoBackgroundOverACameraSweep", "[geomipmap][raster]") {
+  const std::vector<float> heights = seam_field();
+  FieldLattice lattice;
+  lattice.columns = lattice.rows = kSide;
+  lattice.extent = {-kHalfExtent, -kHalfExtent, kHalfExtent, kHalfExtent};
+  lattice.heights = heights;
+  const GeoMipMap map = build_geomipmap(lattice, kTileCells);
+  const double lowest = map.quadtree.back()[0].low, highest = map.quadtree.back()[0].high;
+  ViewportSettings viewport;
+  viewport.width = 320;
+  viewport.height = 240;
+  std::uint64_t checked = 0, unstitched_holes = 0, coarse_tiles = 0, culled = 0;
+  for (int view_index = 0; view_index < 32; ++view_index) {
+    CameraSettings settings;
+    const double a = 0.7 * view_index;
+    settings.position = {1500.0 * std::sin(a), highest + 20.0 + 37.0 * (view_index % 9),
+                         1500.0 * std::cos(1.3 * a)};
+    settings.yaw_deg = 23.0 * view_index;
+    settings.pitch_deg = -25.0 - 2.0 * (view_index % 30);
+    settings.near = 0.5;
+    settings.far = 60000.0;
+    const CameraFrame cam = make_camera_frame(settings, viewport);
+    View view;
+    view.camera = cam.position;
+    view.planes = frustum_polytope(cam).planes;
+    view.pixels_per_tangent = viewport.height / (2 * cam.tan_half_fov_y);
+    view.pixel_error = 0.5 + (view_index % 4) * 1.5;
+    const Selection selection = select_levels(map, view);
+    for (int l = 1; l < map.levels; ++l)
+      coarse_tiles += selection.counts.tiles_per_level[l];
+    culled += selection.counts.tiles_culled;
+    const Frame frame =
+        draw(lattice, stitched_mesh(map, selection), cam, viewport.width, viewport.height, lowest);
+    INFO("view " << view_index << ": " << frame.holes << " of " << frame.must_cover
+                 << " pixels that must show the terrain show the background");
+    CHECK(frame.holes == 0);
+    checked += frame.must_cover;
+    unstitched_holes +=
+        draw(lattice, unstitched_mesh(map, selection), cam, viewport.width, viewport.height, lowest)
+            .holes;
+  }
+  CHECK(checked > 32u * 320u * 240u / 2);  // most pixels are checked
+  CHECK(coarse_tiles > 0);                 // levels differ, so seams exist
+  CHECK(culled > 0);                       // and the quadtree culls
+  CHECK(unstitched_holes > 0);             // without stitching the test sees cracks
+}
+
+}  // namespace
+}  // namespace relief::geomipmap
