@@ -21,6 +21,8 @@
 
 #include <glm/glm.hpp>
 
+#include "core/camera.h"
+
 namespace relief::geomipmap {
 
 // The field's vertices: columns x rows heights, row-major, row 0 at z0; the world rectangle
@@ -61,40 +63,49 @@ bool valid_tile_cells(int tile_cells);
 // Throws std::invalid_argument naming the size that does not fit.
 GeoMipMap build_geomipmap(const FieldLattice& lattice, int tile_cells);
 
-// The frame's view: the camera (world, double), the view frustum's planes relative to it
-// (core/frustum_polytope.h: inside where dot(n, p) <= d), and the pixels per unit of
-// tangent (viewport height / (2 tan(fov_y / 2))).
+// The frame's view: the camera (core/camera.h: world position in double, its axes and field
+// of view, near and far), the viewport in pixels, tau, and whether to cull by occlusion.
 struct View {
-  glm::dvec3 camera;
-  std::vector<glm::dvec4> planes;
-  double pixels_per_tangent = 0;
+  CameraFrame camera;
+  int width = 0, height = 0;
   double pixel_error = 1;  // tau: the largest screen-space error a level may make, pixels
+  bool occlusion = true;
+  int occlusion_cell = 8;  // pixels a side of the occlusion buffer's cells
 };
 
 struct SelectionCounts {
-  std::uint64_t nodes_visited = 0;  // quadtree nodes tested against the frustum
-  std::uint64_t nodes_culled = 0;   // of them, outside it (with every tile below)
-  std::uint64_t tiles_culled = 0;   // tiles outside the frustum
+  std::uint64_t nodes_visited = 0;   // quadtree nodes tested against the frustum
+  std::uint64_t nodes_culled = 0;    // of them, outside it (with every tile below)
+  std::uint64_t tiles_culled = 0;    // tiles outside the frustum
+  std::uint64_t tiles_occluded = 0;  // tiles in it, hidden behind nearer ground
   std::uint64_t tiles_drawn = 0;
   std::uint64_t tiles_per_level[9] = {};  // drawn tiles by level (T <= 256: 9 levels)
+  std::uint64_t occlusion_cells = 0;      // occlusion buffer cells an occluder covered
 };
 
 struct Selection {
-  std::vector<int> level;  // per tile; -1: culled
+  std::vector<int> level;           // per tile, every tile (a culled one's too: its
+                                    // neighbours stitch to it, so culling removes
+                                    // triangles and changes none)
+  std::vector<std::uint8_t> drawn;  // per tile: 1 drawn, 0 culled or occluded
   SelectionCounts counts;
 };
 
-// Quadtree frustum culling, then each drawn tile's level: the coarsest L whose error, seen
-// from the nearest point of the tile's AABB, is at most tau pixels: error[L] ppt / distance
-// <= tau (level 0 where the camera is inside the box).
+// Quadtree frustum culling, each tile's level (the coarsest L whose error, seen from the
+// nearest point of the tile's AABB, is at most tau pixels: error[L] ppt / distance <= tau, ppt
+// = height / (2 tan(fov_y / 2)); level 0 where the camera is inside the box), then occlusion
+// culling (core/heightfield/geomipmap_select.cc says when it is sound and why).
 Selection select_levels(const GeoMipMap& map, const View& view);
 
-// The stitched triangle list of the drawn tiles: vertex i is the lattice point
+// The stitched triangle list of the drawn tiles (each side at the coarser spacing of its two
+// tiles' levels, whether the neighbour is drawn or not): vertex i is the lattice point
 // (vertex_column[i], vertex_row[i]), each point once; indices 3 per triangle, counter-clockwise
 // seen from above (+y). Tiles in row-major order, each tile's triangles in a fixed order.
 struct Mesh {
   std::vector<std::int32_t> vertex_column, vertex_row;
   std::vector<std::uint32_t> indices;
+  // The drawn tiles in order, and where each one's triangles begin (one more entry: the end).
+  std::vector<std::uint32_t> tiles, tile_first_triangle;
 };
 Mesh stitched_mesh(const GeoMipMap& map, const Selection& selection);
 

@@ -1,5 +1,4 @@
-// GeoMipMapping per frame (core/geomipmap.h): the quadtree's frustum culling, each tile's level
-// by screen-space error, and the stitched triangle list.
+// GeoMipMapping's stitched triangle list (core/heightfield/geomipmap.h).
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
@@ -8,95 +7,6 @@
 
 namespace relief::geomipmap {
 namespace {
-
-struct Box {
-  glm::dvec3 low, high;  // camera-relative
-};
-
-// The tiles [tx0, tx1) x [tz0, tz1) as a box relative to the camera.
-Box tile_box(const GeoMipMap& map, const View& view, int tx0, int tz0, int tx1, int tz1, float low,
-             float high) {
-  const double cells_x = static_cast<double>(map.tiles_x) * map.tile_cells;
-  const double cells_z = static_cast<double>(map.tiles_z) * map.tile_cells;
-  const auto x_at = [&](int tile) {
-    return map.extent[0] +
-           (map.extent[2] - map.extent[0]) * (static_cast<double>(tile) * map.tile_cells / cells_x);
-  };
-  const auto z_at = [&](int tile) {
-    return map.extent[1] +
-           (map.extent[3] - map.extent[1]) * (static_cast<double>(tile) * map.tile_cells / cells_z);
-  };
-  return {glm::dvec3(x_at(tx0), low, z_at(tz0)) - view.camera,
-          glm::dvec3(x_at(tx1), high, z_at(tz1)) - view.camera};
-}
-
-// Outside one plane with every corner: the corner nearest the inside (smallest dot(n, p)) is
-// beyond d by more than a relative 1e-9, so rounding never culls a box that touches the
-// frustum.
-bool outside(const Box& box, const std::vector<glm::dvec4>& planes) {
-  for (const glm::dvec4& p : planes) {
-    const glm::dvec3 nearest(p.x >= 0 ? box.low.x : box.high.x, p.y >= 0 ? box.low.y : box.high.y,
-                             p.z >= 0 ? box.low.z : box.high.z);
-    const double reach = std::abs(p.x * nearest.x) + std::abs(p.y * nearest.y) +
-                         std::abs(p.z * nearest.z) + std::abs(p.w);
-    if (glm::dot(glm::dvec3(p), nearest) - p.w > 1e-9 * reach)
-      return true;
-  }
-  return false;
-}
-
-double distance_to(const Box& box) {  // from the camera, at the origin
-  const glm::dvec3 nearest = glm::clamp(glm::dvec3(0.0), box.low, box.high);
-  return glm::length(nearest);
-}
-
-struct Culler {
-  const GeoMipMap& map;
-  const View& view;
-  Selection& out;
-
-  void visit(int depth, int x, int z) {
-    const auto [w, h] = map.quadtree_size[static_cast<std::size_t>(depth)];
-    if (x >= w || z >= h)
-      return;
-    const GeoMipMap::Node& node =
-        map.quadtree[static_cast<std::size_t>(depth)][static_cast<std::size_t>(z) * w + x];
-    const int span = 1 << depth;
-    const int tx0 = x * span, tz0 = z * span;
-    const int tx1 = std::min(tx0 + span, map.tiles_x), tz1 = std::min(tz0 + span, map.tiles_z);
-    ++out.counts.nodes_visited;
-    const Box box = tile_box(map, view, tx0, tz0, tx1, tz1, node.low, node.high);
-    if (outside(box, view.planes)) {
-      ++out.counts.nodes_culled;
-      out.counts.tiles_culled += static_cast<std::uint64_t>(tx1 - tx0) * (tz1 - tz0);
-      return;
-    }
-    if (depth > 0) {
-      for (int dz = 0; dz < 2; ++dz) {
-        for (int dx = 0; dx < 2; ++dx)
-          visit(depth - 1, 2 * x + dx, 2 * z + dz);
-      }
-      return;
-    }
-    const TileBounds& tile = map.tiles[static_cast<std::size_t>(z) * map.tiles_x + x];
-    const double distance = distance_to(box);
-    int level = 0;
-    if (distance > 0) {
-      // error[L] pixels_per_tangent / distance <= tau, as error[L] ppt <= tau distance (no
-      // division); error is non-decreasing, so the first level that fails ends the search.
-      for (int l = 1; l < map.levels; ++l) {
-        if (tile.error[static_cast<std::size_t>(l)] * view.pixels_per_tangent >
-            view.pixel_error * distance) {
-          break;
-        }
-        level = l;
-      }
-    }
-    out.level[static_cast<std::size_t>(z) * map.tiles_x + x] = level;
-    ++out.counts.tiles_drawn;
-    ++out.counts.tiles_per_level[level];
-  }
-};
 
 struct MeshBuilder {
   const GeoMipMap& map;
@@ -178,14 +88,6 @@ struct MeshBuilder {
 
 }  // namespace
 
-Selection select_levels(const GeoMipMap& map, const View& view) {
-  Selection out;
-  out.level.assign(map.tiles.size(), -1);
-  Culler culler{map, view, out};
-  culler.visit(static_cast<int>(map.quadtree.size()) - 1, 0, 0);
-  return out;
-}
-
 Mesh stitched_mesh(const GeoMipMap& map, const Selection& selection) {
   Mesh mesh;
   MeshBuilder builder{map, mesh, {}};
@@ -196,16 +98,19 @@ Mesh stitched_mesh(const GeoMipMap& map, const Selection& selection) {
   };
   for (int tz = 0; tz < map.tiles_z; ++tz) {
     for (int tx = 0; tx < map.tiles_x; ++tx) {
-      const int level = level_at(tx, tz);
-      if (level < 0)
+      if (!selection.drawn[static_cast<std::size_t>(tz) * map.tiles_x + tx])
         continue;
-      // Each side at the coarser spacing of the two tiles that share it (a culled neighbour or
-      // the field's edge: this tile's own).
+      const int level = level_at(tx, tz);
+      // Each side at the coarser spacing of the two tiles that share it, drawn or not (the
+      // field's edge: this tile's own).
       const auto side = [&](int nx, int nz) { return 1 << std::max(level, level_at(nx, nz)); };
+      mesh.tiles.push_back(static_cast<std::uint32_t>(tz * map.tiles_x + tx));
+      mesh.tile_first_triangle.push_back(static_cast<std::uint32_t>(mesh.indices.size() / 3));
       builder.tile(tx, tz, level,
                    {side(tx, tz - 1), side(tx + 1, tz), side(tx, tz + 1), side(tx - 1, tz)});
     }
   }
+  mesh.tile_first_triangle.push_back(static_cast<std::uint32_t>(mesh.indices.size() / 3));
   return mesh;
 }
 

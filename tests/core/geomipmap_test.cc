@@ -11,7 +11,6 @@
 #include <catch2/catch.hpp>
 
 #include "core/camera.h"
-#include "core/frustum_polytope.h"
 #include "core/heightfield/geomipmap.h"
 
 namespace relief::geomipmap {
@@ -75,13 +74,13 @@ void require_watertight(const GeoMipMap& map, const Selection& selection, const 
     }
   }
   std::uint64_t drawn = 0;
-  for (const int level : selection.level)
-    drawn += level >= 0 ? 1 : 0;
+  for (const std::uint8_t d : selection.drawn)
+    drawn += d;
   const long long T = map.tile_cells;
   CHECK(doubled_area == static_cast<long long>(drawn) * 2 * T * T);  // covered once, no overlap
   const auto drawn_tile = [&](long long tx, long long tz) {
     return tx >= 0 && tz >= 0 && tx < map.tiles_x && tz < map.tiles_z &&
-           selection.level[static_cast<std::size_t>(tz * map.tiles_x + tx)] >= 0;
+           selection.drawn[static_cast<std::size_t>(tz * map.tiles_x + tx)] != 0;
   };
   for (const auto& [edge, count] : edges) {
     INFO("edge (" << (edge.first & 0xffffffffu) << ", " << (edge.first >> 32) << ") - ("
@@ -149,10 +148,14 @@ TEST_CASE("stitchedGeomipmapMeshesAreWatertightForAnyLevels", "[geomipmap]") {
   for (int trial = 0; trial < 60; ++trial) {
     Selection s;
     s.level.resize(map.tiles.size());
+    s.drawn.resize(map.tiles.size());
     for (std::size_t t = 0; t < s.level.size(); ++t) {
       const std::uint64_t x = (t + 1) * 2654435761u + static_cast<std::uint64_t>(trial) * 40503u;
-      s.level[t] = static_cast<int>((x >> 7) % 6) - 1;  // -1 (culled) ... 4
+      s.level[t] = static_cast<int>((x >> 7) % 5);  // 0 ... 4
+      s.drawn[t] = (x >> 13) % 6 != 0 ? 1 : 0;      // a sixth culled
     }
+    if (trial < 2)
+      std::fill(s.drawn.begin(), s.drawn.end(), std::uint8_t{1});
     if (trial == 0)
       std::fill(s.level.begin(), s.level.end(), 0);
     if (trial == 1)
@@ -197,10 +200,12 @@ TEST_CASE("geomipmapCullsOnlyTilesOutsideTheFrustumAndPicksDeBoersLevels", "[geo
     viewport.height = 480;
     const CameraFrame cam = make_camera_frame(settings, viewport);
     View view;
-    view.camera = cam.position;
-    view.planes = frustum_polytope(cam).planes;
-    view.pixels_per_tangent = viewport.height / (2 * cam.tan_half_fov_y);
+    view.camera = cam;
+    view.width = viewport.width;
+    view.height = viewport.height;
     view.pixel_error = 6.0;
+    view.occlusion = false;  // the frustum alone here; occlusion: geomipmap_seam_test.cc
+    const double ppt = viewport.height / (2 * cam.tan_half_fov_y);
     const Selection s = select_levels(map, view);
     INFO("view " << view_index);
     REQUIRE(s.counts.tiles_drawn + s.counts.tiles_culled == map.tiles.size());
@@ -210,10 +215,11 @@ TEST_CASE("geomipmapCullsOnlyTilesOutsideTheFrustumAndPicksDeBoersLevels", "[geo
     for (int tz = 0; tz < map.tiles_z; ++tz) {
       for (int tx = 0; tx < map.tiles_x; ++tx) {
         const int level = s.level[static_cast<std::size_t>(tz) * map.tiles_x + tx];
+        const bool drawn = s.drawn[static_cast<std::size_t>(tz) * map.tiles_x + tx] != 0;
         const TileBounds& t = map.tiles[static_cast<std::size_t>(tz) * map.tiles_x + tx];
         const glm::dvec3 low(-1000.0 + tile_x * tx, t.low, -800.0 + tile_z * tz);
         const glm::dvec3 high(low.x + tile_x, t.high, low.z + tile_z);
-        if (level < 0) {
+        if (!drawn) {
           // No point of a culled tile's box is in view (a 9 x 5 x 9 lattice of points).
           for (int i = 0; i <= 8; ++i) {
             for (int j = 0; j <= 4; ++j) {
@@ -223,15 +229,12 @@ TEST_CASE("geomipmapCullsOnlyTilesOutsideTheFrustumAndPicksDeBoersLevels", "[geo
               }
             }
           }
-          continue;
         }
-        // de Boer: the coarsest level whose error, seen from the box's nearest point, is at
-        // most tau pixels.
+        // de Boer, for every tile (culled ones too: their neighbours stitch to their level): the
+        // coarsest level whose error, seen from the box's nearest point, is at most tau pixels.
         const glm::dvec3 nearest = glm::clamp(cam.position, low, high);
         const double distance = glm::length(nearest - cam.position);
-        const auto fits = [&](int l) {
-          return t.error[l] * view.pixels_per_tangent <= view.pixel_error * distance;
-        };
+        const auto fits = [&](int l) { return t.error[l] * ppt <= view.pixel_error * distance; };
         CHECK(fits(level));
         if (level + 1 < map.levels)
           CHECK_FALSE(fits(level + 1));

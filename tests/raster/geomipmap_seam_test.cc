@@ -7,6 +7,7 @@
 // inside the field's extent crosses the surface on the way (the surface is continuous over the
 // extent and lies between the two planes). The same tiles each stitched alone (no neighbour
 // known: T-junctions wherever levels differ) must leave holes, or the test could not see one.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
@@ -15,7 +16,6 @@
 #include <catch2/catch.hpp>
 
 #include "core/camera.h"
-#include "core/frustum_polytope.h"
 #include "core/heightfield/geomipmap.h"
 #include "raster/rasterize.h"
 
@@ -44,6 +44,7 @@ std::vector<float> seam_field() {
 
 struct Frame {
   std::uint64_t must_cover = 0, holes = 0;
+  raster::VisibilityBuffer visibility;
 };
 
 Frame draw(const FieldLattice& lattice, const Mesh& mesh, const CameraFrame& cam, int width,
@@ -65,10 +66,10 @@ Frame draw(const FieldLattice& lattice, const Mesh& mesh, const CameraFrame& cam
   state.width = width;
   state.height = height;
   state.viewport = {0.0, 0.0, double(width), double(height)};
-  raster::VisibilityBuffer visibility;
+  Frame frame;
+  raster::VisibilityBuffer& visibility = frame.visibility;
   raster::rasterize(state, raster::ClipVertices{x, y, z, w}, raster::IndexedTriangles{mesh.indices},
                     visibility);
-  Frame frame;
   for (int py = 0; py < height; ++py) {
     for (int px = 0; px < width; ++px) {
       const double ndc_x = (px + 0.5) / width * 2 - 1, ndc_y = (py + 0.5) / height * 2 - 1;
@@ -98,8 +99,10 @@ Mesh unstitched_mesh(const GeoMipMap& map, const Selection& selection) {
     if (selection.level[t] < 0)
       continue;
     Selection alone;
-    alone.level.assign(selection.level.size(), -1);
+    alone.level.assign(selection.level.size(), 0);  // neighbours finest: its own spacing
+    alone.drawn.assign(selection.level.size(), 0);
     alone.level[t] = selection.level[t];
+    alone.drawn[t] = 1;
     const Mesh tile = stitched_mesh(map, alone);
     for (const std::uint32_t i : tile.indices) {
       const std::uint64_t key = (static_cast<std::uint64_t>(tile.vertex_row[i]) << 32) |
@@ -115,6 +118,22 @@ Mesh unstitched_mesh(const GeoMipMap& map, const Selection& selection) {
   return all;
 }
 
+// Which tile and which of its triangles drew each pixel (-1: none).
+std::vector<std::int64_t> tile_triangles(const Mesh& mesh, const raster::VisibilityBuffer& v) {
+  std::vector<std::int64_t> out(v.primitive.size(), -1);
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    const std::uint32_t id = v.primitive[k];
+    if (id == raster::kNoPrimitive)
+      continue;
+    const auto next =
+        std::upper_bound(mesh.tile_first_triangle.begin(), mesh.tile_first_triangle.end(), id);
+    const auto slot = static_cast<std::size_t>(next - mesh.tile_first_triangle.begin()) - 1;
+    out[k] =
+        (static_cast<std::int64_t>(mesh.tiles[slot]) << 32) | (id - mesh.tile_first_triangle[slot]);
+  }
+  return out;
+}
+
 TEST_CASE("geomipmapSeamsShowNoBackgroundOverACameraSweep", "[geomipmap][raster]") {
   const std::vector<float> heights = seam_field();
   FieldLattice lattice;
@@ -126,40 +145,103 @@ TEST_CASE("geomipmapSeamsShowNoBackgroundOverACameraSweep", "[geomipmap][raster]
   ViewportSettings viewport;
   viewport.width = 320;
   viewport.height = 240;
-  std::uint64_t checked = 0, unstitched_holes = 0, coarse_tiles = 0, culled = 0;
-  for (int view_index = 0; view_index < 32; ++view_index) {
+  std::uint64_t checked = 0, unstitched_holes = 0, coarse_tiles = 0, culled = 0, occluded = 0;
+  for (int view_index = 0; view_index < 40; ++view_index) {
     CameraSettings settings;
     const double a = 0.7 * view_index;
     settings.position = {1500.0 * std::sin(a), highest + 20.0 + 37.0 * (view_index % 9),
                          1500.0 * std::cos(1.3 * a)};
     settings.yaw_deg = 23.0 * view_index;
     settings.pitch_deg = -25.0 - 2.0 * (view_index % 30);
+    if (view_index >= 32) {  // low, grazing views: the ground hides ground
+      settings.position[1] = highest + 5.0 + 10.0 * (view_index - 32);
+      settings.pitch_deg = -4.0 - (view_index - 32);
+    }
     settings.near = 0.5;
     settings.far = 60000.0;
-    const CameraFrame cam = make_camera_frame(settings, viewport);
     View view;
-    view.camera = cam.position;
-    view.planes = frustum_polytope(cam).planes;
-    view.pixels_per_tangent = viewport.height / (2 * cam.tan_half_fov_y);
+    view.camera = make_camera_frame(settings, viewport);
+    view.width = viewport.width;
+    view.height = viewport.height;
     view.pixel_error = 0.5 + (view_index % 4) * 1.5;
+    const CameraFrame& cam = view.camera;
     const Selection selection = select_levels(map, view);
+    view.occlusion = false;
+    const Selection frustum_only = select_levels(map, view);
     for (int l = 1; l < map.levels; ++l)
       coarse_tiles += selection.counts.tiles_per_level[l];
     culled += selection.counts.tiles_culled;
-    const Frame frame =
-        draw(lattice, stitched_mesh(map, selection), cam, viewport.width, viewport.height, lowest);
+    occluded += selection.counts.tiles_occluded;
+    REQUIRE(selection.level == frustum_only.level);
+    const Mesh mesh = stitched_mesh(map, selection);
+    const Frame frame = draw(lattice, mesh, cam, viewport.width, viewport.height, lowest);
     INFO("view " << view_index << ": " << frame.holes << " of " << frame.must_cover
                  << " pixels that must show the terrain show the background");
     CHECK(frame.holes == 0);
     checked += frame.must_cover;
+    // Occlusion culling changes no pixel: the same depths, the same tile's same triangle.
+    const Mesh all = stitched_mesh(map, frustum_only);
+    const Frame reference = draw(lattice, all, cam, viewport.width, viewport.height, lowest);
+    CHECK(frame.visibility.depth == reference.visibility.depth);
+    CHECK(tile_triangles(mesh, frame.visibility) == tile_triangles(all, reference.visibility));
     unstitched_holes +=
         draw(lattice, unstitched_mesh(map, selection), cam, viewport.width, viewport.height, lowest)
             .holes;
   }
-  CHECK(checked > 32u * 320u * 240u / 2);  // most pixels are checked
+  CHECK(checked > 40u * 320u * 240u / 3);  // most pixels are checked
   CHECK(coarse_tiles > 0);                 // levels differ, so seams exist
-  CHECK(culled > 0);                       // and the quadtree culls
+  CHECK(culled > 0);                       // the quadtree culls
+  CHECK(occluded > 0);                     // and so does occlusion
   CHECK(unstitched_holes > 0);             // without stitching the test sees cracks
+}
+
+// A plateau 200 m high across the middle of the field, lowland before and behind it: from just
+// above the plateau, looking across it, the lowland behind is hidden, and occlusion culling
+// must remove those tiles without changing a pixel.
+TEST_CASE("occlusionCullingHidesTheLowlandBehindAPlateauAndChangesNoPixel", "[geomipmap][raster]") {
+  std::vector<float> heights(static_cast<std::size_t>(kSide) * kSide);
+  for (int r = 0; r < kSide; ++r) {
+    for (int c = 0; c < kSide; ++c) {
+      const bool plateau = r >= 64 && r <= 192;
+      heights[static_cast<std::size_t>(r) * kSide + c] =
+          static_cast<float>((plateau ? 200.0 : 0.0) + 3.0 * std::sin(0.21 * c + 0.17 * r));
+    }
+  }
+  FieldLattice lattice;
+  lattice.columns = lattice.rows = kSide;
+  lattice.extent = {-kHalfExtent, -kHalfExtent, kHalfExtent, kHalfExtent};
+  lattice.heights = heights;
+  const GeoMipMap map = build_geomipmap(lattice, kTileCells);
+  ViewportSettings viewport;
+  viewport.width = 320;
+  viewport.height = 240;
+  std::uint64_t occluded = 0;
+  for (int view_index = 0; view_index < 4; ++view_index) {
+    CameraSettings settings;
+    settings.position = {-600.0 + 240.0 * view_index, 215.0 + 5.0 * view_index, 900.0};
+    settings.yaw_deg = -20.0 + 8.0 * view_index;  // across the plateau, towards -z
+    settings.pitch_deg = -1.0 - 0.5 * view_index;
+    settings.near = 0.5;
+    settings.far = 60000.0;
+    View view;
+    view.camera = make_camera_frame(settings, viewport);
+    view.width = viewport.width;
+    view.height = viewport.height;
+    const Selection selection = select_levels(map, view);
+    view.occlusion = false;
+    const Selection frustum_only = select_levels(map, view);
+    occluded += selection.counts.tiles_occluded;
+    INFO("view " << view_index << ": " << selection.counts.tiles_occluded << " tiles occluded");
+    const Mesh mesh = stitched_mesh(map, selection), all = stitched_mesh(map, frustum_only);
+    const Frame frame = draw(lattice, mesh, view.camera, viewport.width, viewport.height,
+                             map.quadtree.back()[0].low);
+    const Frame reference = draw(lattice, all, view.camera, viewport.width, viewport.height,
+                                 map.quadtree.back()[0].low);
+    CHECK(selection.counts.tiles_occluded > 0);  // every view hides some lowland
+    CHECK(frame.visibility.depth == reference.visibility.depth);
+    CHECK(tile_triangles(mesh, frame.visibility) == tile_triangles(all, reference.visibility));
+  }
+  CHECK(occluded > 0);
 }
 
 }  // namespace
