@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/heightfield/geomipmap_triangles.h"
+
 namespace relief::geomipmap {
 namespace {
 
@@ -18,24 +20,59 @@ int log2_exact(int n) {
   return k;
 }
 
-// The regular level-L triangulation of a tile (cells of s = 2^L lattice steps, each split by
-// the diagonal from its (0, 0) to its (s, s) corner) at the lattice point (u, v) of the tile,
-// tile-local steps in [0, T]: de Boer's estimate of the level's surface.
-double level_surface(const FieldLattice& f, int c0, int r0, int s, int tile_cells, int u, int v) {
-  // The cell holding (u, v): a point on the tile's far edge belongs to the last cell (values
-  // on a cell's edge are the same from either side: linear along it).
-  const int ua = std::min(u / s, tile_cells / s - 1) * s;
-  const int vb = std::min(v / s, tile_cells / s - 1) * s;
-  const auto h = [&](int du, int dv) {
+// (b - a) x (p - a) in (u, v), its y as for emit_counter_clockwise: positive when p is to the
+// left of a -> b seen from +y.
+long long orient(LatticeStep a, LatticeStep b, LatticeStep p) {
+  return static_cast<long long>(b[1] - a[1]) * (p[0] - a[0]) -
+         static_cast<long long>(b[0] - a[0]) * (p[1] - a[1]);
+}
+
+// The largest |height - the triangle's plane| over the lattice points in the triangle (a, b,
+// c), counter-clockwise, of the tile whose first lattice point is (c0, r0).
+double triangle_error(const FieldLattice& f, int c0, int r0, LatticeStep a, LatticeStep b,
+                      LatticeStep c) {
+  const auto h = [&](LatticeStep p) {
     return static_cast<double>(
-        f.heights[static_cast<std::size_t>(r0 + dv) * f.columns + (c0 + du)]);
+        f.heights[static_cast<std::size_t>(r0 + p[1]) * f.columns + (c0 + p[0])]);
   };
-  const double fu = static_cast<double>(u - ua) / s;  // s >= 2: in [0, 1]
-  const double fv = static_cast<double>(v - vb) / s;
-  const double h00 = h(ua, vb), h10 = h(ua + s, vb);
-  const double h01 = h(ua, vb + s), h11 = h(ua + s, vb + s);
-  return fu >= fv ? h00 + fu * (h10 - h00) + fv * (h11 - h10)
-                  : h00 + fv * (h01 - h00) + fu * (h11 - h01);
+  const long long area = orient(a, b, c);  // > 0: the generator emits no degenerate triangle
+  const double ha = h(a), hb = h(b), hc = h(c);
+  double worst = 0;
+  for (int v = std::min({a[1], b[1], c[1]}); v <= std::max({a[1], b[1], c[1]}); ++v) {
+    for (int u = std::min({a[0], b[0], c[0]}); u <= std::max({a[0], b[0], c[0]}); ++u) {
+      const LatticeStep p{u, v};
+      const long long wa = orient(b, c, p), wb = orient(c, a, p), wc = orient(a, b, p);
+      if (wa < 0 || wb < 0 || wc < 0)
+        continue;
+      const double plane = (static_cast<double>(wa) * ha + static_cast<double>(wb) * hb +
+                            static_cast<double>(wc) * hc) /
+                           static_cast<double>(area);
+      worst = std::max(worst, std::abs(h(p) - plane));
+    }
+  }
+  return worst;
+}
+
+// The level's error: over every triangle the tile can draw at spacing s, its interior and each
+// side's trapezoid at the spacings a neighbour can give it: s, or 2s from a neighbour one level
+// coarser (select_levels keeps neighbours within one level, as GeoMipMapping implementations
+// commonly do; at every spacing up to T the border's worst case made every level's error that
+// of the coarsest, and level 0 was chosen everywhere).
+double level_error(const FieldLattice& f, int c0, int r0, int tile_cells, int s) {
+  double worst = 0;
+  const auto measure = [&](LatticeStep a, LatticeStep b, LatticeStep c) {
+    worst = std::max(worst, triangle_error(f, c0, r0, a, b, c));
+  };
+  if (s == tile_cells) {
+    tile_triangles(tile_cells, s, {s, s, s, s}, measure);
+    return worst;
+  }
+  interior_triangles(tile_cells, s, measure);
+  for (int side = 0; side < 4; ++side) {
+    for (int edge = s; edge <= std::min(2 * s, tile_cells); edge *= 2)
+      side_triangles(tile_cells, s, side, edge, measure);
+  }
+  return worst;
 }
 
 }  // namespace
@@ -56,11 +93,12 @@ GeoMipMap build_geomipmap(const FieldLattice& f, int tile_cells) {
     throw std::invalid_argument("tile cells = " + std::to_string(tile_cells) +
                                 "; allowed a power of two in [2, 256]");
   }
-  if (f.columns < 2 || f.rows < 2 || (f.columns - 1) % tile_cells != 0 ||
-      (f.rows - 1) % tile_cells != 0) {
-    throw std::invalid_argument("lattice " + std::to_string(f.columns) + " x " +
-                                std::to_string(f.rows) + "; allowed k " +
-                                std::to_string(tile_cells) + " + 1 vertices a side, k >= 1");
+  if (f.columns < 2 || f.rows < 2 || f.columns > kMaxLatticeSide || f.rows > kMaxLatticeSide ||
+      (f.columns - 1) % tile_cells != 0 || (f.rows - 1) % tile_cells != 0) {
+    throw std::invalid_argument(
+        "lattice " + std::to_string(f.columns) + " x " + std::to_string(f.rows) + "; allowed k " +
+        std::to_string(tile_cells) + " + 1 vertices a side, k >= 1, at most " +
+        std::to_string(kMaxLatticeSide));
   }
   if (f.heights.size() != static_cast<std::size_t>(f.columns) * f.rows) {
     throw std::invalid_argument("lattice heights: " + std::to_string(f.heights.size()) +
@@ -71,8 +109,10 @@ GeoMipMap build_geomipmap(const FieldLattice& f, int tile_cells) {
     if (!std::isfinite(e))
       throw std::invalid_argument("lattice extent: not finite");
   }
-  if (!(f.extent[2] > f.extent[0] && f.extent[3] > f.extent[1])) {
-    throw std::invalid_argument("lattice extent: x1 > x0 and z1 > z0 required");
+  // The spans too: an extent from -1.5e308 to 1.5e308 has finite ends and no finite width.
+  if (!(f.extent[2] > f.extent[0] && f.extent[3] > f.extent[1] &&
+        std::isfinite(f.extent[2] - f.extent[0]) && std::isfinite(f.extent[3] - f.extent[1]))) {
+    throw std::invalid_argument("lattice extent: x1 > x0 and z1 > z0, finite spans, required");
   }
   GeoMipMap map;
   map.tile_cells = tile_cells;
@@ -99,19 +139,14 @@ GeoMipMap build_geomipmap(const FieldLattice& f, int tile_cells) {
       }
       t.low = low;
       t.high = high;
+      // Level 0 keeps every vertex, but a coarser neighbour still widens its border's steps.
       t.error.assign(static_cast<std::size_t>(map.levels), 0.0);
+      t.error[0] = level_error(f, c0, r0, tile_cells, 1);
       for (int level = 1; level < map.levels; ++level) {
-        const int s = 1 << level;
-        double worst = t.error[level - 1];  // non-decreasing with the level (de Boer)
-        for (int v = 0; v <= tile_cells; ++v) {
-          for (int u = 0; u <= tile_cells; ++u) {
-            if (u % s == 0 && v % s == 0)
-              continue;  // the level keeps this vertex
-            const double exact = f.heights[static_cast<std::size_t>(r0 + v) * f.columns + (c0 + u)];
-            worst =
-                std::max(worst, std::abs(exact - level_surface(f, c0, r0, s, tile_cells, u, v)));
-          }
-        }
+        // Non-decreasing with the level (de Boer), so the level search may stop at the first
+        // level that fails.
+        const double worst =
+            std::max(t.error[level - 1], level_error(f, c0, r0, tile_cells, 1 << level));
         t.error[level] = worst;
       }
     }

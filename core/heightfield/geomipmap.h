@@ -35,12 +35,18 @@ struct FieldLattice {
   glm::dvec2 position(int column, int row) const;  // world (x, z)
 };
 
+// Lattices of at most this many vertices a side: vertex ids and triangle counts fit 32 bits.
+inline constexpr int kMaxLatticeSide = 32769;
+
 // What one scene's tiles keep: each tile's height range (its AABB) and, per level, its
 // geometric error (de Boer's delta: the largest vertical distance between a vertex of the full
-// lattice and the level's surface over it, made non-decreasing with the level).
+// lattice and the level's triangles over it, made non-decreasing with the level). Measured on
+// every triangle the tile can draw at that level (geomipmap_triangles.h), its border's with a
+// neighbour at the same level or one coarser, so it bounds the drawn mesh of any selection whose
+// neighbours differ by at most one level, as select_levels' do.
 struct TileBounds {
   float low = 0, high = 0;
-  std::vector<double> error;  // levels entries; error[0] = 0
+  std::vector<double> error;  // levels entries (error[0] > 0 only from stitching)
 };
 
 struct GeoMipMap {
@@ -93,12 +99,15 @@ struct Selection {
 
 // Quadtree frustum culling, each tile's level (the coarsest L whose error, seen from the
 // nearest point of the tile's AABB, is at most tau pixels: error[L] ppt / distance <= tau, ppt
-// = height / (2 tan(fov_y / 2)); level 0 where the camera is inside the box), then occlusion
-// culling (core/heightfield/geomipmap_select.cc says when it is sound and why).
+// = height / (2 tan(fov_y / 2)); level 0 where the camera is inside the box or none fits), then
+// levels lowered until neighbours differ by at most one (a finer level only lowers the error,
+// so every tile still meets tau), then occlusion culling
+// (core/heightfield/geomipmap_select.cc says when it is sound and why).
 Selection select_levels(const GeoMipMap& map, const View& view);
 
 // The stitched triangle list of the drawn tiles (each side at the coarser spacing of its two
-// tiles' levels, whether the neighbour is drawn or not): vertex i is the lattice point
+// tiles' levels, whether the neighbour is drawn or not; watertight for any levels, within
+// each tile's error where neighbours differ by at most one): vertex i is the lattice point
 // (vertex_column[i], vertex_row[i]), each point once; indices 3 per triangle, counter-clockwise
 // seen from above (+y). Tiles in row-major order, each tile's triangles in a fixed order.
 struct Mesh {

@@ -9,11 +9,12 @@
 // crossed it on the way, at a point P no farther than the floor; P lies in some tile W. The
 // occlusion buffer keeps, per cell of pixels, the least over the floors that cover the whole
 // cell of their farthest view depth (w, along the camera's forward); a tile is occluded when
-// every cell its box can cover holds a depth below the box's nearest w by a relative margin.
+// every cell its box can cover holds a depth below the box's nearest w by a relative margin
+// (1e-3: far above the rounding of a reverse-Z float depth, near / w, whose relative precision
+// is the same at every distance; a conventional [-1, 1] depth would need more).
 // W is never occluded: the cell of this ray holds a depth at least P's, which is at least W's
 // nearest. So every pixel shows a drawn surface nearer than any occluded tile's: removing
-// those tiles changes no pixel, the margin keeping float depths apart (1e-3 relative, far above
-// float rounding).
+// those tiles changes no pixel, the margin keeping their float depths apart.
 // It holds when every ray starts above the surface: the rays' points nearer than the near
 // plane lie within near * sqrt(1 + tan_x^2 + tan_y^2) of the camera, so the camera must be
 // that far inside the extent and that far above the highest tile within it; and when P is in
@@ -22,6 +23,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "core/frustum_polytope.h"
@@ -31,6 +34,7 @@ namespace relief::geomipmap {
 namespace {
 
 constexpr double kOcclusionMargin = 1e-3;
+constexpr int kMaxOcclusionCell = 4096;
 
 struct Box {
   glm::dvec3 low, high;  // world
@@ -117,6 +121,33 @@ struct Culler {
   }
 };
 
+// Lowers levels until every two neighbours differ by at most one: each pass sets a tile to
+// at most one above its finest neighbour, in a fixed order, until no level changes; levels
+// only decrease, so it ends (after at most levels x tiles changes).
+void limit_level_differences(const GeoMipMap& map, std::vector<int>& level) {
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (int tz = 0; tz < map.tiles_z; ++tz) {
+      for (int tx = 0; tx < map.tiles_x; ++tx) {
+        int& l = level[static_cast<std::size_t>(tz) * map.tiles_x + tx];
+        const auto bound = [&](int nx, int nz) {
+          if (nx >= 0 && nz >= 0 && nx < map.tiles_x && nz < map.tiles_z) {
+            const int n = level[static_cast<std::size_t>(nz) * map.tiles_x + nx];
+            if (l > n + 1) {
+              l = n + 1;
+              changed = true;
+            }
+          }
+        };
+        bound(tx - 1, tz);
+        bound(tx + 1, tz);
+        bound(tx, tz - 1);
+        bound(tx, tz + 1);
+      }
+    }
+  }
+}
+
 // Window coordinates (pixels, y up) and view depth w of a world point; w > 0 required.
 struct Projected {
   double x, y, w;
@@ -128,6 +159,12 @@ Projected project(const View& view, const glm::dvec3& p) {
   // w >= near > 0 (checked by the callers before any use): the divisions are safe.
   return {(glm::dot(d, c.right) / (c.tan_half_fov_x * w) + 1) * 0.5 * view.width,
           (glm::dot(d, c.up) / (c.tan_half_fov_y * w) + 1) * 0.5 * view.height, w};
+}
+
+// The buffer cell of a window coordinate, clamped to the buffer in double before the cast (a
+// point near the camera's plane projects far beyond any int).
+int cell_index(double coordinate, int cell, int cells) {
+  return static_cast<int>(std::clamp(std::floor(coordinate / cell), 0.0, cells - 1.0));
 }
 
 // Whether every ray starts above the surface (the header comment).
@@ -214,10 +251,8 @@ void occlusion_cull(const GeoMipMap& map, const View& view, Selection& out) {
       }
       return true;
     };
-    const int cx0 = std::max(0, static_cast<int>(std::floor(x0 / cell)));
-    const int cx1 = std::min(cells_x - 1, static_cast<int>(std::floor(x1 / cell)));
-    const int cy0 = std::max(0, static_cast<int>(std::floor(y0 / cell)));
-    const int cy1 = std::min(cells_y - 1, static_cast<int>(std::floor(y1 / cell)));
+    const int cx0 = cell_index(x0, cell, cells_x), cx1 = cell_index(x1, cell, cells_x);
+    const int cy0 = cell_index(y0, cell, cells_y), cy1 = cell_index(y1, cell, cells_y);
     for (int cy = cy0; cy <= cy1; ++cy) {
       for (int cx = cx0; cx <= cx1; ++cx) {
         const double ax = cx * cell, bx = std::min((cx + 1) * cell, view.width);
@@ -256,10 +291,8 @@ void occlusion_cull(const GeoMipMap& map, const View& view, Selection& out) {
     }
     if (!in_front)
       continue;
-    const int cx0 = std::max(0, static_cast<int>(std::floor(x0 / cell)));
-    const int cx1 = std::min(cells_x - 1, static_cast<int>(std::floor(x1 / cell)));
-    const int cy0 = std::max(0, static_cast<int>(std::floor(y0 / cell)));
-    const int cy1 = std::min(cells_y - 1, static_cast<int>(std::floor(y1 / cell)));
+    const int cx0 = cell_index(x0, cell, cells_x), cx1 = cell_index(x1, cell, cells_x);
+    const int cy0 = cell_index(y0, cell, cells_y), cy1 = cell_index(y1, cell, cells_y);
     if (cx0 > cx1 || cy0 > cy1)
       continue;  // off screen: the frustum test keeps it
     bool hidden = true;
@@ -282,6 +315,18 @@ void occlusion_cull(const GeoMipMap& map, const View& view, Selection& out) {
 }  // namespace
 
 Selection select_levels(const GeoMipMap& map, const View& view) {
+  if (map.tiles.empty() || map.quadtree.empty()) {
+    throw std::invalid_argument("GeoMipMap without tiles: build it with build_geomipmap");
+  }
+  if (view.width <= 0 || view.height <= 0 || !(view.pixel_error >= 0) ||
+      !std::isfinite(view.pixel_error) || view.occlusion_cell < 1 ||
+      view.occlusion_cell > kMaxOcclusionCell) {
+    throw std::invalid_argument(
+        "view " + std::to_string(view.width) + " x " + std::to_string(view.height) +
+        " pixels, tau " + std::to_string(view.pixel_error) + ", occlusion cell " +
+        std::to_string(view.occlusion_cell) +
+        "; allowed positive sizes, a finite tau >= 0 and a cell of 1 ... 4096 pixels");
+  }
   Selection out;
   out.level.assign(map.tiles.size(), 0);
   out.drawn.assign(map.tiles.size(), 0);
@@ -296,6 +341,7 @@ Selection select_levels(const GeoMipMap& map, const View& view) {
           tile_level(map, view, tile, tile_box(map, tx, tz, tx + 1, tz + 1, tile.low, tile.high));
     }
   }
+  limit_level_differences(map, out.level);
   occlusion_cull(map, view, out);
   for (std::size_t t = 0; t < map.tiles.size(); ++t) {
     if (!out.drawn[t])

@@ -110,10 +110,7 @@ TEST_CASE("geomipmapErrorsGrowWithTheLevelAndVanishOnAPlane", "[geomipmap]") {
   REQUIRE(map.levels == 5);
   REQUIRE(map.quadtree.back().size() == 1);
   for (const TileBounds& t : map.tiles) {
-    CHECK(t.error[0] == 0.0);
-    for (int l = 1; l < map.levels; ++l)
-      CHECK(t.error[l] >= t.error[l - 1]);
-    CHECK(t.error[1] > 0.0);
+    CHECK(t.error[1] > 0.0);  // the bound itself: stitchedMeshesStayWithinTheirLevelsErrors
   }
   // A plane is reproduced exactly by every level's triangles.
   Field plane = make_field(2, 2, 8, 0.0);
@@ -140,35 +137,128 @@ TEST_CASE("geomipmapRefusesLatticesThatDoNotFitItsTiles", "[geomipmap]") {
   CHECK_THROWS_WITH(build_geomipmap(f.lattice, 8), Catch::Contains("x1 > x0"));
 }
 
-TEST_CASE("stitchedGeomipmapMeshesAreWatertightForAnyLevels", "[geomipmap]") {
-  const Field f = make_field(5, 4, 16, 10.0);
-  const GeoMipMap map = build_geomipmap(f.lattice, 16);
-  // Every assignment of levels (culled tiles included) from a fixed sequence: neighbours from
-  // equal to four levels apart.
-  for (int trial = 0; trial < 60; ++trial) {
-    Selection s;
-    s.level.resize(map.tiles.size());
-    s.drawn.resize(map.tiles.size());
-    for (std::size_t t = 0; t < s.level.size(); ++t) {
-      const std::uint64_t x = (t + 1) * 2654435761u + static_cast<std::uint64_t>(trial) * 40503u;
-      s.level[t] = static_cast<int>((x >> 7) % 5);  // 0 ... 4
-      s.drawn[t] = (x >> 13) % 6 != 0 ? 1 : 0;      // a sixth culled
-    }
-    if (trial < 2)
-      std::fill(s.drawn.begin(), s.drawn.end(), std::uint8_t{1});
-    if (trial == 0)
-      std::fill(s.level.begin(), s.level.end(), 0);
-    if (trial == 1)
-      std::fill(s.level.begin(), s.level.end(), 4);
-    INFO("trial " << trial);
-    const Mesh mesh = stitched_mesh(map, s);
-    require_watertight(map, s, mesh);
-    // Each lattice point once.
-    std::map<std::pair<int, int>, int> points;
-    for (std::size_t v = 0; v < mesh.vertex_column.size(); ++v) {
-      REQUIRE(++points[{mesh.vertex_column[v], mesh.vertex_row[v]}] == 1);
+// Each drawn triangle against its tile's error at its level: every lattice point inside it
+// lies within error[level] of its plane (recomputed here in double), whatever the neighbours.
+void require_within_errors(const GeoMipMap& map, const Field& f, const Selection& selection,
+                           const Mesh& mesh) {
+  std::uint64_t points = 0, beyond = 0;
+  for (std::size_t k = 0; k + 1 < mesh.tile_first_triangle.size(); ++k) {
+    const std::uint32_t tile = mesh.tiles[k];
+    const double bound = map.tiles[tile].error[static_cast<std::size_t>(selection.level[tile])];
+    for (std::uint32_t t = mesh.tile_first_triangle[k]; t < mesh.tile_first_triangle[k + 1]; ++t) {
+      long long c[3], r[3];
+      double h[3];
+      for (int i = 0; i < 3; ++i) {
+        const std::uint32_t v = mesh.indices[3 * t + i];
+        c[i] = mesh.vertex_column[v];
+        r[i] = mesh.vertex_row[v];
+        h[i] = f.heights[static_cast<std::size_t>(r[i] * f.lattice.columns + c[i])];
+      }
+      const auto side = [&](int i, long long pc, long long pr) {  // >= 0: inside edge i
+        const int j = (i + 1) % 3;
+        return (r[j] - r[i]) * (pc - c[i]) - (c[j] - c[i]) * (pr - r[i]);
+      };
+      const double area = static_cast<double>(side(0, c[2], r[2]));
+      REQUIRE(area > 0);
+      for (long long pr = std::min({r[0], r[1], r[2]}); pr <= std::max({r[0], r[1], r[2]}); ++pr) {
+        for (long long pc = std::min({c[0], c[1], c[2]}); pc <= std::max({c[0], c[1], c[2]});
+             ++pc) {
+          const long long w0 = side(1, pc, pr), w1 = side(2, pc, pr), w2 = side(0, pc, pr);
+          if (w0 < 0 || w1 < 0 || w2 < 0)
+            continue;
+          const double plane = (w0 * h[0] + w1 * h[1] + w2 * h[2]) / area;
+          const double exact = f.heights[static_cast<std::size_t>(pr * f.lattice.columns + pc)];
+          ++points;
+          if (!(std::abs(exact - plane) <= bound * (1 + 1e-12) + 1e-9))
+            ++beyond;
+        }
+      }
     }
   }
+  CHECK(points > 0);
+  CHECK(beyond == 0);  // lattice points farther from their triangle than the level's error
+}
+
+TEST_CASE("stitchedGeomipmapMeshesAreWatertightAndWithinTheirLevelsErrors", "[geomipmap]") {
+  // Tile sizes from the smallest to the largest, fields of a few tiles.
+  const int shapes[][3] = {{5, 4, 16}, {6, 5, 2}, {4, 4, 4}, {3, 3, 32}, {2, 1, 256}};
+  for (const auto& [tiles_x, tiles_z, tile_cells] : shapes) {
+    const Field f = make_field(tiles_x, tiles_z, tile_cells, 10.0, 30.0);
+    const GeoMipMap map = build_geomipmap(f.lattice, tile_cells);
+    // Assignments of levels (culled tiles included) from a fixed sequence: neighbours from
+    // equal to every level apart.
+    for (int trial = 0; trial < 40; ++trial) {
+      Selection s;
+      s.level.resize(map.tiles.size());
+      s.drawn.resize(map.tiles.size());
+      for (std::size_t t = 0; t < s.level.size(); ++t) {
+        const std::uint64_t x = (t + 1) * 2654435761u + static_cast<std::uint64_t>(trial) * 40503u;
+        s.level[t] = static_cast<int>((x >> 7) % static_cast<std::uint64_t>(map.levels));
+        s.drawn[t] = (x >> 13) % 6 != 0 ? 1 : 0;  // a sixth culled
+      }
+      if (trial < 2)
+        std::fill(s.drawn.begin(), s.drawn.end(), std::uint8_t{1});
+      if (trial == 0)
+        std::fill(s.level.begin(), s.level.end(), 0);
+      if (trial == 1)
+        std::fill(s.level.begin(), s.level.end(), map.levels - 1);
+      INFO("T " << tile_cells << ", trial " << trial);
+      require_watertight(map, s, stitched_mesh(map, s));  // any levels
+      // Neighbours within one level (as select_levels leaves them): lower the coarser.
+      for (bool changed = true; changed;) {
+        changed = false;
+        for (int t = 0; t < static_cast<int>(s.level.size()); ++t) {
+          const int tx = t % map.tiles_x, tz = t / map.tiles_x;
+          for (const auto& [nx, nz] : {std::pair{tx - 1, tz}, std::pair{tx + 1, tz},
+                                       std::pair{tx, tz - 1}, std::pair{tx, tz + 1}}) {
+            if (nx < 0 || nz < 0 || nx >= map.tiles_x || nz >= map.tiles_z)
+              continue;
+            const int n = s.level[static_cast<std::size_t>(nz * map.tiles_x + nx)];
+            if (s.level[static_cast<std::size_t>(t)] > n + 1) {
+              s.level[static_cast<std::size_t>(t)] = n + 1;
+              changed = true;
+            }
+          }
+        }
+      }
+      const Mesh mesh = stitched_mesh(map, s);
+      require_watertight(map, s, mesh);
+      require_within_errors(map, f, s, mesh);
+      // Each lattice point once.
+      std::map<std::pair<int, int>, int> points;
+      std::size_t repeated = 0;
+      for (std::size_t v = 0; v < mesh.vertex_column.size(); ++v)
+        repeated += ++points[{mesh.vertex_column[v], mesh.vertex_row[v]}] > 1 ? 1 : 0;
+      CHECK(repeated == 0);
+    }
+  }
+}
+
+TEST_CASE("geomipmapRefusesSelectionsAndViewsItCannotUse", "[geomipmap]") {
+  const Field f = make_field(2, 2, 8, 1.0);
+  const GeoMipMap map = build_geomipmap(f.lattice, 8);
+  Selection s;
+  s.level.assign(map.tiles.size(), 0);
+  s.drawn.assign(map.tiles.size(), 1);
+  s.level[1] = map.levels;
+  CHECK_THROWS_WITH(stitched_mesh(map, s), Catch::Contains("selection level 4; allowed [0, 3]"));
+  s.level[1] = -1;
+  CHECK_THROWS_WITH(stitched_mesh(map, s), Catch::Contains("selection level -1"));
+  s.level.pop_back();
+  CHECK_THROWS_WITH(stitched_mesh(map, s), Catch::Contains("selection of 3 tiles"));
+  View view;
+  view.camera = make_camera_frame(CameraSettings{}, ViewportSettings{});
+  CHECK_THROWS_WITH(select_levels(map, view), Catch::Contains("positive sizes"));
+  view.width = view.height = 64;
+  view.occlusion_cell = 0;
+  CHECK_THROWS_WITH(select_levels(map, view), Catch::Contains("a cell of 1 ... 4096"));
+  view.occlusion_cell = 8;
+  view.pixel_error = std::nan("");
+  CHECK_THROWS(select_levels(map, view));
+  CHECK_THROWS_WITH(select_levels(GeoMipMap{}, view), Catch::Contains("without tiles"));
+  Field wide = make_field(1, 1, 8, 1.0);
+  wide.lattice.extent = {-1.5e308, -1.0, 1.5e308, 1.0};
+  CHECK_THROWS_WITH(build_geomipmap(wide.lattice, 8), Catch::Contains("finite spans"));
 }
 
 // Whether a world point is inside the camera's view frustum, from the camera's own vectors
@@ -186,7 +276,7 @@ TEST_CASE("geomipmapCullsOnlyTilesOutsideTheFrustumAndPicksDeBoersLevels", "[geo
   const Field f = make_field(16, 12, 8, 0.2, 25.0);
   const GeoMipMap map = build_geomipmap(f.lattice, 8);
   const double tile_x = 2000.0 / 16, tile_z = 1600.0 / 12;
-  std::uint64_t culled_somewhere = 0;
+  std::uint64_t culled_somewhere = 0, seen_culled = 0, limited_by_error = 0;
   std::uint64_t drawn_at_level[4] = {};
   for (int view_index = 0; view_index < 24; ++view_index) {
     CameraSettings settings;
@@ -225,7 +315,7 @@ TEST_CASE("geomipmapCullsOnlyTilesOutsideTheFrustumAndPicksDeBoersLevels", "[geo
             for (int j = 0; j <= 4; ++j) {
               for (int k = 0; k <= 8; ++k) {
                 const glm::dvec3 p = low + (high - low) * glm::dvec3(i / 8.0, j / 4.0, k / 8.0);
-                REQUIRE_FALSE(in_view(cam, p));
+                seen_culled += in_view(cam, p) ? 1 : 0;
               }
             }
           }
@@ -235,14 +325,29 @@ TEST_CASE("geomipmapCullsOnlyTilesOutsideTheFrustumAndPicksDeBoersLevels", "[geo
         const glm::dvec3 nearest = glm::clamp(cam.position, low, high);
         const double distance = glm::length(nearest - cam.position);
         const auto fits = [&](int l) { return t.error[l] * ppt <= view.pixel_error * distance; };
-        CHECK(fits(level));
-        if (level + 1 < map.levels)
-          CHECK_FALSE(fits(level + 1));
+        CHECK((level == 0 || fits(level)));  // level 0 is the finest there is
+        // Neighbours within one level; a tile kept below the coarsest level that fits has a
+        // neighbour one level finer that holds it there.
+        int finest_neighbour = map.levels;
+        for (const auto& [nx, nz] : {std::pair{tx - 1, tz}, std::pair{tx + 1, tz},
+                                     std::pair{tx, tz - 1}, std::pair{tx, tz + 1}}) {
+          if (nx < 0 || nz < 0 || nx >= map.tiles_x || nz >= map.tiles_z)
+            continue;
+          const int n = s.level[static_cast<std::size_t>(nz) * map.tiles_x + nx];
+          CHECK(std::abs(n - level) <= 1);
+          finest_neighbour = std::min(finest_neighbour, n);
+        }
+        if (level + 1 < map.levels && fits(level + 1))
+          CHECK(finest_neighbour == level - 1);
+        if (level + 1 < map.levels && !fits(level + 1))
+          ++limited_by_error;
       }
     }
     require_watertight(map, s, stitched_mesh(map, s));
   }
   CHECK(culled_somewhere > 0);
+  CHECK(seen_culled == 0);      // points of culled boxes inside the camera's frustum
+  CHECK(limited_by_error > 0);  // de Boer's rule, not only the neighbours, sets levels
   for (int l = 0; l < 4; ++l)
     CHECK(drawn_at_level[l] > 0);  // every level chosen somewhere
 }

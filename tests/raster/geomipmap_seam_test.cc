@@ -96,7 +96,7 @@ Mesh unstitched_mesh(const GeoMipMap& map, const Selection& selection) {
   Mesh all;
   std::unordered_map<std::uint64_t, std::uint32_t> ids;
   for (std::size_t t = 0; t < selection.level.size(); ++t) {
-    if (selection.level[t] < 0)
+    if (!selection.drawn[t])
       continue;
     Selection alone;
     alone.level.assign(selection.level.size(), 0);  // neighbours finest: its own spacing
