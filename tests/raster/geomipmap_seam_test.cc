@@ -134,6 +134,45 @@ std::vector<std::int64_t> tile_triangles(const Mesh& mesh, const raster::Visibil
   return out;
 }
 
+// The seam tests' view of a camera: 320 x 240 pixels, the near and far planes set.
+View view_of(CameraSettings settings, double pixel_error) {
+  ViewportSettings viewport;
+  viewport.width = 320;
+  viewport.height = 240;
+  settings.near = 0.5;
+  settings.far = 60000.0;
+  View view;
+  view.camera = make_camera_frame(settings, viewport);
+  view.width = viewport.width;
+  view.height = viewport.height;
+  view.pixel_error = pixel_error;
+  return view;
+}
+
+struct Drawn {
+  Selection selection;
+  Mesh mesh;
+  Frame frame;
+};
+
+// The view drawn with occlusion culling, and checked against the same view without it: the
+// same levels, the same depth and the same tile's same triangle in every pixel.
+Drawn draw_checking_occlusion(const FieldLattice& lattice, const GeoMipMap& map, View view) {
+  const double lowest = map.quadtree.back()[0].low;
+  Drawn d;
+  d.selection = select_levels(map, view);
+  d.mesh = stitched_mesh(map, d.selection);
+  d.frame = draw(lattice, d.mesh, view.camera, view.width, view.height, lowest);
+  view.occlusion = false;
+  const Selection frustum_only = select_levels(map, view);
+  REQUIRE(d.selection.level == frustum_only.level);
+  const Mesh all = stitched_mesh(map, frustum_only);
+  const Frame reference = draw(lattice, all, view.camera, view.width, view.height, lowest);
+  CHECK(d.frame.visibility.depth == reference.visibility.depth);
+  CHECK(tile_triangles(d.mesh, d.frame.visibility) == tile_triangles(all, reference.visibility));
+  return d;
+}
+
 TEST_CASE("geomipmapSeamsShowNoBackgroundOverACameraSweep", "[geomipmap][raster]") {
   const std::vector<float> heights = seam_field();
   FieldLattice lattice;
@@ -142,9 +181,6 @@ TEST_CASE("geomipmapSeamsShowNoBackgroundOverACameraSweep", "[geomipmap][raster]
   lattice.heights = heights;
   const GeoMipMap map = build_geomipmap(lattice, kTileCells);
   const double lowest = map.quadtree.back()[0].low, highest = map.quadtree.back()[0].high;
-  ViewportSettings viewport;
-  viewport.width = 320;
-  viewport.height = 240;
   std::uint64_t checked = 0, unstitched_holes = 0, coarse_tiles = 0, culled = 0, occluded = 0;
   for (int view_index = 0; view_index < 40; ++view_index) {
     CameraSettings settings;
@@ -157,36 +193,20 @@ TEST_CASE("geomipmapSeamsShowNoBackgroundOverACameraSweep", "[geomipmap][raster]
       settings.position[1] = highest + 5.0 + 10.0 * (view_index - 32);
       settings.pitch_deg = -4.0 - (view_index - 32);
     }
-    settings.near = 0.5;
-    settings.far = 60000.0;
-    View view;
-    view.camera = make_camera_frame(settings, viewport);
-    view.width = viewport.width;
-    view.height = viewport.height;
-    view.pixel_error = 0.5 + (view_index % 4) * 1.5;
-    const CameraFrame& cam = view.camera;
-    const Selection selection = select_levels(map, view);
-    view.occlusion = false;
-    const Selection frustum_only = select_levels(map, view);
+    const View view = view_of(settings, 0.5 + (view_index % 4) * 1.5);
+    INFO("view " << view_index);
+    const Drawn d = draw_checking_occlusion(lattice, map, view);
     for (int l = 1; l < map.levels; ++l)
-      coarse_tiles += selection.counts.tiles_per_level[l];
-    culled += selection.counts.tiles_culled;
-    occluded += selection.counts.tiles_occluded;
-    REQUIRE(selection.level == frustum_only.level);
-    const Mesh mesh = stitched_mesh(map, selection);
-    const Frame frame = draw(lattice, mesh, cam, viewport.width, viewport.height, lowest);
-    INFO("view " << view_index << ": " << frame.holes << " of " << frame.must_cover
-                 << " pixels that must show the terrain show the background");
-    CHECK(frame.holes == 0);
-    checked += frame.must_cover;
-    // Occlusion culling changes no pixel: the same depths, the same tile's same triangle.
-    const Mesh all = stitched_mesh(map, frustum_only);
-    const Frame reference = draw(lattice, all, cam, viewport.width, viewport.height, lowest);
-    CHECK(frame.visibility.depth == reference.visibility.depth);
-    CHECK(tile_triangles(mesh, frame.visibility) == tile_triangles(all, reference.visibility));
-    unstitched_holes +=
-        draw(lattice, unstitched_mesh(map, selection), cam, viewport.width, viewport.height, lowest)
-            .holes;
+      coarse_tiles += d.selection.counts.tiles_per_level[l];
+    culled += d.selection.counts.tiles_culled;
+    occluded += d.selection.counts.tiles_occluded;
+    INFO(d.frame.holes << " of " << d.frame.must_cover
+                       << " pixels that must show the terrain show the background");
+    CHECK(d.frame.holes == 0);
+    checked += d.frame.must_cover;
+    unstitched_holes += draw(lattice, unstitched_mesh(map, d.selection), view.camera, view.width,
+                             view.height, lowest)
+                            .holes;
   }
   CHECK(checked > 40u * 320u * 240u / 3);  // most pixels are checked
   CHECK(coarse_tiles > 0);                 // levels differ, so seams exist
@@ -212,34 +232,16 @@ TEST_CASE("occlusionCullingHidesTheLowlandBehindAPlateauAndChangesNoPixel", "[ge
   lattice.extent = {-kHalfExtent, -kHalfExtent, kHalfExtent, kHalfExtent};
   lattice.heights = heights;
   const GeoMipMap map = build_geomipmap(lattice, kTileCells);
-  ViewportSettings viewport;
-  viewport.width = 320;
-  viewport.height = 240;
   std::uint64_t occluded = 0;
   for (int view_index = 0; view_index < 4; ++view_index) {
     CameraSettings settings;
     settings.position = {-600.0 + 240.0 * view_index, 215.0 + 5.0 * view_index, 900.0};
     settings.yaw_deg = -20.0 + 8.0 * view_index;  // across the plateau, towards -z
     settings.pitch_deg = -1.0 - 0.5 * view_index;
-    settings.near = 0.5;
-    settings.far = 60000.0;
-    View view;
-    view.camera = make_camera_frame(settings, viewport);
-    view.width = viewport.width;
-    view.height = viewport.height;
-    const Selection selection = select_levels(map, view);
-    view.occlusion = false;
-    const Selection frustum_only = select_levels(map, view);
-    occluded += selection.counts.tiles_occluded;
-    INFO("view " << view_index << ": " << selection.counts.tiles_occluded << " tiles occluded");
-    const Mesh mesh = stitched_mesh(map, selection), all = stitched_mesh(map, frustum_only);
-    const Frame frame = draw(lattice, mesh, view.camera, viewport.width, viewport.height,
-                             map.quadtree.back()[0].low);
-    const Frame reference = draw(lattice, all, view.camera, viewport.width, viewport.height,
-                                 map.quadtree.back()[0].low);
-    CHECK(selection.counts.tiles_occluded > 0);  // every view hides some lowland
-    CHECK(frame.visibility.depth == reference.visibility.depth);
-    CHECK(tile_triangles(mesh, frame.visibility) == tile_triangles(all, reference.visibility));
+    INFO("view " << view_index);
+    const Drawn d = draw_checking_occlusion(lattice, map, view_of(settings, 1.0));
+    CHECK(d.selection.counts.tiles_occluded > 0);  // every view hides some lowland
+    occluded += d.selection.counts.tiles_occluded;
   }
   CHECK(occluded > 0);
 }
