@@ -327,6 +327,16 @@ Selection select_levels(const GeoMipMap& map, const View& view) {
         std::to_string(view.occlusion_cell) +
         "; allowed positive sizes, a finite tau >= 0 and a cell of 1 ... 4096 pixels");
   }
+  const CameraFrame& c = view.camera;
+  if (!(c.near > 0 && c.far > c.near && c.tan_half_fov_x > 0 && c.tan_half_fov_y > 0 &&
+        std::isfinite(c.far) && std::isfinite(c.tan_half_fov_x) &&
+        std::isfinite(c.tan_half_fov_y))) {
+    // The projections divide by w >= near and by the tangents.
+    throw std::invalid_argument("view camera: near " + std::to_string(c.near) + ", far " +
+                                std::to_string(c.far) +
+                                "; allowed 0 < near < far, finite, and a field of view in "
+                                "(0, 180) degrees");
+  }
   Selection out;
   out.level.assign(map.tiles.size(), 0);
   out.drawn.assign(map.tiles.size(), 0);

@@ -256,6 +256,9 @@ TEST_CASE("geomipmapRefusesSelectionsAndViewsItCannotUse", "[geomipmap]") {
   view.pixel_error = std::nan("");
   CHECK_THROWS(select_levels(map, view));
   CHECK_THROWS_WITH(select_levels(GeoMipMap{}, view), Catch::Contains("without tiles"));
+  view.pixel_error = 1;
+  view.camera.near = 0;
+  CHECK_THROWS_WITH(select_levels(map, view), Catch::Contains("allowed 0 < near < far"));
   Field wide = make_field(1, 1, 8, 1.0);
   wide.lattice.extent = {-1.5e308, -1.0, 1.5e308, 1.0};
   CHECK_THROWS_WITH(build_geomipmap(wide.lattice, 8), Catch::Contains("finite spans"));
