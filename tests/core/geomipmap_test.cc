@@ -104,7 +104,7 @@ void require_watertight(const GeoMipMap& map, const Selection& selection, const 
   }
 }
 
-TEST_CASE("geomipmapErrorsGrowWithTheLevelAndVanishOnAPlane", "[geomipmap]") {
+TEST_CASE("geomipmapErrorsVanishOnAPlaneAndTheRootHoldsTheFieldsRange", "[geomipmap]") {
   Field rough = make_field(3, 2, 16, 40.0);
   const GeoMipMap map = build_geomipmap(rough.lattice, 16);
   REQUIRE(map.levels == 5);
