@@ -1,6 +1,7 @@
 #include "core/heightfield/geomipmap.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -12,13 +13,6 @@ namespace relief::geomipmap {
 namespace {
 
 constexpr int kMaxTileCells = 256;
-
-int log2_exact(int n) {
-  int k = 0;
-  while ((1 << k) < n)
-    ++k;
-  return k;
-}
 
 // (b - a) x (p - a) in (u, v), its y as for emit_counter_clockwise: positive when p is to the
 // left of a -> b seen from +y.
@@ -116,7 +110,7 @@ GeoMipMap build_geomipmap(const FieldLattice& f, int tile_cells) {
   }
   GeoMipMap map;
   map.tile_cells = tile_cells;
-  map.levels = log2_exact(tile_cells) + 1;
+  map.levels = std::countr_zero(static_cast<unsigned>(tile_cells)) + 1;  // T: a power of two
   map.tiles_x = (f.columns - 1) / tile_cells;
   map.tiles_z = (f.rows - 1) / tile_cells;
   map.extent = f.extent;

@@ -337,6 +337,11 @@ Selection select_levels(const GeoMipMap& map, const View& view) {
                                 "; allowed 0 < near < far, finite, and a field of view in "
                                 "(0, 180) degrees");
   }
+  // A NaN position would fail every comparison: nothing culled, level 0 everywhere, silently.
+  if (!(std::isfinite(c.position.x) && std::isfinite(c.position.y) &&
+        std::isfinite(c.position.z))) {
+    throw std::invalid_argument("view camera position: not finite");
+  }
   Selection out;
   out.level.assign(map.tiles.size(), 0);
   out.drawn.assign(map.tiles.size(), 0);

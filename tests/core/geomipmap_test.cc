@@ -259,6 +259,11 @@ TEST_CASE("geomipmapRefusesSelectionsAndViewsItCannotUse", "[geomipmap]") {
   view.pixel_error = 1;
   view.camera.near = 0;
   CHECK_THROWS_WITH(select_levels(map, view), Catch::Contains("allowed 0 < near < far"));
+  view.camera.near = 0.5;
+  view.camera.position.y = std::nan("");
+  CHECK_THROWS_WITH(select_levels(map, view), Catch::Contains("position: not finite"));
+  view.camera.position.y = HUGE_VAL;
+  CHECK_THROWS_WITH(select_levels(map, view), Catch::Contains("position: not finite"));
   Field wide = make_field(1, 1, 8, 1.0);
   wide.lattice.extent = {-1.5e308, -1.0, 1.5e308, 1.0};
   CHECK_THROWS_WITH(build_geomipmap(wide.lattice, 8), Catch::Contains("finite spans"));
