@@ -128,6 +128,12 @@ inline constexpr std::uintmax_t kMaxHeightFieldFileBytes = 1025u << 20;
 // A height field's levels of detail (core/height_sketch.h): level l + 1 has floor(n / 2) + 1
 // samples a side where level l has n, so 16385 samples take 15 levels (to 2 a side).
 inline constexpr int kMaxFieldLevels = 16;
+// GeoMipMapping's tau (terrain.heightfield.geomipmap.pixel_error): from a hundredth of a pixel,
+// below anything a rasteriser resolves, to 1000 pixels, coarser than any viewport (every tile
+// then takes its coarsest level); a field's lattice is at most kMaxHeightFieldSize + 255
+// vertices a side (whole tiles of 256 cells), within geomipmap::kMaxLatticeSide.
+inline constexpr double kMinGeoMipMapPixelError = 0.01;
+inline constexpr double kMaxGeoMipMapPixelError = 1000.0;
 // Every level's samples together (under 4/3 of level 0's and a few rows) index as int32 in the
 // kernels (SketchParams::level_offset, the gathers' lanes).
 static_assert(4.0 / 3.0 * kMaxHeightFieldSize * kMaxHeightFieldSize +

@@ -76,6 +76,11 @@ Scene supersampled_scene(const Scene& scene, const GroundTruthSettings& settings
   out.viewport.height *= settings.supersample;
   out.grid.width *= settings.grid_scale;
   out.grid.height *= settings.grid_scale;
+  // A GeoMipMap draws a height field's surface within its tiles' errors: the truth is the
+  // surface itself, on the finer grid.
+  if (out.terrain.heightfield) {
+    out.terrain.heightfield->geomipmap.reset();
+  }
   // Cast shadows' horizon cache as many times finer as the grid, at most its limit, rounded
   // down to a power of two as the field must be (grid scale 3 takes 2x; docs/ground-truth.md,
   // "Cast shadows").

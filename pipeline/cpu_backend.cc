@@ -20,53 +20,56 @@
 
 namespace relief {
 
-raster::RasterState frame_raster_state(const Scene& scene) {
-  raster::RasterState state;
-  state.width = scene.viewport.width;
-  state.height = scene.viewport.height;
-  state.viewport = {0.0, 0.0, double(scene.viewport.width), double(scene.viewport.height)};
-  state.cull = raster::CullMode::kBack;
-  state.depth_test = raster::DepthTest::kGreater;
-  state.depth_clear = 0.0f;
-  return state;
-}
-
 template <class Real>
 CpuBackend<Real>::CpuBackend(const Scene& scene, const NoiseLattice& lattice,
                              std::span<const ProtoTexture> textures, const FrameRequest& request,
                              const HeightSketch* sketch, const NoiseLattice* terrain_values,
-                             const Skybox* skybox)
+                             const Skybox* skybox, const FieldMesh* field_mesh)
     : scene_(scene),
       lattice_(lattice),
       terrain_values_(terrain_values ? *terrain_values : lattice),
       textures_(textures),
       skybox_(skybox),
+      field_mesh_(field_mesh),
+      field_texels_(sketch),
       request_(request),
       plan_(make_frame_plan(scene, terrain_values_, sketch, thread_pool_rows())),
       params_(make_terrain_params<Real>(plan_)),
       kernels_(cpu_kernels<Real>(request.backend, params_.planet.enabled != 0)),
-      grid_(plan_.layout),
+      grid_(field_mesh ? GridLayout{} : plan_.layout),  // the mesh's: prepare_mesh
       cull_(make_cull_params<Real>(plan_)),
-      need_(plan_.layout.size()),
+      need_(field_mesh ? 0 : plan_.layout.size()),
       scene_octaves_(params_.fbm.count),
       state_(frame_raster_state(scene)),
       tiles_(raster::make_tile_grid(state_)),
       shadow_plan_(make_shadow_plan(scene, plan_)),
       shadow_(make_shadow_params<Real>(shadow_plan_)) {
   shadow_.skip_lit = request.skips.lit_shadows ? 1 : 0;
+  // Drawn without its mesh the field would come out as the projected grid without a word
+  // (relief stages, which shades nothing, runs the grid's stages 1-4 on purpose).
+  if (scene.terrain.heightfield && scene.terrain.heightfield->geomipmap && !textures.empty() &&
+      field_mesh == nullptr) {
+    throw std::invalid_argument(
+        "cpu backend: terrain.heightfield.geomipmap is set; no field mesh was built");
+  }
 }
 
 template <class Real>
 std::size_t CpuBackend<Real>::units(StageId id) const {
   switch (id) {
     case StageId::kOutcodes:
+      if (mesh_mode()) {  // the quadtree culled the tiles (prepare_mesh)
+        return 0;
+      }
       // A planet frame evaluates every valid vertex: the height bounds' segments are vertical
       // in the unbent frame, not in the bent one (docs/planet.md).
       return request_.skips.unseen_vertices && !planet()
                  ? static_cast<std::size_t>(plan_.layout.height)
                  : 0;
     case StageId::kDrawOutcodes:
-      return request_.skips.unseen_vertices ? static_cast<std::size_t>(plan_.layout.height) : 0;
+      return request_.skips.unseen_vertices && !mesh_mode()
+                 ? static_cast<std::size_t>(plan_.layout.height)
+                 : 0;
     case StageId::kProjectedDomain:
     case StageId::kVertexNeeds:
     case StageId::kDrawNeeds:
@@ -77,7 +80,7 @@ std::size_t CpuBackend<Real>::units(StageId id) const {
       return plan_.layout.size();
     case StageId::kTriangleSetup:
     case StageId::kBinning:
-      return raster::setup_chunk_count(triangles().count());
+      return raster::setup_chunk_count(frame_triangles().count());
     case StageId::kShadowHeights:
     case StageId::kSunHorizons:
       return shadow_rows();
@@ -115,6 +118,10 @@ raster::ClipVertices CpuBackend<Real>::raster_positions() const {
 template <class Real>
 void CpuBackend<Real>::run(StageId id, std::size_t begin, std::size_t end) {
   const RowRange rows{static_cast<int>(begin), static_cast<int>(end)};
+  if (mesh_mode() && id <= StageId::kSurface) {
+    run_mesh(id, rows);
+    return;
+  }
   switch (id) {
     case StageId::kProjectedDomain:
       if (planet()) {  // the portable loops on every backend (cpu_kernels_highway.cc)
@@ -213,7 +220,12 @@ void CpuBackend<Real>::run(StageId id, std::size_t begin, std::size_t end) {
     }
     case StageId::kTriangleSetup:
       for (std::size_t c = begin; c < end; ++c) {
-        raster::setup_chunk(*setup_, raster_positions(), triangles(), c, chunks_[c]);
+        if (mesh_mode()) {
+          raster::setup_chunk(*setup_, raster_positions(), raster::IndexedTriangles{mesh_.indices},
+                              c, chunks_[c]);
+        } else {
+          raster::setup_chunk(*setup_, raster_positions(), triangles(), c, chunks_[c]);
+        }
       }
       return;
     case StageId::kBinning:
@@ -235,6 +247,11 @@ void CpuBackend<Real>::run(StageId id, std::size_t begin, std::size_t end) {
 template <class Real>
 void CpuBackend<Real>::prepare(StageId id) {
   switch (id) {
+    case StageId::kProjectedDomain:
+      if (mesh_mode()) {
+        prepare_mesh();
+      }
+      return;
     case StageId::kOutcodes:
       outcode_.resize(request_.skips.unseen_vertices ? plan_.layout.size() : 0);
       return;
@@ -271,7 +288,7 @@ void CpuBackend<Real>::prepare(StageId id) {
       if (kernels_.snap != nullptr) {
         setup_->set_snap_kernels(kernels_.snap);
       }
-      chunks_.resize(raster::setup_chunk_count(triangles().count()));
+      chunks_.resize(raster::setup_chunk_count(frame_triangles().count()));
       return;
     case StageId::kTiles: {
       // Stage 8's plan and the frame's outputs.
@@ -318,26 +335,14 @@ void CpuBackend<Real>::prepare(StageId id) {
         throw std::invalid_argument("cpu backend: sky.skybox is set; no faces were loaded");
       }
       tile_pass_ = std::make_unique<TilePass<Real>>(
-          state_, triangles(), streams, shade_, ShadeResources{&lattice_, textures_, skybox_}, o,
-          plan_.camera.position.y, image_, kernels_.tiles, band_rows_ < 0 ? 0 : band_first_row_,
+          state_, frame_triangles(), streams, shade_, ShadeResources{&lattice_, textures_, skybox_},
+          o, plan_.camera.position.y, image_, kernels_.tiles, band_rows_ < 0 ? 0 : band_first_row_,
           shadow_.enabled != 0 ? TileShadows<Real>{&shadow_, &horizons_} : TileShadows<Real>{});
       return;
     }
     default:
       return;
   }
-}
-
-template <class Real>
-bool CpuBackend<Real>::water_in_view() const {
-  if (!plan_.water_enabled) {
-    return false;
-  }
-  // Interpolated heights round to within 1e-12 of their range in double, to within it in
-  // float: a margin of 1e-9 relative keeps every pixel that could be under water.
-  const double level = plan_.relative_water_level;
-  return min_drawn_height_ < level + 1e-9 * (std::abs(level) + std::abs(min_drawn_height_)) ||
-         !request_.skips.water;
 }
 
 template <class Real>
@@ -372,7 +377,8 @@ template <class Real>
 void CpuBackend<Real>::finish(Frame& frame) {
   frame.image = std::move(image_);
   frame.stats.raster = raster_stats_;
-  frame.stats.kernels = kernel_reports(kernels_.choices, std::is_same_v<Real, double>);
+  frame.stats.kernels = kernel_reports(mesh_mode() ? mesh_kernel_choices() : kernels_.choices,
+                                       std::is_same_v<Real, double>);
   // The parts of the fused stage: CPU time summed over the threads that ran tiles.
   const auto part = [](const char* name, const std::atomic<std::int64_t>& ns) {
     return StageTime{name, double(ns.load()) * 1e-6, true, {}};

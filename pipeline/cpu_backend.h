@@ -20,6 +20,7 @@
 #include "core/fbm.h"
 #include "core/frame_plan.h"
 #include "core/grid_buffers.h"
+#include "core/heightfield/field_mesh.h"
 #include "core/octave_coordinates.h"
 #include "core/shading_plan.h"
 #include "core/stage_params.h"
@@ -37,11 +38,13 @@ class CpuBackend final : public FrameBackend {
  public:
   // `textures` may be empty when only stages 1-4 are run (relief stages); `sketch` is the
   // scene's terrain.sketch as loaded (null: the scene has none); `terrain_values` the grid of
-  // stage 3 when it is not `lattice` (terrain.basis's composed grid; null: the lattice).
+  // stage 3 when it is not `lattice` (terrain.basis's composed grid; null: the lattice);
+  // `field_mesh` terrain.heightfield.geomipmap's lattice and tiles: given, stages 2-6 draw its
+  // GeoMipMap mesh instead of the projected grid (cpu_backend_mesh.cc); null: the grid.
   CpuBackend(const Scene& scene, const NoiseLattice& lattice,
              std::span<const ProtoTexture> textures, const FrameRequest& request,
              const HeightSketch* sketch = nullptr, const NoiseLattice* terrain_values = nullptr,
-             const Skybox* skybox = nullptr);
+             const Skybox* skybox = nullptr, const FieldMesh* field_mesh = nullptr);
 
   void prepare(StageId id) override;
   std::size_t units(StageId id) const override;
@@ -62,6 +65,18 @@ class CpuBackend final : public FrameBackend {
  private:
   raster::ClipVertices raster_positions() const;
   raster::GridTriangles triangles() const { return {plan_.layout, grid_.valid, need_}; }
+  // The triangles the frame draws: the mesh's index list, or the grid's.
+  raster::FrameTriangles frame_triangles() const;
+  // GeoMipMapping (cpu_backend_mesh.cc): the view's tiles and stitched mesh, its vertices laid
+  // out in the grid buffers (prepare of stage 2), and the vertex stages over its rows.
+  bool mesh_mode() const { return field_mesh_ != nullptr; }
+  void prepare_mesh();
+  // Refuses (MemoryLimitError) a selection whose mesh could exceed what is left of the budget.
+  void check_mesh_memory(const geomipmap::Selection& selection) const;
+  void run_mesh(StageId id, RowRange rows);
+  void describe_mesh(StageTime& time) const;
+  // The kernel table's choices with stages 2-4's replaced by the mesh's portable loops.
+  std::vector<KernelChoice> mesh_kernel_choices() const;
   int band_first_tile_row() const { return band_first_row_ / raster::kTileSize; }
   int band_tile_rows() const;
   bool planet() const { return params_.planet.enabled != 0; }
@@ -81,7 +96,11 @@ class CpuBackend final : public FrameBackend {
   const NoiseLattice& lattice_;         // the shading's noise (dithering, waves)
   const NoiseLattice& terrain_values_;  // stage 3's S: the lattice or the basis grid
   std::span<const ProtoTexture> textures_;
-  const Skybox* skybox_;  // sky.skybox's faces, or null
+  const Skybox* skybox_;              // sky.skybox's faces, or null
+  const FieldMesh* field_mesh_;       // terrain.heightfield.geomipmap's, or null
+  const HeightSketch* field_texels_;  // the field's texels (the mesh's normals)
+  geomipmap::Mesh mesh_;              // this frame's stitched mesh (mesh mode)
+  geomipmap::SelectionCounts mesh_counts_;
   FrameRequest request_;
   FramePlan plan_;
   TerrainParams<Real> params_;

@@ -12,9 +12,32 @@
 
 namespace relief {
 
+raster::RasterState frame_raster_state(const Scene& scene) {
+  raster::RasterState state;
+  state.width = scene.viewport.width;
+  state.height = scene.viewport.height;
+  state.viewport = {0.0, 0.0, double(scene.viewport.width), double(scene.viewport.height)};
+  state.cull = raster::CullMode::kBack;
+  state.depth_test = raster::DepthTest::kGreater;
+  state.depth_clear = 0.0f;
+  return state;
+}
+
+template <class Real>
+bool CpuBackend<Real>::water_in_view() const {
+  if (!plan_.water_enabled) {
+    return false;
+  }
+  // Interpolated heights round to within 1e-12 of their range in double, to within it in
+  // float: a margin of 1e-9 relative keeps every pixel that could be under water.
+  const double level = plan_.relative_water_level;
+  return min_drawn_height_ < level + 1e-9 * (std::abs(level) + std::abs(min_drawn_height_)) ||
+         !request_.skips.water;
+}
+
 template <class Real>
 void CpuBackend<Real>::tally_setup() {
-  raster_stats_.triangles = triangles().count();
+  raster_stats_.triangles = frame_triangles().count();
   for (const raster::SetupChunk& chunk : chunks_) {
     raster_stats_.setup += chunk.triangles.size();
     raster_stats_.setup_bytes += chunk.triangles.capacity() * sizeof(raster::RasterTriangle);
@@ -96,6 +119,10 @@ void CpuBackend<Real>::describe(StageId id, StageTime& time) const {
   const GridLayout& layout = plan_.layout;
   switch (id) {
     case StageId::kProjectedDomain:
+      if (mesh_mode()) {
+        describe_mesh(time);
+        return;
+      }
       count("grid vertices", std::uint64_t(layout.width) * layout.height);
       return;
     case StageId::kVertexNeeds:
@@ -139,7 +166,8 @@ void CpuBackend<Real>::describe(StageId id, StageTime& time) const {
       for (const raster::SetupChunk& chunk : chunks_) {
         submitted += chunk.submitted;
       }
-      count("triangles in the grid", raster_stats_.triangles);
+      count(mesh_mode() ? "triangles in the mesh" : "triangles in the grid",
+            raster_stats_.triangles);
       count("triangles submitted", submitted);
       count("triangles set up", raster_stats_.setup);
       return;
@@ -184,6 +212,7 @@ void CpuBackend<Real>::describe(StageId id, StageTime& time) const {
   template void CpuBackend<Real>::tally_fbm(const FbmWork&);               \
   template void CpuBackend<Real>::tally_draws(RowRange, const NeedCount&); \
   template void CpuBackend<Real>::tally_setup();                           \
+  template bool CpuBackend<Real>::water_in_view() const;                   \
   template void CpuBackend<Real>::describe(StageId, StageTime&) const;
 RELIEF_INSTANTIATE_WORK(float)
 RELIEF_INSTANTIATE_WORK(double)

@@ -51,6 +51,13 @@ void run_table(FrameBackend& backend, StageId last, std::vector<StageTime>& time
   }
 }
 
+// terrain.heightfield.geomipmap's lattice and tiles where the scene draws them (a scene changed
+// after loading, the ground truth's among them, may not).
+const FieldMesh* drawn_field_mesh(const Scene& scene, const SceneResources& resources) {
+  const bool drawn = scene.terrain.heightfield && scene.terrain.heightfield->geomipmap;
+  return drawn ? resources.field_mesh_or_null() : nullptr;
+}
+
 template <class Real>
 Frame render_with(const Scene& scene, const SceneResources& resources,
                   const FrameRequest& request) {
@@ -61,7 +68,7 @@ Frame render_with(const Scene& scene, const SceneResources& resources,
   } else {
     backend = std::make_unique<CpuBackend<Real>>(
         scene, resources.lattice, resources.textures, request, resources.sketch_or_null(),
-        resources.basis_or_null(), resources.skybox_or_null());
+        resources.basis_or_null(), resources.skybox_or_null(), drawn_field_mesh(scene, resources));
   }
   Frame frame;
   frame.stats.stages.push_back({"frame plan", milliseconds_since(start), true, {}});
@@ -119,7 +126,7 @@ FrameStats render_bands_with(const Scene& scene, const SceneResources& resources
   const Clock::time_point start = Clock::now();
   CpuBackend<Real> backend(scene, resources.lattice, resources.textures, request,
                            resources.sketch_or_null(), resources.basis_or_null(),
-                           resources.skybox_or_null());
+                           resources.skybox_or_null(), drawn_field_mesh(scene, resources));
   FrameStats stats;
   stats.stages.push_back({"frame plan", milliseconds_since(start), true, {}});
   run_table(backend, StageId::kBinning, stats.stages);

@@ -20,6 +20,7 @@ struct FrameSkips {
   bool zero_weights = true;      // no texture fetch for a layer or projection of zero weight
   bool lit_shadows = true;       // no share of the sun disc evaluated where four samples prove it
   bool unread_shadow_levels = true;  // no cache level that no drawn pixel can read
+  bool occluded_tiles = true;        // GeoMipMapping: no tile hidden behind nearer ground's floors
 };
 
 // Stage 8's share of the skips: the plan's parameters have them all on (make_shade_params);

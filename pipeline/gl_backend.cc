@@ -73,6 +73,13 @@ class GlBackend final : public FrameBackend {
           "lighting.shadows = true: the GL backend has no cast shadows yet; allowed false with "
           "--backend gl (or render with --backend simd, reference or reference-double)");
     }
+    // GeoMipMapping's mesh has no GLSL twin yet (stage_table.h, kGlHasNoMesh).
+    if (scene.terrain.heightfield && scene.terrain.heightfield->geomipmap) {
+      throw GlBackendError(
+          "terrain.heightfield.geomipmap is set: the GL backend draws the projected grid alone "
+          "yet; allowed null with --backend gl (or render with --backend simd, reference or "
+          "reference-double)");
+    }
     GlSession& s = gl_session();
     current_.emplace(s);
     guarded(s, "set-up", [&] {

@@ -8,6 +8,7 @@
 #include <tbb/global_control.h>
 
 #include "core/grid_buffers.h"
+#include "core/heightfield/field_mesh.h"
 #include "core/input_file.h"
 #include "core/limits.h"
 #include "core/sun_horizons.h"
@@ -88,6 +89,17 @@ void add_height_field(const TerrainSettings& terrain, MemoryEstimate& estimate) 
   if (terrain.heightfield) {
     const std::optional<HeightFieldPeek> peek = peek_height_field(*terrain.heightfield);
     estimate.add("height field", peek ? height_field_load_bytes(*peek) : 0);
+    if (peek && terrain.heightfield->geomipmap) {  // its lattice and tiles (field_mesh.h)
+      const int cells = terrain.heightfield->geomipmap->tile_cells;
+      const std::uintmax_t vertices =
+          field_mesh_vertices(int(peek->width), int(peek->height), cells);
+      // Per tile: its bounds with up to 9 errors, the quadtree's nodes (under 4/3 a tile), and
+      // a frame's selection (its level and flags, 8 bytes).
+      const std::uintmax_t tiles = vertices / (std::uintmax_t(cells) * cells) + 1;
+      estimate.add("GeoMipMap lattice",
+                   vertices * FieldMesh::kBytesPerVertex +
+                       tiles * (sizeof(geomipmap::TileBounds) + 9 * sizeof(double) + 16 + 8));
+    }
   } else if (terrain.sketch) {
     estimate.add("height sketch", sketch_bytes(*terrain.sketch));
   }

@@ -208,6 +208,16 @@ SceneResources load_scene_resources(const Scene& scene) {
     }
   }
   resources.sketch = load_height_sketch(scene);
+  const std::optional<HeightFieldSettings>& field = scene.terrain.heightfield;
+  if (field && field->geomipmap && resources.sketch) {  // GeoMipMapping's tiles, once per scene
+    try {
+      resources.field_mesh =
+          build_field_mesh(*resources.sketch, sketch_extent(*field, *resources.sketch),
+                           scene.terrain.base_height, field->geomipmap->tile_cells);
+    } catch (const std::invalid_argument& e) {
+      throw SceneError("terrain.heightfield.geomipmap", e.what());
+    }
+  }
   resources.basis = load_basis_grid(scene, &resources.notes);
   resources.skybox = load_skybox(scene);
   check_planet_depth(scene, resources);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/height_sketch.h"
+#include "core/heightfield/field_mesh.h"
 #include "core/lattice.h"
 #include "core/proto_texture.h"
 #include "core/scene/scene.h"
@@ -57,6 +58,8 @@ struct SceneResources {
   std::vector<ProtoTexture> textures;  // one per scene.shading.layers entry
   // terrain.sketch's or terrain.heightfield's texels, when the scene has one
   std::optional<HeightSketch> sketch;
+  // terrain.heightfield.geomipmap's lattice and tiles (core/heightfield/field_mesh.h), when set.
+  std::optional<FieldMesh> field_mesh;
   // terrain.basis's composed grid (§3 Eq. 2, core/basis_images.h), when the scene has one: it
   // replaces `lattice` in stage 3 alone; the shading's noise keeps the lattice.
   std::optional<NoiseLattice> basis;
@@ -71,6 +74,7 @@ struct SceneResources {
   const HeightSketch* sketch_or_null() const { return sketch ? &*sketch : nullptr; }
   const NoiseLattice* basis_or_null() const { return basis ? &*basis : nullptr; }
   const Skybox* skybox_or_null() const { return skybox ? &*skybox : nullptr; }
+  const FieldMesh* field_mesh_or_null() const { return field_mesh ? &*field_mesh : nullptr; }
   // What stage 8 samples.
   ShadeResources shading() const { return {&lattice, textures, skybox_or_null()}; }
   // Stage 3's grid: the basis grid, or the noise lattice.

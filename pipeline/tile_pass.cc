@@ -95,7 +95,7 @@ void rasterize_tile_simd(std::span<const raster::SetupChunk> chunks, const raste
 }
 
 template <class Real>
-TilePass<Real>::TilePass(const raster::RasterState& state, const raster::GridTriangles& triangles,
+TilePass<Real>::TilePass(const raster::RasterState& state, const raster::FrameTriangles& triangles,
                          VertexStreams<Real> streams, const ShadeParams<Real>& shade,
                          const ShadeResources& resources, const FrameOutputs& outputs,
                          double camera_y, FrameImage& image, TileKernels kernels, int first_row,

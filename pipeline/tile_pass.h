@@ -112,7 +112,7 @@ class TilePass {
   // `kernels`: each part's kind (cpu_kernels.h); Highway parts in float only, the same bytes.
   // `first_row`: the framebuffer row that is the image's row 0, for an image holding a band of
   // rows (render_frame_bands, frame.h); only tiles inside the band may then be run.
-  TilePass(const raster::RasterState& state, const raster::GridTriangles& triangles,
+  TilePass(const raster::RasterState& state, const raster::FrameTriangles& triangles,
            VertexStreams<Real> streams, const ShadeParams<Real>& shade,
            const ShadeResources& resources, const FrameOutputs& outputs, double camera_y,
            FrameImage& image, TileKernels kernels = {}, int first_row = 0,
@@ -131,7 +131,7 @@ class TilePass {
   void position(std::uint32_t vertex, double& x, double& y, double& w) const;
 
   const raster::RasterState& state_;
-  raster::GridTriangles triangles_;
+  raster::FrameTriangles triangles_;
   VertexStreams<Real> streams_;
   const ShadeParams<Real>& shade_;
   ShadeResources resources_;

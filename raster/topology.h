@@ -71,4 +71,23 @@ struct GridTriangles {
   }
 };
 
+// The frame's triangles as the tile pass reads them: the projected grid's implicit topology,
+// or an index list (a height field's GeoMipMap mesh, core/heightfield/field_mesh.h).
+class FrameTriangles {
+ public:
+  FrameTriangles(const GridTriangles& grid) : grid_(grid) {}  // NOLINT: either source converts
+  FrameTriangles(const IndexedTriangles& indexed)             // NOLINT
+      : indexed_(indexed), is_indexed_(true) {}
+
+  std::uint32_t count() const { return is_indexed_ ? indexed_.count() : grid_.count(); }
+  bool vertices(std::uint32_t t, std::uint32_t v[3]) const {
+    return is_indexed_ ? indexed_.vertices(t, v) : grid_.vertices(t, v);
+  }
+
+ private:
+  GridTriangles grid_;
+  IndexedTriangles indexed_;
+  bool is_indexed_ = false;
+};
+
 }  // namespace relief::raster

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
+#include <vector>
 
 #include "core/heightfield/geomipmap.h"
 #include "core/heightfield/geomipmap_triangles.h"
@@ -11,26 +11,62 @@
 namespace relief::geomipmap {
 namespace {
 
+constexpr std::uint32_t kNone = 0xffffffffu;
+
+// Vertex ids without a table of the whole lattice: each tile numbers its own (T + 1)^2 points,
+// taking the ids of the points it shares from the tiles drawn before it, which in row-major
+// order are the tile to its left (its right edge) and the three above (their lower edges: the
+// one above, and the corners of the ones above left and above right). A point gets its id
+// the first time a triangle uses it, as a map from lattice point to id would give it.
 struct MeshBuilder {
   Mesh& mesh;
-  std::unordered_map<std::uint64_t, std::uint32_t> ids;
-  int c0 = 0, r0 = 0;  // the current tile's first lattice point
+  int cells = 0;                       // T
+  std::vector<std::uint32_t> local;    // (T + 1)^2, this tile's ids, row-major from (c0, r0)
+  std::vector<std::uint32_t> above;    // per tile of the previous row: its lower edge (T + 1)
+  std::vector<std::uint32_t> current;  // the same for this row
+  std::vector<std::uint32_t> right;    // the right edge of the tile just drawn (T + 1)
+  int c0 = 0, r0 = 0;                  // the current tile's first lattice point
 
-  // Lattices are at most kMaxLatticeSide a side (build_geomipmap): ids fit 32 bits.
   std::uint32_t vertex(LatticeStep p) {
-    const int c = c0 + p[0], r = r0 + p[1];
-    const std::uint64_t key = (static_cast<std::uint64_t>(r) << 32) | static_cast<std::uint32_t>(c);
-    const auto [it, inserted] = ids.try_emplace(key, static_cast<std::uint32_t>(ids.size()));
-    if (inserted) {
-      mesh.vertex_column.push_back(c);
-      mesh.vertex_row.push_back(r);
+    std::uint32_t& id = local[static_cast<std::size_t>(p[1]) * (cells + 1) + p[0]];
+    if (id == kNone) {
+      // Lattices are at most kMaxLatticeSide a side (build_geomipmap): ids fit 32 bits.
+      id = static_cast<std::uint32_t>(mesh.vertex_column.size());
+      mesh.vertex_column.push_back(c0 + p[0]);
+      mesh.vertex_row.push_back(r0 + p[1]);
     }
-    return it->second;
+    return id;
   }
   void operator()(LatticeStep a, LatticeStep b, LatticeStep c) {
     mesh.indices.push_back(vertex(a));
     mesh.indices.push_back(vertex(b));
     mesh.indices.push_back(vertex(c));
+  }
+  // Before tile tx of a row: the shared points' ids; `left_drawn`: whether tile tx - 1 was.
+  void begin_tile(int tx, int tiles_x, bool left_drawn) {
+    const std::size_t side = static_cast<std::size_t>(cells) + 1;
+    std::fill(local.begin(), local.end(), kNone);
+    const auto take = [](std::uint32_t& to, std::uint32_t from) {
+      if (from != kNone)
+        to = from;
+    };
+    for (std::size_t i = 0; i < side; ++i) {
+      take(local[i], above[tx * side + i]);  // the upper edge
+      if (left_drawn)
+        take(local[i * side], right[i]);  // the left edge
+    }
+    if (tx > 0)
+      take(local[0], above[(tx - 1) * side + cells]);  // above left's corner
+    if (tx + 1 < tiles_x)
+      take(local[cells], above[(tx + 1) * side]);  // above right's corner
+  }
+  // After it (or in place of an undrawn tile: none of its points has an id).
+  void end_tile(int tx, bool drawn) {
+    const std::size_t side = static_cast<std::size_t>(cells) + 1;
+    for (std::size_t i = 0; i < side; ++i) {
+      current[tx * side + i] = drawn ? local[cells * side + i] : kNone;
+      right[i] = drawn ? local[i * side + cells] : kNone;
+    }
   }
 };
 
@@ -48,7 +84,25 @@ Mesh stitched_mesh(const GeoMipMap& map, const Selection& selection) {
     }
   }
   Mesh mesh;
-  MeshBuilder builder{mesh, {}};
+  // At most (T / 2^L + 1)^2 points and 2 (T / 2^L)^2 triangles a drawn tile: reserved once.
+  std::size_t most_points = 0, most_triangles = 0;
+  for (std::size_t t = 0; t < map.tiles.size(); ++t) {
+    if (selection.drawn[t]) {
+      const std::size_t cells = static_cast<std::size_t>(map.tile_cells >> selection.level[t]);
+      most_points += (cells + 1) * (cells + 1);
+      most_triangles += 2 * cells * cells;
+    }
+  }
+  mesh.vertex_column.reserve(most_points);
+  mesh.vertex_row.reserve(most_points);
+  mesh.indices.reserve(3 * most_triangles);
+  const std::size_t points = static_cast<std::size_t>(map.tile_cells) + 1;  // a tile's side
+  MeshBuilder builder{mesh,
+                      map.tile_cells,
+                      std::vector<std::uint32_t>(points * points, kNone),
+                      std::vector<std::uint32_t>(points * map.tiles_x, kNone),
+                      std::vector<std::uint32_t>(points * map.tiles_x, kNone),
+                      std::vector<std::uint32_t>(points, kNone)};
   const auto level_at = [&](int tx, int tz) {
     if (tx < 0 || tz < 0 || tx >= map.tiles_x || tz >= map.tiles_z)
       return -1;
@@ -56,8 +110,14 @@ Mesh stitched_mesh(const GeoMipMap& map, const Selection& selection) {
   };
   for (int tz = 0; tz < map.tiles_z; ++tz) {
     for (int tx = 0; tx < map.tiles_x; ++tx) {
-      if (!selection.drawn[static_cast<std::size_t>(tz) * map.tiles_x + tx])
+      const bool drawn = selection.drawn[static_cast<std::size_t>(tz) * map.tiles_x + tx] != 0;
+      if (!drawn) {
+        builder.end_tile(tx, false);
         continue;
+      }
+      builder.begin_tile(
+          tx, map.tiles_x,
+          tx > 0 && selection.drawn[static_cast<std::size_t>(tz) * map.tiles_x + tx - 1] != 0);
       const int level = level_at(tx, tz);
       // Each side at the coarser spacing of the two tiles that share it, drawn or not (the
       // field's edge: this tile's own).
@@ -69,7 +129,9 @@ Mesh stitched_mesh(const GeoMipMap& map, const Selection& selection) {
       tile_triangles(map.tile_cells, 1 << level,
                      {side(tx, tz - 1), side(tx + 1, tz), side(tx, tz + 1), side(tx - 1, tz)},
                      builder);
+      builder.end_tile(tx, true);
     }
+    std::swap(builder.above, builder.current);
   }
   mesh.tile_first_triangle.push_back(static_cast<std::uint32_t>(mesh.indices.size() / 3));
   return mesh;

@@ -88,6 +88,16 @@ struct SketchSettings {
 // A finite height field as the terrain (core/height_sketch.h samples it as it samples §3's
 // sketch): real elevation data or a `relief generate` map. A sketch that may be large and come
 // in any height format, with the fractal off unless `fractal` asks for its detail on top.
+// GeoMipMapping (de Boer 2000, as Scape draws a finite field): the field drawn as a stitched
+// mesh of tiles at levels of detail chosen per frame by screen-space error, culled by a quadtree
+// of bounding boxes and by occlusion (core/heightfield/geomipmap.h), in place of the projected
+// grid. The mesh's vertices are the field's surface at its sample positions.
+struct GeoMipMapSettings {
+  int tile_cells = 32;       // T: cells a tile spans a side, a power of two from 2 to 256
+  double pixel_error = 1.0;  // tau: the largest screen-space error a level may make, pixels
+  bool occlusion = true;     // tiles hidden behind nearer ground are not drawn (bit-identical)
+};
+
 struct HeightFieldSettings : SketchSettings {
   // `image` (the scene key "file"): a grey PNG (8 or 16 bits), a one-channel PFM (float), or
   // RAW16 (.r16, .raw: little-endian 16-bit levels, top row first, no header).
@@ -108,6 +118,8 @@ struct HeightFieldSettings : SketchSettings {
   // Whether a GeoTIFF's own placement (ModelPixelScale and ModelTiePoint, projected metres or
   // feet) gives the extent, which is then not read (pipeline/geotiff_reference.h).
   bool georeferenced = false;
+  // Drawn by GeoMipMapping instead of the projected grid; nullopt: the projected grid.
+  std::optional<GeoMipMapSettings> geomipmap;
 };
 
 // §3 Eq. 2: the auxiliary function S as a convex combination of grey-scale basis images,

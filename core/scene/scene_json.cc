@@ -187,6 +187,9 @@ void validate_scene(const Scene& scene) {
          "levels are read from stage 2's octave count, which the fractal then needs; allowed: "
          "level_of_detail with the fractal off");
   }
+  if (t.heightfield && t.heightfield->geomipmap) {
+    validate_geomipmap(scene);
+  }
   if (t.basis) {
     validate_basis(*t.basis, coarsest_frequency * farthest_footprint);
   } else if (t.horizontal_scale < min_horizontal_scale) {

@@ -34,5 +34,9 @@ const Schema<OutputSettings>& output_schema();
 void validate_basis(const BasisSettings& basis, double coarsest_reach);
 // The planet's rules across fields, run by validate_scene (throws SceneError).
 void validate_planet(const Scene& scene);
+// terrain.heightfield.geomipmap against the rest of the scene: refused with the fractal or its
+// levels of detail (the mesh's vertices are the field's samples, its levels GeoMipMapping's),
+// on a planet, and with lighting.shadows (whose horizon cache follows the projected grid).
+void validate_geomipmap(const Scene& scene);
 
 }  // namespace relief

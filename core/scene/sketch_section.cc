@@ -47,6 +47,26 @@ Field<HeightFieldSettings> heightfield_file_field() {
   return field;
 }
 
+const Schema<GeoMipMapSettings>& geomipmap_schema() {
+  using S = GeoMipMapSettings;
+  static const Schema<S> schema({
+      power_of_two_field<S>("tile_cells", &S::tile_cells, 2, 256,
+                            {"cells",
+                             "T: lattice cells a tile spans a side; level L keeps every 2^L-th "
+                             "vertex (de Boer's GeoMipMapping)"}),
+      number_field<S>("pixel_error", &S::pixel_error,
+                      Range{limits::kMinGeoMipMapPixelError, limits::kMaxGeoMipMapPixelError},
+                      {"pixels",
+                       "tau: each tile takes the coarsest level whose geometric error, projected "
+                       "from the tile's nearest point, is at most this many pixels"}),
+      boolean_field<S>("occlusion", &S::occlusion,
+                       {"",
+                        "tiles hidden behind nearer ground are not drawn (the image is the same "
+                        "bit for bit; a skip, counted in --stats)"}),
+  });
+  return schema;
+}
+
 }  // namespace
 
 const Schema<SketchSettings>& sketch_schema() {
@@ -97,8 +117,42 @@ const Schema<HeightFieldSettings>& heightfield_schema() {
                        {"",
                         "a GeoTIFF's own placement (projected metres or feet, north up) gives "
                         "the extent, which is then not read"}),
+      optional_section_field<S>(
+          "geomipmap", &S::geomipmap, geomipmap_schema(), "", "",
+          {"",
+           "draw the field by GeoMipMapping (tiles at levels of detail, stitched, culled by a "
+           "quadtree and by occlusion) instead of the projected grid; null: the projected grid",
+           "needs fractal and level_of_detail false, the plane, no "
+           "lighting.shadows, a CPU backend"}),
   });
   return schema;
+}
+
+void validate_geomipmap(const Scene& scene) {
+  const TerrainSettings& t = scene.terrain;
+  const std::string why = " with terrain.heightfield.geomipmap: ";
+  if (t.heightfield->fractal) {
+    throw SceneError("terrain.heightfield.fractal",
+                     "terrain.heightfield.fractal = true" + why +
+                         "the mesh's vertices are the field's own surface, with no fractal "
+                         "detail to carry; allowed false (or geomipmap null)");
+  }
+  if (t.heightfield->level_of_detail) {
+    throw SceneError("terrain.heightfield.level_of_detail",
+                     "terrain.heightfield.level_of_detail = true" + why +
+                         "GeoMipMapping chooses its own levels per tile; allowed false");
+  }
+  if (t.planet && t.planet->radius != 0.0) {
+    throw SceneError("terrain.planet.radius",
+                     "terrain.planet.radius = " + format_number(t.planet->radius) + why +
+                         "a field is flat; allowed 0");
+  }
+  if (scene.lighting.shadows) {
+    throw SceneError("lighting.shadows",
+                     "lighting.shadows = true" + why +
+                         "the shadows' horizon cache is planned over the projected grid and is "
+                         "not built for the mesh yet; allowed false");
+  }
 }
 
 }  // namespace relief

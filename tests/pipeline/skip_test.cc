@@ -62,7 +62,8 @@ const SkipField kSkips[] = {{"invalid_vertices", &FrameSkips::invalid_vertices},
                             {"specular", &FrameSkips::specular},
                             {"zero_weights", &FrameSkips::zero_weights},
                             {"lit_shadows", &FrameSkips::lit_shadows},
-                            {"unread_shadow_levels", &FrameSkips::unread_shadow_levels}};
+                            {"unread_shadow_levels", &FrameSkips::unread_shadow_levels},
+                            {"occluded_tiles", &FrameSkips::occluded_tiles}};
 
 FrameSkips nothing_skipped() {
   FrameSkips none;

@@ -1,0 +1,167 @@
+// CpuBackend's GeoMipMapping mode (terrain.heightfield.geomipmap, core/heightfield/field_mesh.h):
+// stage 2 selects the view's tiles (quadtree frustum culling, levels by screen-space error,
+// occlusion culling) and stitches their mesh, whose vertices then fill the grid buffers in rows
+// of kMeshRowVertices; stages 3 and 4 read the field at those vertices; from stage 5 on the
+// frame is the projected grid's, drawing the mesh's index list. Every CPU backend runs the same
+// portable loops here (the mesh's vertex stages are gathers from the lattice, a few percent of
+// the frame), so the simd frame is the reference's, bit for bit.
+#include <algorithm>
+
+#include "core/input_file.h"
+#include "core/vertex_culling.h"
+#include "pipeline/cpu_backend.h"
+#include "pipeline/memory_budget.h"
+
+namespace relief {
+
+template <class Real>
+raster::FrameTriangles CpuBackend<Real>::frame_triangles() const {
+  if (mesh_mode()) {
+    return raster::IndexedTriangles{mesh_.indices};
+  }
+  return triangles();
+}
+
+// Bytes a mesh vertex takes through the frame: its lattice ids, the grid buffers' twelve fields,
+// the clip coordinates (and their float copy in double), the Lambert term, valid and need,
+// and the mesh builder's id table entry; a triangle its three indices.
+template <class Real>
+constexpr std::uintmax_t kMeshVertexBytes = 2 * 4 + 17 * sizeof(Real) + 4 * 4 + 2 + 32;
+constexpr std::uintmax_t kMeshTriangleBytes = 3 * sizeof(std::uint32_t);
+
+template <class Real>
+void CpuBackend<Real>::check_mesh_memory(const geomipmap::Selection& selection) const {
+  // At most (T / 2^L + 1)^2 vertices and 2 (T / 2^L)^2 triangles per drawn tile at level L.
+  std::uintmax_t vertices = 0, triangles = 0;
+  const int cells = field_mesh_->map.tile_cells;
+  for (std::size_t tile = 0; tile < selection.drawn.size(); ++tile) {
+    if (selection.drawn[tile] != 0) {
+      const std::uintmax_t side = std::uintmax_t(cells >> selection.level[tile]);
+      vertices += (side + 1) * (side + 1);
+      triangles += 2 * side * side;
+    }
+  }
+  const std::uintmax_t bytes = vertices * kMeshVertexBytes<Real> + triangles * kMeshTriangleBytes;
+  if (bytes > request_.max_bin_bytes) {
+    throw MemoryLimitError("the GeoMipMap mesh of this view (up to " + std::to_string(vertices) +
+                           " vertices, " + std::to_string(triangles) + " triangles) needs up to " +
+                           format_bytes(bytes) + ", more than the " +
+                           format_bytes(request_.max_bin_bytes) +
+                           " left of the memory budget; raise "
+                           "terrain.heightfield.geomipmap.pixel_error");
+  }
+}
+
+template <class Real>
+void CpuBackend<Real>::prepare_mesh() {
+  const GeoMipMapSettings& settings = *scene_.terrain.heightfield->geomipmap;
+  geomipmap::View view;
+  view.camera = plan_.camera;
+  view.width = scene_.viewport.width;
+  view.height = scene_.viewport.height;
+  view.pixel_error = settings.pixel_error;
+  // Occlusion culling removes only tiles no pixel sees (geomipmap_select.cc): a skip.
+  view.occlusion = settings.occlusion && request_.skips.occluded_tiles;
+  const geomipmap::Selection selection = geomipmap::select_levels(field_mesh_->map, view);
+  mesh_counts_ = selection.counts;
+  check_mesh_memory(selection);
+  mesh_ = geomipmap::stitched_mesh(field_mesh_->map, selection);
+  plan_.layout = mesh_layout(mesh_.vertex_column.size());
+  grid_ = GridBuffers<Real>(plan_.layout);
+  need_.assign(plan_.layout.size(), 0);
+}
+
+template <class Real>
+void CpuBackend<Real>::run_mesh(StageId id, RowRange rows) {
+  const IndexRange range{plan_.layout.index(0, rows.begin), plan_.layout.index(0, rows.end)};
+  NeedCount count;
+  for (std::size_t k = range.begin; k < range.end && id != StageId::kProjectedDomain; ++k) {
+    const std::uint64_t valid = grid_.valid[k];
+    count.evaluate += valid;
+    count.draw += valid;
+    count.valid_draw += valid;
+  }
+  switch (id) {
+    case StageId::kProjectedDomain:
+      mesh_domain<Real>(*field_mesh_, mesh_, plan_.camera.position, range, grid_.domain());
+      for (std::size_t k = range.begin; k < range.end; ++k) {
+        need_[k] = grid_.valid[k] ? std::uint8_t(kEvaluate | kDraw) : std::uint8_t(0);
+      }
+      return;
+    case StageId::kVertexNeeds:
+      tally_rows(rows, count);
+      return;
+    case StageId::kFractal:
+      mesh_heights<Real>(*field_mesh_, mesh_, plan_.camera.position.y, range, grid_.height);
+      tally_fbm(FbmWork{count.evaluate, 0});
+      return;
+    case StageId::kDrawNeeds:
+      tally_draws(rows, count);
+      return;
+    case StageId::kSurface:
+      mesh_surface<Real>(*field_mesh_, *field_texels_, mesh_, params_.surface.water_level,
+                         params_.surface.water_enabled != 0, range, grid_.height, grid_.surface());
+      return;
+    default:  // the outcodes: none (units 0)
+      return;
+  }
+}
+
+template <class Real>
+void CpuBackend<Real>::describe_mesh(StageTime& time) const {
+  const geomipmap::SelectionCounts& c = mesh_counts_;
+  const auto count = [&](std::string name, std::uint64_t value) {
+    time.counters.push_back({std::move(name), value});
+  };
+  count("GeoMipMap tiles", std::uint64_t(field_mesh_->map.tiles.size()));
+  count("quadtree nodes visited", c.nodes_visited);
+  count("quadtree nodes culled", c.nodes_culled);
+  count("tiles outside the frustum", c.tiles_culled);
+  count("occlusion cells covered by a floor", c.occlusion_cells);
+  count("tiles occluded", c.tiles_occluded);
+  count("tiles drawn", c.tiles_drawn);
+  for (int level = 0; level < field_mesh_->map.levels; ++level) {
+    count("tiles drawn at level " + std::to_string(level), c.tiles_per_level[level]);
+  }
+  count("mesh vertices", std::uint64_t(mesh_.vertex_column.size()));
+}
+
+template <class Real>
+std::vector<KernelChoice> CpuBackend<Real>::mesh_kernel_choices() const {
+  static constexpr const char* kWhy =
+      "the GeoMipMap mesh's vertices are gathers from the field's lattice (field_mesh.h), a "
+      "few percent of the frame";
+  std::vector<KernelChoice> out = {
+      {StageId::kProjectedDomain, "mesh positions", KernelKind::kPortable, kWhy},
+      {StageId::kFractal, "mesh heights", KernelKind::kPortable, kWhy},
+      {StageId::kSurface, "mesh normals", KernelKind::kPortable, kWhy}};
+  for (const KernelChoice& choice : kernels_.choices) {
+    if (choice.stage > StageId::kSurface) {  // stages 5 on: the grid's kernels
+      out.push_back(choice);
+    }
+  }
+  // The portable loops are the reference backends' own kind: no reason to give there.
+  if (kernels_.choices.empty() || request_.backend != Backend::kSimd) {
+    for (KernelChoice& choice : out) {
+      if (choice.stage <= StageId::kSurface) {
+        choice.reason = "";
+      }
+    }
+  }
+  return out;
+}
+
+template std::vector<KernelChoice> CpuBackend<float>::mesh_kernel_choices() const;
+template std::vector<KernelChoice> CpuBackend<double>::mesh_kernel_choices() const;
+template raster::FrameTriangles CpuBackend<float>::frame_triangles() const;
+template raster::FrameTriangles CpuBackend<double>::frame_triangles() const;
+template void CpuBackend<float>::check_mesh_memory(const geomipmap::Selection&) const;
+template void CpuBackend<double>::check_mesh_memory(const geomipmap::Selection&) const;
+template void CpuBackend<float>::prepare_mesh();
+template void CpuBackend<double>::prepare_mesh();
+template void CpuBackend<float>::run_mesh(StageId, RowRange);
+template void CpuBackend<double>::run_mesh(StageId, RowRange);
+template void CpuBackend<float>::describe_mesh(StageTime&) const;
+template void CpuBackend<double>::describe_mesh(StageTime&) const;
+
+}  // namespace relief
