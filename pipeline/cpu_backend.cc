@@ -221,8 +221,8 @@ void CpuBackend<Real>::run(StageId id, std::size_t begin, std::size_t end) {
     case StageId::kTriangleSetup:
       for (std::size_t c = begin; c < end; ++c) {
         if (mesh_mode()) {
-          raster::setup_chunk(*setup_, raster_positions(), raster::IndexedTriangles{mesh_.indices},
-                              c, chunks_[c]);
+          raster::setup_indexed_chunk(*setup_, raster_positions(), {mesh_.indices}, mesh_prepared_,
+                                      kMeshPreparedBlock, c, chunks_[c]);
         } else {
           raster::setup_chunk(*setup_, raster_positions(), triangles(), c, chunks_[c]);
         }
@@ -289,6 +289,9 @@ void CpuBackend<Real>::prepare(StageId id) {
         setup_->set_snap_kernels(kernels_.snap);
       }
       chunks_.resize(raster::setup_chunk_count(frame_triangles().count()));
+      if (mesh_mode()) {
+        prepare_mesh_setup();
+      }
       return;
     case StageId::kTiles: {
       // Stage 8's plan and the frame's outputs.

@@ -70,9 +70,15 @@ class CpuBackend final : public FrameBackend {
   // GeoMipMapping (cpu_backend_mesh.cc): the view's tiles and stitched mesh, its vertices laid
   // out in the grid buffers (prepare of stage 2), and the vertex stages over its rows.
   bool mesh_mode() const { return field_mesh_ != nullptr; }
+  double camera_above_base() const {
+    return plan_.camera.position.y - scene_.terrain.base_height;  // in double
+  }
   void prepare_mesh();
+  // Before the mesh's set-up: its vertices prepared once (snapped, outcodes), in parallel blocks.
+  void prepare_mesh_setup();
   // Refuses (MemoryLimitError) a selection whose mesh could exceed what is left of the budget.
-  void check_mesh_memory(const geomipmap::Selection& selection) const;
+  // Returns the bytes it may take.
+  std::uintmax_t check_mesh_memory(const geomipmap::Selection& selection) const;
   void run_mesh(StageId id, RowRange rows);
   void describe_mesh(StageTime& time) const;
   // The kernel table's choices with stages 2-4's replaced by the mesh's portable loops.
@@ -101,6 +107,8 @@ class CpuBackend final : public FrameBackend {
   const HeightSketch* field_texels_;  // the field's texels (the mesh's normals)
   geomipmap::Mesh mesh_;              // this frame's stitched mesh (mesh mode)
   geomipmap::SelectionCounts mesh_counts_;
+  std::vector<raster::PreparedVertices> mesh_prepared_;  // blocks of kMeshPreparedBlock
+  std::uintmax_t mesh_bytes_ = 0;  // what the mesh may take of the bins' budget
   FrameRequest request_;
   FramePlan plan_;
   TerrainParams<Real> params_;

@@ -7,6 +7,10 @@
 // the frame), so the simd frame is the reference's, bit for bit.
 #include <algorithm>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+
 #include "core/input_file.h"
 #include "core/vertex_culling.h"
 #include "pipeline/cpu_backend.h"
@@ -23,14 +27,15 @@ raster::FrameTriangles CpuBackend<Real>::frame_triangles() const {
 }
 
 // Bytes a mesh vertex takes through the frame: its lattice ids, the grid buffers' twelve fields,
-// the clip coordinates (and their float copy in double), the Lambert term, valid and need,
-// and the mesh builder's id table entry; a triangle its three indices.
+// the clip coordinates (and their float copy in double), the Lambert term, valid, need and
+// outcode, and its values prepared for set-up (raster::PreparedVertices: 34 bytes); a triangle
+// its three indices.
 template <class Real>
-constexpr std::uintmax_t kMeshVertexBytes = 2 * 4 + 17 * sizeof(Real) + 4 * 4 + 2 + 32;
+constexpr std::uintmax_t kMeshVertexBytes = 2 * 4 + 17 * sizeof(Real) + 4 * 4 + 3 + 34;
 constexpr std::uintmax_t kMeshTriangleBytes = 3 * sizeof(std::uint32_t);
 
 template <class Real>
-void CpuBackend<Real>::check_mesh_memory(const geomipmap::Selection& selection) const {
+std::uintmax_t CpuBackend<Real>::check_mesh_memory(const geomipmap::Selection& selection) const {
   // At most (T / 2^L + 1)^2 vertices and 2 (T / 2^L)^2 triangles per drawn tile at level L.
   std::uintmax_t vertices = 0, triangles = 0;
   const int cells = field_mesh_->map.tile_cells;
@@ -50,13 +55,15 @@ void CpuBackend<Real>::check_mesh_memory(const geomipmap::Selection& selection) 
                            " left of the memory budget; raise "
                            "terrain.heightfield.geomipmap.pixel_error");
   }
+  return bytes;
 }
 
 template <class Real>
 void CpuBackend<Real>::prepare_mesh() {
   const GeoMipMapSettings& settings = *scene_.terrain.heightfield->geomipmap;
   geomipmap::View view;
-  view.camera = plan_.camera;
+  view.camera = plan_.camera;  // its height above the base: the lattice's frame (field_mesh.h)
+  view.camera.position.y = camera_above_base();
   view.width = scene_.viewport.width;
   view.height = scene_.viewport.height;
   view.pixel_error = settings.pixel_error;
@@ -64,11 +71,28 @@ void CpuBackend<Real>::prepare_mesh() {
   view.occlusion = settings.occlusion && request_.skips.occluded_tiles;
   const geomipmap::Selection selection = geomipmap::select_levels(field_mesh_->map, view);
   mesh_counts_ = selection.counts;
-  check_mesh_memory(selection);
+  mesh_bytes_ = check_mesh_memory(selection);  // the bins get what is left (tally_setup)
   mesh_ = geomipmap::stitched_mesh(field_mesh_->map, selection);
   plan_.layout = mesh_layout(mesh_.vertex_column.size());
   grid_ = GridBuffers<Real>(plan_.layout);
   need_.assign(plan_.layout.size(), 0);
+}
+
+template <class Real>
+void CpuBackend<Real>::prepare_mesh_setup() {
+  // Every mesh vertex is valid and drawn (padding is never indexed): no condition.
+  const std::size_t vertices = mesh_.vertex_column.size();
+  mesh_prepared_.resize((vertices + kMeshPreparedBlock - 1) / kMeshPreparedBlock);
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, mesh_prepared_.size(), 1),
+      [&](const tbb::blocked_range<std::size_t>& blocks) {
+        for (std::size_t b = blocks.begin(); b < blocks.end(); ++b) {
+          setup_->prepare_vertices(raster_positions(), b * kMeshPreparedBlock,
+                                   std::min(vertices, (b + 1) * kMeshPreparedBlock), {}, {},
+                                   mesh_prepared_[b]);
+        }
+      },
+      tbb::simple_partitioner());
 }
 
 template <class Real>
@@ -92,7 +116,7 @@ void CpuBackend<Real>::run_mesh(StageId id, RowRange rows) {
       tally_rows(rows, count);
       return;
     case StageId::kFractal:
-      mesh_heights<Real>(*field_mesh_, mesh_, plan_.camera.position.y, range, grid_.height);
+      mesh_heights<Real>(*field_mesh_, mesh_, camera_above_base(), range, grid_.height);
       tally_fbm(FbmWork{count.evaluate, 0});
       return;
     case StageId::kDrawNeeds:
@@ -155,8 +179,10 @@ template std::vector<KernelChoice> CpuBackend<float>::mesh_kernel_choices() cons
 template std::vector<KernelChoice> CpuBackend<double>::mesh_kernel_choices() const;
 template raster::FrameTriangles CpuBackend<float>::frame_triangles() const;
 template raster::FrameTriangles CpuBackend<double>::frame_triangles() const;
-template void CpuBackend<float>::check_mesh_memory(const geomipmap::Selection&) const;
-template void CpuBackend<double>::check_mesh_memory(const geomipmap::Selection&) const;
+template std::uintmax_t CpuBackend<float>::check_mesh_memory(const geomipmap::Selection&) const;
+template std::uintmax_t CpuBackend<double>::check_mesh_memory(const geomipmap::Selection&) const;
+template void CpuBackend<float>::prepare_mesh_setup();
+template void CpuBackend<double>::prepare_mesh_setup();
 template void CpuBackend<float>::prepare_mesh();
 template void CpuBackend<double>::prepare_mesh();
 template void CpuBackend<float>::run_mesh(StageId, RowRange);

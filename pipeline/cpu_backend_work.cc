@@ -47,11 +47,13 @@ void CpuBackend<Real>::tally_setup() {
   raster_stats_.bin_bytes = bins.bytes;
   // The set-up triangles and the bins depend on the frame's triangles: counted here, not in
   // the up-front estimate (pipeline/job_memory.h).
-  if (bins.bytes + raster_stats_.setup_bytes > request_.max_bin_bytes) {
+  // A GeoMipMap frame's mesh has taken its share first (check_mesh_memory; <= max_bin_bytes).
+  const std::uint64_t budget = request_.max_bin_bytes - mesh_bytes_;
+  if (bins.bytes + raster_stats_.setup_bytes > budget) {
     raster_stats_.bins_refused = true;
     throw MemoryLimitError("the rasteriser's set-up triangles and bins for this frame need " +
                            format_bytes(bins.bytes + raster_stats_.setup_bytes) +
-                           ", more than the " + format_bytes(request_.max_bin_bytes) +
+                           ", more than the " + format_bytes(budget) +
                            " left of the memory budget; lower viewport.width/height");
   }
 }

@@ -53,9 +53,19 @@ void run_table(FrameBackend& backend, StageId last, std::vector<StageTime>& time
 
 // terrain.heightfield.geomipmap's lattice and tiles where the scene draws them (a scene changed
 // after loading, the ground truth's among them, may not).
+// Refused rather than drawn as the projected grid, or with another scene's tiles, without a word.
 const FieldMesh* drawn_field_mesh(const Scene& scene, const SceneResources& resources) {
   const bool drawn = scene.terrain.heightfield && scene.terrain.heightfield->geomipmap;
-  return drawn ? resources.field_mesh_or_null() : nullptr;
+  if (!drawn) {
+    return nullptr;
+  }
+  const FieldMesh* mesh = resources.field_mesh_or_null();
+  if (mesh == nullptr || mesh->map.tile_cells != scene.terrain.heightfield->geomipmap->tile_cells) {
+    throw std::invalid_argument(
+        "terrain.heightfield.geomipmap: the scene's resources hold no field mesh of its "
+        "tile_cells; load them for this scene (load_scene_resources)");
+  }
+  return mesh;
 }
 
 template <class Real>

@@ -213,7 +213,7 @@ SceneResources load_scene_resources(const Scene& scene) {
     try {
       resources.field_mesh =
           build_field_mesh(*resources.sketch, sketch_extent(*field, *resources.sketch),
-                           scene.terrain.base_height, field->geomipmap->tile_cells);
+                           field->geomipmap->tile_cells);
     } catch (const std::invalid_argument& e) {
       throw SceneError("terrain.heightfield.geomipmap", e.what());
     }

@@ -110,6 +110,17 @@ void setup_chunk(const TriangleSetup& setup, ClipVertices vertices, const Source
   out.bin_entries = count_bin_entries(out.triangles);
 }
 
+void setup_indexed_chunk(const TriangleSetup& setup, ClipVertices vertices,
+                         const IndexedTriangles& source, std::span<const PreparedVertices> blocks,
+                         std::size_t block_vertices, std::size_t chunk, SetupChunk& out) {
+  out.triangles.clear();
+  out.submitted = 0;
+  const auto begin = static_cast<std::uint32_t>(chunk * kSetupChunk);
+  setup.setup_indexed(vertices, source, begin, chunk_end(source, chunk), blocks, block_vertices,
+                      out.submitted, out.triangles);
+  out.bin_entries = count_bin_entries(out.triangles);
+}
+
 void setup_window_chunk(const TriangleSetup& setup, WindowVertices vertices,
                         const IndexedTriangles& source, std::size_t chunk, SetupChunk& out) {
   out.triangles.clear();

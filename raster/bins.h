@@ -47,6 +47,12 @@ template <class Source>
 void setup_chunk(const TriangleSetup& setup, ClipVertices vertices, const Source& source,
                  std::size_t chunk, SetupChunk& out);
 
+// The same for an index list whose vertices are prepared in blocks (setup_indexed): the same
+// triangles, counts and entries as setup_chunk<IndexedTriangles> gives.
+void setup_indexed_chunk(const TriangleSetup& setup, ClipVertices vertices,
+                         const IndexedTriangles& source, std::span<const PreparedVertices> blocks,
+                         std::size_t block_vertices, std::size_t chunk, SetupChunk& out);
+
 // The same for window-coordinate triangles (relief raster's soups).
 void setup_window_chunk(const TriangleSetup& setup, WindowVertices vertices,
                         const IndexedTriangles& source, std::size_t chunk, SetupChunk& out);

@@ -9,7 +9,10 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "raster/setup_internal.h"
 
@@ -121,6 +124,108 @@ void depth_batch(ClipVertices vertices, const DepthBatch& batch, float scale_x, 
   }
 }
 
+// The arrays of one block of prepared vertices, as raw pointers the loops keep in registers.
+struct PreparedView {
+  const std::uint8_t *flags, *outcode;
+  const float *floor_x, *floor_y, *z;
+  const std::int32_t *fx, *fy;
+};
+PreparedView view_of(const PreparedVertices& p) {
+  return {p.flags.data(), p.outcode.data(), p.floor_x.data(), p.floor_y.data(),
+          p.z.data(),     p.fx.data(),      p.fy.data()};
+}
+
+// A prepared vertex by its index in the vertex buffer: one block (setup_grid's chunk) or
+// blocks of a power-of-two size (an index list's, prepared once per frame).
+struct OneBlock {
+  PreparedView view;
+  std::size_t base;
+  std::size_t at(std::size_t k) const { return k - base; }
+  PreparedView of(std::size_t) const { return view; }
+};
+struct FixedBlocks {
+  std::vector<PreparedView> views;
+  int shift;  // log2 of the block's vertices
+  std::size_t at(std::size_t k) const { return k & ((std::size_t(1) << shift) - 1); }
+  PreparedView of(std::size_t k) const { return views[k >> shift]; }
+};
+
+// The set-up of the triangles `walk` names (walk(emit) calls emit(t, k0, k1, k2) for each
+// triangle t to set up, in order, k the vertices' indices in `vertices`): exactly setup_clip's
+// decisions and values, from the prepared vertices where they decide it, setup_clip itself
+// otherwise; `submitted` counts the drawn ones (kDrawn on all three).
+template <class Prepared, class Walk>
+void set_up_prepared(const TriangleSetup& setup, const EdgeRules& rules, ClipVertices vertices,
+                     const Prepared& prepared, float scale_x, float scale_y, float translate_x,
+                     float translate_y, std::uint32_t& submitted, RasterTriangles& out,
+                     Walk&& walk) {
+  DepthBatch batch;
+  thread_local TriangleScratch scratch;
+  thread_local std::vector<RasterTriangle> clipped;  // the pieces of one clipped triangle
+  scratch.clear();
+  walk([&](std::uint32_t t, std::size_t v0, std::size_t v1, std::size_t v2) {
+    const PreparedView p0 = prepared.of(v0), p1 = prepared.of(v1), p2 = prepared.of(v2);
+    const std::size_t k0 = prepared.at(v0), k1 = prepared.at(v1), k2 = prepared.at(v2);
+    const unsigned all = p0.flags[k0] & p1.flags[k1] & p2.flags[k2];
+    if ((all & PreparedVertices::kDrawn) == 0) {
+      return;  // not drawn (need)
+    }
+    ++submitted;
+    if (all & PreparedVertices::kSnapped) {
+      // Inside every plane: setup_polygon's single piece, its depth plane to come.
+      std::int32_t px[3] = {p0.fx[k0], p1.fx[k1], p2.fx[k2]};
+      std::int32_t py[3] = {p0.fy[k0], p1.fy[k1], p2.fy[k2]};
+      std::int32_t box[4];
+      bool swapped = false;
+      if (!edge_box(rules, px, py, box, swapped)) {
+        return;
+      }
+      RasterTriangle& tri = scratch.append();
+      write_edges(px, py, box, tri);
+      tri.primitive = t;  // z0, dzdx, dzdy: depth_batch's
+      const int slot = batch.count++;
+      batch.slot[slot] = scratch.size() - 1;
+      batch.vertex[0][slot] = v0;
+      batch.vertex[1][slot] = v1;
+      batch.vertex[2][slot] = v2;
+      batch.floor_x[slot] = p0.floor_x[k0];
+      batch.floor_y[slot] = p0.floor_y[k0];
+      batch.first_z[slot] = p0.z[k0];
+      if (batch.count == kDepthBatch) {
+        depth_batch(vertices, batch, scale_x, scale_y, translate_x, translate_y, scratch.data());
+        batch.count = 0;
+      }
+      return;
+    }
+    if (all & PreparedVertices::kPlain) {
+      const unsigned o0 = p0.outcode[k0], o1 = p1.outcode[k1], o2 = p2.outcode[k2];
+      if ((o0 & o1 & o2) != 0) {
+        return;  // all three outside one plane
+      }
+      if ((o0 | o1 | o2) == 0) {
+        return;  // inside every plane, a vertex beyond the snap limit: dropped
+      }
+    }
+    const std::size_t v[3] = {v0, v1, v2};
+    const ClipVertex cv[3] = {
+        {vertices.x[v[0]], vertices.y[v[0]], vertices.z[v[0]], vertices.w[v[0]]},
+        {vertices.x[v[1]], vertices.y[v[1]], vertices.z[v[1]], vertices.w[v[1]]},
+        {vertices.x[v[2]], vertices.y[v[2]], vertices.z[v[2]], vertices.w[v[2]]}};
+    clipped.clear();
+    setup.setup_clip(t, cv, clipped);
+    for (const RasterTriangle& piece : clipped) {
+      scratch.append() = piece;
+    }
+  });
+  depth_batch(vertices, batch, scale_x, scale_y, translate_x, translate_y, scratch.data());
+  if (scratch.size() > 0) {
+    const std::size_t first = out.size();
+    out.resize(first + scratch.size());  // default-initialised: written here
+    std::memcpy(static_cast<void*>(out.data() + first), scratch.data(),
+                scratch.size() * sizeof(RasterTriangle));
+  }
+}
+
 }  // namespace
 
 void TriangleSetup::setup_grid(ClipVertices vertices, const GridTriangles& source,
@@ -133,98 +238,57 @@ void TriangleSetup::setup_grid(ClipVertices vertices, const GridTriangles& sourc
   const GridLayout& layout = source.layout;
   const auto columns = static_cast<std::uint32_t>(layout.width - 1);  // cells per row
   const std::uint32_t first_cell = begin >> 1, last_cell = (end - 1) >> 1;
-  int i = static_cast<int>(first_cell % columns);
-  int j = static_cast<int>(first_cell / columns);
   const std::size_t pitch = static_cast<std::size_t>(layout.pitch);
-  const std::size_t base = prepared.begin;
   const std::uint8_t* flags = prepared.flags.data();
-  const std::uint8_t* outcode = prepared.outcode.data();
-  const float* floor_x = prepared.floor_x.data();
-  const float* floor_y = prepared.floor_y.data();
-  const float* window_z = prepared.z.data();
-  const std::int32_t* fx = prepared.fx.data();
-  const std::int32_t* fy = prepared.fy.data();
-  DepthBatch batch;
-  thread_local TriangleScratch scratch;
-  thread_local std::vector<RasterTriangle> clipped;  // the pieces of one clipped triangle
-  scratch.clear();
-  for (std::uint32_t cell = first_cell; cell <= last_cell; ++cell) {
-    // Corners as GridTriangles names them: a = (i, j), b = (i+1, j), c = (i+1, j+1),
-    // d = (i, j+1); triangles (a, b, c) and (a, c, d).
-    const std::size_t a = layout.index(i, j) - base, b = a + 1, d = a + pitch, c = d + 1;
-    if (++i == static_cast<int>(columns)) {
-      i = 0;
-      ++j;
-    }
-    const unsigned fa = flags[a], fb = flags[b], fc = flags[c], fd = flags[d];
-    if ((fa & fb & fc & fd & PreparedVertices::kValid) == 0) {
-      continue;  // a corner is invalid: neither triangle is drawn
-    }
-    for (std::uint32_t half = 0; half < 2; ++half) {
-      const std::uint32_t t = 2 * cell + half;
-      const std::size_t k0 = a, k1 = half ? c : b, k2 = half ? d : c;
-      const unsigned all = fa & (half ? fc & fd : fb & fc);
-      if ((all & PreparedVertices::kDrawn) == 0 || t < begin || t >= end) {
-        continue;  // not drawn (need), or not in [begin, end)
-      }
-      ++submitted;
-      // Exactly setup_clip's decisions and values, from the prepared vertices where they
-      // decide it; setup_clip itself otherwise.
-      if (all & PreparedVertices::kSnapped) {
-        // Inside every plane: setup_polygon's single piece, its depth plane to come.
-        std::int32_t px[3] = {fx[k0], fx[k1], fx[k2]};
-        std::int32_t py[3] = {fy[k0], fy[k1], fy[k2]};
-        std::int32_t box[4];
-        bool swapped = false;
-        if (!edge_box(edge_rules_, px, py, box, swapped)) {
-          continue;
-        }
-        RasterTriangle& tri = scratch.append();
-        write_edges(px, py, box, tri);
-        tri.primitive = t;  // z0, dzdx, dzdy: depth_batch's
-        const int slot = batch.count++;
-        batch.slot[slot] = scratch.size() - 1;
-        batch.vertex[0][slot] = base + k0;
-        batch.vertex[1][slot] = base + k1;
-        batch.vertex[2][slot] = base + k2;
-        batch.floor_x[slot] = floor_x[k0];
-        batch.floor_y[slot] = floor_y[k0];
-        batch.first_z[slot] = window_z[k0];
-        if (batch.count == kDepthBatch) {
-          depth_batch(vertices, batch, scale_x_, scale_y_, translate_x_, translate_y_,
-                      scratch.data());
-          batch.count = 0;
-        }
-        continue;
-      }
-      if (all & PreparedVertices::kPlain) {
-        const unsigned o0 = outcode[k0], o1 = outcode[k1], o2 = outcode[k2];
-        if ((o0 & o1 & o2) != 0) {
-          continue;  // all three outside one plane
-        }
-        if ((o0 | o1 | o2) == 0) {
-          continue;  // inside every plane, a vertex beyond the snap limit: dropped
-        }
-      }
-      const std::size_t v[3] = {base + k0, base + k1, base + k2};
-      const ClipVertex cv[3] = {
-          {vertices.x[v[0]], vertices.y[v[0]], vertices.z[v[0]], vertices.w[v[0]]},
-          {vertices.x[v[1]], vertices.y[v[1]], vertices.z[v[1]], vertices.w[v[1]]},
-          {vertices.x[v[2]], vertices.y[v[2]], vertices.z[v[2]], vertices.w[v[2]]}};
-      clipped.clear();
-      setup_clip(t, cv, clipped);
-      for (const RasterTriangle& piece : clipped) {
-        scratch.append() = piece;
-      }
-    }
+  const std::size_t base = prepared.begin;
+  set_up_prepared(*this, edge_rules_, vertices, OneBlock{view_of(prepared), base}, scale_x_,
+                  scale_y_, translate_x_, translate_y_, submitted, out, [&](auto&& emit) {
+                    int i = static_cast<int>(first_cell % columns);
+                    int j = static_cast<int>(first_cell / columns);
+                    for (std::uint32_t cell = first_cell; cell <= last_cell; ++cell) {
+                      // Corners as GridTriangles names them: a = (i, j), b = (i+1, j), c = (i+1,
+                      // j+1), d = (i, j+1); triangles (a, b, c) and (a, c, d).
+                      const std::size_t a = layout.index(i, j), b = a + 1, d = a + pitch, c = d + 1;
+                      if (++i == static_cast<int>(columns)) {
+                        i = 0;
+                        ++j;
+                      }
+                      if ((flags[a - base] & flags[b - base] & flags[c - base] & flags[d - base] &
+                           PreparedVertices::kValid) == 0) {
+                        continue;  // a corner is invalid: neither triangle is drawn
+                      }
+                      for (std::uint32_t half = 0; half < 2; ++half) {
+                        const std::uint32_t t = 2 * cell + half;
+                        if (t >= begin && t < end) {
+                          emit(t, a, half ? c : b, half ? d : c);
+                        }
+                      }
+                    }
+                  });
+}
+
+void TriangleSetup::setup_indexed(ClipVertices vertices, const IndexedTriangles& source,
+                                  std::uint32_t begin, std::uint32_t end,
+                                  std::span<const PreparedVertices> blocks,
+                                  std::size_t block_vertices, std::uint32_t& submitted,
+                                  RasterTriangles& out) const {
+  if (!std::has_single_bit(block_vertices)) {
+    throw std::invalid_argument("setup_indexed: blocks of " + std::to_string(block_vertices) +
+                                " vertices; allowed a power of two");
   }
-  depth_batch(vertices, batch, scale_x_, scale_y_, translate_x_, translate_y_, scratch.data());
-  if (scratch.size() > 0) {
-    const std::size_t first = out.size();
-    out.resize(first + scratch.size());  // default-initialised: written here
-    std::memcpy(static_cast<void*>(out.data() + first), scratch.data(),
-                scratch.size() * sizeof(RasterTriangle));
+  FixedBlocks prepared{{}, std::countr_zero(block_vertices)};
+  prepared.views.reserve(blocks.size());
+  for (const PreparedVertices& block : blocks) {
+    prepared.views.push_back(view_of(block));
   }
+  set_up_prepared(*this, edge_rules_, vertices, prepared, scale_x_, scale_y_, translate_x_,
+                  translate_y_, submitted, out, [&](auto&& emit) {
+                    for (std::uint32_t t = begin; t < end; ++t) {
+                      std::uint32_t v[3];
+                      source.vertices(t, v);
+                      emit(t, v[0], v[1], v[2]);
+                    }
+                  });
 }
 
 }  // namespace relief::raster

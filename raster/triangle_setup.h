@@ -144,6 +144,16 @@ class TriangleSetup {
                   std::uint32_t end, const PreparedVertices& prepared, std::uint32_t& submitted,
                   RasterTriangles& out) const;
 
+  // The same for an index list: the drawn triangles among [begin, end) of `source`, each as
+  // setup_clip would set it up, from vertices prepared in blocks of `block_vertices` (a power
+  // of two; vertex k
+  // in blocks[k / block_vertices] at k % block_vertices, prepared with no valid or need
+  // condition or with the ones that hold), once per frame instead of once per triangle.
+  void setup_indexed(ClipVertices vertices, const IndexedTriangles& source, std::uint32_t begin,
+                     std::uint32_t end, std::span<const PreparedVertices> blocks,
+                     std::size_t block_vertices, std::uint32_t& submitted,
+                     RasterTriangles& out) const;
+
   // Appends one triangle given in window coordinates (precondition: within the guard band; a
   // triangle with a coordinate beyond it or NaN is dropped, never snapped).
   void setup_window(std::uint32_t primitive, const float x[3], const float y[3], const float z[3],

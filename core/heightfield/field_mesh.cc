@@ -44,7 +44,7 @@ std::uintmax_t field_mesh_vertices(int width, int height, int tile_cells) {
 }
 
 FieldMesh build_field_mesh(const HeightSketch& field, const std::array<double, 4>& extent,
-                           double base_height, int tile_cells) {
+                           int tile_cells) {
   if (!geomipmap::valid_tile_cells(tile_cells)) {
     throw std::invalid_argument("terrain.heightfield.geomipmap.tile_cells = " +
                                 std::to_string(tile_cells) + " is not a power of two in 2..256");
@@ -75,7 +75,7 @@ FieldMesh build_field_mesh(const HeightSketch& field, const std::array<double, 4
         }
         sum += kKnotWeight[b + 1] * row;
       }
-      mesh.heights[std::size_t(r) * mesh.columns + c] = static_cast<float>(base_height + sum);
+      mesh.heights[std::size_t(r) * mesh.columns + c] = static_cast<float>(sum);
     }
   }
   mesh.map = geomipmap::build_geomipmap(mesh.lattice(), tile_cells);
@@ -110,7 +110,7 @@ void mesh_domain(const FieldMesh& field, const geomipmap::Mesh& mesh, const glm:
 }
 
 template <class Real>
-void mesh_heights(const FieldMesh& field, const geomipmap::Mesh& mesh, double camera_y,
+void mesh_heights(const FieldMesh& field, const geomipmap::Mesh& mesh, double camera_above_base,
                   IndexRange range, std::span<Real> height) {
   const std::size_t vertices = mesh.vertex_column.size();
   for (std::size_t k = range.begin; k < range.end; ++k) {
@@ -118,7 +118,7 @@ void mesh_heights(const FieldMesh& field, const geomipmap::Mesh& mesh, double ca
                     ? static_cast<Real>(
                           double(field.heights[std::size_t(mesh.vertex_row[k]) * field.columns +
                                                mesh.vertex_column[k]]) -
-                          camera_y)
+                          camera_above_base)
                     : Real(0);
   }
 }

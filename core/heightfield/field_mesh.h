@@ -29,12 +29,18 @@ namespace relief {
 // The mesh's vertices fill rows of this many (a multiple of every vector width): the grid
 // stages' rows are their unit of parallel work.
 inline constexpr int kMeshRowVertices = 4096;
+// The rasteriser prepares (snaps) the mesh's vertices once per frame, in blocks of this many.
+inline constexpr std::size_t kMeshPreparedBlock = 16384;
 
 struct FieldMesh {
   int columns = 0, rows = 0;       // lattice vertices along x and z
   std::array<double, 4> extent{};  // world (x, z) of vertex (0, 0) and of the last one
   double cell_x = 0, cell_z = 0;   // world units between neighbouring vertices (> 0)
-  std::vector<float> heights;      // world heights (base_height + the field), row-major
+  // The field's heights above terrain.base_height, row-major: the world height is base_height
+  // plus this, added in double per frame (with the camera's, stage 3), so a large base height
+  // costs no precision; the tiles' bounds are the same relative heights, and the frame selects
+  // tiles with the camera's height above the base.
+  std::vector<float> heights;
   geomipmap::GeoMipMap map;
 
   geomipmap::FieldLattice lattice() const { return {columns, rows, extent, heights}; }
@@ -45,7 +51,7 @@ struct FieldMesh {
 // The lattice of `field` (level 0 of its texels) over `extent`, and its GeoMipMap with tiles of
 // `tile_cells` (a power of two, 2..256). Throws std::invalid_argument as build_geomipmap does.
 FieldMesh build_field_mesh(const HeightSketch& field, const std::array<double, 4>& extent,
-                           double base_height, int tile_cells);
+                           int tile_cells);
 
 // Lattice vertices of a field of `width` x `height` texels in tiles of `tile_cells`.
 std::uintmax_t field_mesh_vertices(int width, int height, int tile_cells);
@@ -61,10 +67,10 @@ template <class Real>
 void mesh_domain(const FieldMesh& field, const geomipmap::Mesh& mesh, const glm::dvec3& camera,
                  IndexRange range, DomainSpans<Real> out);
 
-// Stage 3: vertex k's camera-relative height, its world height minus the camera's in double,
-// rounded once.
+// Stage 3: vertex k's camera-relative height, its lattice height minus the camera's height above
+// terrain.base_height (formed in double by the caller), in double, rounded once.
 template <class Real>
-void mesh_heights(const FieldMesh& field, const geomipmap::Mesh& mesh, double camera_y,
+void mesh_heights(const FieldMesh& field, const geomipmap::Mesh& mesh, double camera_above_base,
                   IndexRange range, std::span<Real> height);
 
 // Stage 4: the B-spline's gradient g at the vertex, in double from the texels (d/dx: the

@@ -176,6 +176,25 @@ TEST_CASE("everyCpuBackendDrawsTheGeoMipMapMeshTheSimdOneInTheReferencesBytes", 
         reference.stats.raster.triangles);
 }
 
+TEST_CASE("aGeoMipMapFrameOnAHighBaseHeightKeepsItsGeometryExactly", "[geomipmap]") {
+  // Heights are camera-relative, the base added in double (field_mesh.h): the field lifted by
+  // 1e6 with the camera gives the same depths and triangles bit for bit (a float lattice of
+  // world heights would hold them to 1/16 there, terraces a frame shows).
+  FieldScene f;
+  build(f, false, 1.0);
+  f.scene.camera.position = {300.0, 400.0, 1800.0};
+  f.scene.camera.pitch_deg = -14.0;
+  const SceneResources resources = load_scene_resources(f.scene);
+  const Frame low = render_frame(f.scene, resources, request_for(Backend::kReference));
+  Scene high = f.scene;
+  high.terrain.base_height = 1e6;
+  high.camera.position[1] += 1e6;
+  const Frame lifted =
+      render_frame(high, load_scene_resources(high), request_for(Backend::kReference));
+  CHECK(lifted.image.depth == low.image.depth);
+  CHECK(lifted.image.primitive == low.image.primitive);
+}
+
 TEST_CASE("occlusionCullingOfGeoMipMapTilesChangesNoOutputAndSkipsTiles", "[geomipmap][skip]") {
   FieldScene f;
   build(f, true, 1.0);
@@ -196,6 +215,9 @@ TEST_CASE("occlusionCullingOfGeoMipMapTilesChangesNoOutputAndSkipsTiles", "[geom
     CHECK(on.image.srgb == off.image.srgb);
     CHECK(on.image.depth == off.image.depth);
     CHECK(on.image.world_height == off.image.world_height);
+    // The primitive output names the triangle in the frame's drawn mesh, which the occluded
+    // tiles leave: the ids after them differ (docs/heightfields.md), the pixels they name not.
+    CHECK(on.image.primitive.size() == off.image.primitive.size());
     CHECK(test::frame_counter(on, "tiles occluded") > 20);
     CHECK(test::frame_counter(off, "tiles occluded") == 0);
     CHECK(test::frame_counter(on, "tiles drawn") < test::frame_counter(off, "tiles drawn"));

@@ -1,6 +1,8 @@
 // setup_chunk for the grid (vertices prepared once per chunk, raster/triangle_setup.h) must
 // give exactly what setup_clip gives triangle by triangle: the same records, in the same order,
-// the same counts, and bin_entries the tiles their boxes touch.
+// the same counts, and bin_entries the tiles their boxes touch; and so must an index list's
+// set-up from vertices prepared once per frame in blocks (setup_indexed_chunk).
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -164,6 +166,49 @@ TEST_CASE("gridSetupGivesSetupClipsTrianglesBitForBit", "[raster]") {
         CHECK(set_up > 1000);  // the set exercises the common path
       }
     }
+  }
+  // The same vertices as an index list (a GeoMipMap mesh's path): the grid's triangles in a
+  // scrambled order, so that a chunk reads vertices far apart, from blocks of 1024 prepared
+  // vertices, against the per-triangle set-up of setup_chunk<IndexedTriangles>.
+  std::vector<std::uint32_t> indices;
+  const GridTriangles all{layout, valid};
+  const std::uint32_t count = all.count();
+  for (std::uint32_t n = 0; n < count; ++n) {
+    const std::uint32_t t = static_cast<std::uint32_t>((std::uint64_t(n) * 7919u) % count);
+    std::uint32_t v[3];
+    all.vertices(t, v);  // invalid corners too: an index list has no validity
+    indices.insert(indices.end(), {v[0], v[1], v[2]});
+  }
+  REQUIRE(count % 7919u != 0);  // 7919 is prime: n -> 7919 n mod count is a permutation
+  const IndexedTriangles mesh{indices};
+  const std::size_t block = 1024;
+  for (const CullMode cull : {CullMode::kNone, CullMode::kBack}) {
+    RasterState state;
+    state.width = 200;
+    state.height = 160;
+    state.viewport = Viewport{0, 0, 200, 160};
+    state.cull = cull;
+    const TriangleSetup setup(state);
+    std::vector<PreparedVertices> blocks((layout.size() + block - 1) / block);
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      setup.prepare_vertices(vertices, b * block, std::min(layout.size(), (b + 1) * block), {}, {},
+                             blocks[b]);
+    }
+    std::uint64_t set_up = 0;
+    for (std::size_t chunk = 0; chunk < setup_chunk_count(mesh.count()); ++chunk) {
+      SetupChunk got, expected;
+      setup_indexed_chunk(setup, vertices, mesh, blocks, block, chunk, got);
+      setup_chunk(setup, vertices, mesh, chunk, expected);
+      INFO("indexed chunk " << chunk << ", cull " << int(cull));
+      REQUIRE(got.submitted == expected.submitted);
+      REQUIRE(got.triangles.size() == expected.triangles.size());
+      for (std::size_t k = 0; k < expected.triangles.size(); ++k) {
+        REQUIRE(same_record(got.triangles[k], expected.triangles[k]));
+      }
+      REQUIRE(got.bin_entries == expected.bin_entries);
+      set_up += expected.triangles.size();
+    }
+    CHECK(set_up > 1000);
   }
 }
 
