@@ -10,8 +10,8 @@
 // vertex (c, r) sits at texel (c, r)'s centre, x0 + (c + 1/2) (x1 - x0) / W, and its height is
 // the B-spline there: the taps (1, 4, 1) / 6 along each axis, the edge texels extended
 // (GL_CLAMP_TO_EDGE, as the projected grid reads them). The lattice has whole tiles:
-// ceil((W - 1) / T) T + 1 vertices along x (likewise z), the few beyond the last texel centre
-// on the extended edge. Its normals are the B-spline's own gradient at the vertex, at the
+// ceil((W - 1) / T) T + 1 vertices along x (likewise z), up to T - 1 of them beyond the last
+// texel centre on the extended edge (a field smaller than a tile grows with T). Its normals are the B-spline's own gradient at the vertex, at the
 // field's full resolution whatever the tile's level (a normal does not pop with the level).
 #pragma once
 
