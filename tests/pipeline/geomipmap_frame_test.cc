@@ -73,6 +73,12 @@ void build(FieldScene& f, bool plateau, double pixel_error) {
   f.scene.camera.far = 60000.0;
 }
 
+// A view from near the field's edge over its ridges: most tiles in view, at several levels.
+void look_over_the_ridges(Scene& scene) {
+  scene.camera.position = {300.0, 400.0, 1800.0};
+  scene.camera.pitch_deg = -14.0;
+}
+
 FrameRequest request_for(Backend backend, FrameSkips skips = {}) {
   FrameRequest request;
   request.backend = backend;
@@ -146,8 +152,7 @@ TEST_CASE("aGeoMipMapFrameShowsNoBackgroundThroughAnySeamOverACameraSweep", "[ge
 TEST_CASE("everyCpuBackendDrawsTheGeoMipMapMeshTheSimdOneInTheReferencesBytes", "[geomipmap]") {
   FieldScene f;
   build(f, false, 1.0);
-  f.scene.camera.position = {300.0, 400.0, 1800.0};
-  f.scene.camera.pitch_deg = -14.0;
+  look_over_the_ridges(f.scene);
   const SceneResources resources = load_scene_resources(f.scene);
   const Frame reference = render_frame(f.scene, resources, request_for(Backend::kReference));
   const Frame simd = render_frame(f.scene, resources, request_for(Backend::kSimd));
@@ -182,8 +187,7 @@ TEST_CASE("aGeoMipMapFrameOnAHighBaseHeightKeepsItsGeometryExactly", "[geomipmap
   // world heights would hold them to 1/16 there, terraces a frame shows).
   FieldScene f;
   build(f, false, 1.0);
-  f.scene.camera.position = {300.0, 400.0, 1800.0};
-  f.scene.camera.pitch_deg = -14.0;
+  look_over_the_ridges(f.scene);
   const SceneResources resources = load_scene_resources(f.scene);
   const Frame low = render_frame(f.scene, resources, request_for(Backend::kReference));
   Scene high = f.scene;
