@@ -77,4 +77,11 @@ void clear_gl_errors() {
   }
 }
 
+void require_grid_size(const char* who, const char* field, long long value, long long expected) {
+  if (value != expected) {
+    throw std::invalid_argument(std::string(who) + ": " + field + " is " + std::to_string(value) +
+                                ", the grid's is " + std::to_string(expected));
+  }
+}
+
 }  // namespace relief::gpu

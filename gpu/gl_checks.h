@@ -28,6 +28,10 @@ void check_gl(const std::string& what);
 // Discards errors a caller left pending, so that check_gl reports only this code's.
 void clear_gl_errors();
 
+// Throws std::invalid_argument naming `who` and `field` unless a stream's size `value` is the
+// grid's, `expected` (GlTerrain's uploads and read-backs).
+void require_grid_size(const char* who, const char* field, long long value, long long expected);
+
 // The GL error code's name ("GL_INVALID_VALUE"), or its number.
 std::string gl_error_name(unsigned int code);
 

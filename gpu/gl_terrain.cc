@@ -29,13 +29,6 @@ std::string dims(int width, int height, int pitch) {
          std::to_string(pitch) + ")";
 }
 
-void require_equal(const char* who, const char* field, long long value, long long expected) {
-  if (value != expected) {
-    throw std::invalid_argument(std::string(who) + ": " + field + " is " + std::to_string(value) +
-                                ", the grid's is " + std::to_string(expected));
-  }
-}
-
 GLint gl_integer(GLenum name) {
   GLint value = 0;
   glGetIntegerv(name, &value);
@@ -260,13 +253,13 @@ void GlTerrain::project_domain(const DomainParams<float>& params, const DomainRo
                                const PlanetParams<float>& planet) {
   require_context("project_domain");
   const char* who = "GlTerrain::project_domain";
-  require_equal(who, "DomainParams::width", params.width, layout_.width);
-  require_equal(who, "DomainParams::height", params.height, layout_.height);
-  require_equal(who, "DomainParams::pitch", params.pitch, layout_.pitch);
+  require_grid_size(who, "DomainParams::width", params.width, layout_.width);
+  require_grid_size(who, "DomainParams::height", params.height, layout_.height);
+  require_grid_size(who, "DomainParams::pitch", params.pitch, layout_.pitch);
   const std::size_t row_count = std::size_t(layout_.height) + 2;
-  require_equal(who, "DomainRows::descent.size()", rows.descent.size(), row_count);
-  require_equal(who, "DomainRows::x0.size()", rows.x0.size(), row_count);
-  require_equal(who, "DomainRows::step_x.size()", rows.step_x.size(), row_count);
+  require_grid_size(who, "DomainRows::descent.size()", rows.descent.size(), row_count);
+  require_grid_size(who, "DomainRows::x0.size()", rows.x0.size(), row_count);
+  require_grid_size(who, "DomainRows::step_x.size()", rows.step_x.size(), row_count);
   upload_bytes(domain_params_, 0, &params, sizeof params);
   const std::size_t row_bytes = row_count * sizeof(float);
   upload_bytes(rows_, 0, rows.descent.data(), row_bytes);
@@ -336,8 +329,8 @@ void GlTerrain::add_sketch(const SketchParams<float>& params) {
     throw std::invalid_argument(std::string(who) +
                                 ": SketchParams::enabled is 1 but this GlTerrain has no sketch");
   }
-  require_equal(who, "SketchParams::width", params.width, sketch_width_);
-  require_equal(who, "SketchParams::height", params.height, sketch_height_);
+  require_grid_size(who, "SketchParams::width", params.width, sketch_width_);
+  require_grid_size(who, "SketchParams::height", params.height, sketch_height_);
   upload_bytes(sketch_params_, 0, &params, sizeof params);
   checkpoint("uploading the sketch's parameters");
   const GLuint program = programs_->sketch.get();
@@ -356,9 +349,9 @@ void GlTerrain::add_sketch(const SketchParams<float>& params) {
 void GlTerrain::surface_pass(const SurfaceParams<float>& params) {
   require_context("surface_pass");
   const char* who = "GlTerrain::surface_pass";
-  require_equal(who, "SurfaceParams::width", params.width, layout_.width);
-  require_equal(who, "SurfaceParams::height", params.height, layout_.height);
-  require_equal(who, "SurfaceParams::pitch", params.pitch, layout_.pitch);
+  require_grid_size(who, "SurfaceParams::width", params.width, layout_.width);
+  require_grid_size(who, "SurfaceParams::height", params.height, layout_.height);
+  require_grid_size(who, "SurfaceParams::pitch", params.pitch, layout_.pitch);
   upload_bytes(surface_params_, 0, &params, sizeof params);
   checkpoint("uploading stage 4's parameters");
   const GLuint program = programs_->surface.get();

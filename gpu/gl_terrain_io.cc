@@ -12,13 +12,6 @@ namespace relief::gpu {
 
 namespace {
 
-void require_equal(const char* who, const char* field, long long value, long long expected) {
-  if (value != expected) {
-    throw std::invalid_argument(std::string(who) + ": " + field + " is " + std::to_string(value) +
-                                ", the grid's is " + std::to_string(expected));
-  }
-}
-
 void upload_bytes(const GlName& buffer, const void* data, std::size_t bytes) {
   glNamedBufferSubData(buffer.get(), 0, static_cast<GLsizeiptr>(bytes), data);
 }
@@ -31,7 +24,7 @@ void GlTerrain::set_need(std::span<const std::uint8_t> need) {
     use_need_ = false;
     return;
   }
-  require_equal("GlTerrain::set_need", "the need flags' count", need.size(), layout_.size());
+  require_grid_size("GlTerrain::set_need", "the need flags' count", need.size(), layout_.size());
   if (need_.get() == 0) {
     need_ = make_storage_buffer(layout_.size(), "the need flags");
   }
@@ -41,9 +34,9 @@ void GlTerrain::set_need(std::span<const std::uint8_t> need) {
 }
 
 void GlTerrain::check_stream_size(const char* who, GlStream stream, std::size_t count) const {
-  require_equal(who,
-                (std::string("the size of stream ") + std::string(gl_stream_name(stream))).c_str(),
-                count, layout_.size());
+  require_grid_size(
+      who, (std::string("the size of stream ") + std::string(gl_stream_name(stream))).c_str(),
+      count, layout_.size());
 }
 
 void GlTerrain::upload(GlStream stream, std::span<const float> values) {
@@ -82,10 +75,10 @@ void GlTerrain::read_valid(std::span<std::uint8_t> out) const {
 }
 
 void GlTerrain::read_all(GridBuffers<float>& out) const {
-  require_equal("GlTerrain::read_all", "GridBuffers::layout.pitch", out.layout.pitch,
-                layout_.pitch);
-  require_equal("GlTerrain::read_all", "GridBuffers::layout.height", out.layout.height,
-                layout_.height);
+  require_grid_size("GlTerrain::read_all", "GridBuffers::layout.pitch", out.layout.pitch,
+                    layout_.pitch);
+  require_grid_size("GlTerrain::read_all", "GridBuffers::layout.height", out.layout.height,
+                    layout_.height);
   read(GlStream::kDx, out.dx);
   read(GlStream::kDz, out.dz);
   read(GlStream::kSigma, out.sigma);

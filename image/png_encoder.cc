@@ -7,6 +7,8 @@
 
 #include <libdeflate.h>
 
+#include "image/byte_order.h"
+
 namespace relief {
 
 namespace {
@@ -17,20 +19,15 @@ constexpr int kDeflateLevel = 1;
 // IDAT chunks of at most this many bytes (PNG lengths are below 2^31).
 constexpr std::size_t kMaxIdatBytes = std::size_t{1} << 30;
 
-void append_u32(std::vector<unsigned char>& out, std::uint32_t v) {
-  out.insert(out.end(), {static_cast<unsigned char>(v >> 24), static_cast<unsigned char>(v >> 16),
-                         static_cast<unsigned char>(v >> 8), static_cast<unsigned char>(v)});
-}
-
 // Length, type, data, and the CRC of type and data (§5.3).
 void append_chunk(std::vector<unsigned char>& out, const char (&type)[5], const unsigned char* data,
                   std::size_t size) {
-  append_u32(out, static_cast<std::uint32_t>(size));
+  append_big_endian_u32(out, static_cast<std::uint32_t>(size));
   const std::size_t type_at = out.size();
   out.insert(out.end(), type, type + 4);
   out.insert(out.end(), data, data + size);
-  append_u32(out, static_cast<std::uint32_t>(libdeflate_crc32(0, out.data() + type_at,
-                                                              static_cast<std::size_t>(4 + size))));
+  append_big_endian_u32(out, static_cast<std::uint32_t>(libdeflate_crc32(
+                                 0, out.data() + type_at, static_cast<std::size_t>(4 + size))));
 }
 
 struct CompressorDeleter {
@@ -80,8 +77,8 @@ std::vector<unsigned char> encode_png(int width, int height, std::size_t pixel_b
   // IHDR (§11.2.1): width, height, bit depth, colour type, deflate, adaptive filtering, no
   // interlace.
   std::vector<unsigned char> header;
-  append_u32(header, static_cast<std::uint32_t>(width));
-  append_u32(header, static_cast<std::uint32_t>(height));
+  append_big_endian_u32(header, static_cast<std::uint32_t>(width));
+  append_big_endian_u32(header, static_cast<std::uint32_t>(height));
   header.insert(header.end(), {bit_depth, colour_type, 0, 0, 0});
   append_chunk(png, "IHDR", header.data(), header.size());
   for (std::size_t at = 0; at < zlib_bytes; at += kMaxIdatBytes) {

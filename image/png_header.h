@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <optional>
 
+#include "image/byte_order.h"
+
 namespace relief {
 
 struct PngHeader {
@@ -31,10 +33,7 @@ inline std::optional<PngHeader> parse_png_header(const unsigned char* bytes, std
       return std::nullopt;
     }
   }
-  const auto big_endian = [&](std::size_t at) {
-    return std::uint32_t{bytes[at]} << 24 | std::uint32_t{bytes[at + 1]} << 16 |
-           std::uint32_t{bytes[at + 2]} << 8 | std::uint32_t{bytes[at + 3]};
-  };
+  const auto big_endian = [&](std::size_t at) { return read_big_endian_u32(bytes + at); };
   if (big_endian(8) != 13 || bytes[12] != 'I' || bytes[13] != 'H' || bytes[14] != 'D' ||
       bytes[15] != 'R') {
     return std::nullopt;

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string_view>
 
+#include "image/byte_order.h"
 #include "image/crc32.h"
 #include "image/png_header.h"
 
@@ -13,16 +14,6 @@ namespace {
 
 // PNG's largest chunk length (§5.3: lengths are at most 2^31 - 1).
 constexpr std::size_t kMaxChunkBytes = 0x7FFFFFFFu;
-
-void append_u32(std::vector<unsigned char>& out, std::uint32_t v) {
-  out.insert(out.end(), {static_cast<unsigned char>(v >> 24), static_cast<unsigned char>(v >> 16),
-                         static_cast<unsigned char>(v >> 8), static_cast<unsigned char>(v)});
-}
-
-std::uint32_t read_u32(std::span<const unsigned char> bytes, std::size_t at) {
-  return std::uint32_t{bytes[at]} << 24 | std::uint32_t{bytes[at + 1]} << 16 |
-         std::uint32_t{bytes[at + 2]} << 8 | std::uint32_t{bytes[at + 3]};
-}
 
 // §11.3.4.2: 1-79 bytes of Latin-1 32-126 or 161-255, no leading, trailing or double space.
 void check_keyword(const std::string& keyword) {
@@ -48,12 +39,12 @@ void append_chunk(std::vector<unsigned char>& out, std::string_view type,
   if (data.size() > kMaxChunkBytes) {
     throw PngTextError("PNG text chunk of " + std::to_string(data.size()) + " bytes is too long");
   }
-  append_u32(out, static_cast<std::uint32_t>(data.size()));
+  append_big_endian_u32(out, static_cast<std::uint32_t>(data.size()));
   const std::span<const unsigned char> type_bytes(
       reinterpret_cast<const unsigned char*>(type.data()), type.size());
   out.insert(out.end(), type_bytes.begin(), type_bytes.end());
   out.insert(out.end(), data.begin(), data.end());
-  append_u32(out, crc32(data, crc32(type_bytes)));
+  append_big_endian_u32(out, crc32(data, crc32(type_bytes)));
 }
 
 void append_text_chunk(std::vector<unsigned char>& out, const ImageText& entry) {
@@ -93,13 +84,14 @@ std::vector<ImageText> read_png_text(std::span<const unsigned char> png) {
   std::vector<ImageText> entries;
   std::size_t at = 8;
   while (at + 12 <= png.size()) {
-    const std::size_t length = read_u32(png, at);
+    const std::size_t length = read_big_endian_u32(png.data() + at);
     if (length > png.size() - at - 12) {
       break;
     }
     const std::string type(png.begin() + at + 4, png.begin() + at + 8);
     const std::span<const unsigned char> data = png.subspan(at + 8, length);
-    const bool crc_ok = crc32(png.subspan(at + 4, length + 4)) == read_u32(png, at + 8 + length);
+    const bool crc_ok =
+        crc32(png.subspan(at + 4, length + 4)) == read_big_endian_u32(png.data() + at + 8 + length);
     at += length + 12;
     if (type == "IEND") {
       break;

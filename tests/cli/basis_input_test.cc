@@ -55,7 +55,7 @@ std::vector<std::string> one_image(const std::string& image, const std::string& 
 }
 
 // A 32 x 32 render of a 16 x 16 grid: the refusals and notes do not need more.
-const std::vector<std::string> kSmall = {
+const std::vector<std::string> kSmallBasisFrame = {
     "--set", "viewport.width=32", "--set", "viewport.height=32",
     "--set", "grid.width=16",     "--set", "grid.height=16"};
 
@@ -63,7 +63,7 @@ struct Refusals {
   std::filesystem::path out;
   void operator()(const std::vector<std::string>& sets, const std::string& message) const {
     INFO(message);
-    require_refused(test::render_preset("craters", sets, out, kSmall), message, out);
+    require_refused(test::render_preset("craters", sets, out, kSmallBasisFrame), message, out);
   }
 };
 
@@ -186,7 +186,7 @@ TEST_CASE("anImageThatDoesNotTileIsNotedWithItsSeamMeasureAndMirrorSilencesIt", 
   const std::string ramp = write_ramp(dir.path() / "ramp.png", 16);
   const std::filesystem::path out = dir.path() / "out.png";
   const auto render = [&](const std::vector<std::string>& sets) {
-    return test::render_preset("craters", sets, out, kSmall);
+    return test::render_preset("craters", sets, out, kSmallBasisFrame);
   };
   const test::CliResult repeat = render(one_image(ramp));
   CHECK(repeat.code == 0);

@@ -31,13 +31,13 @@ using Catch::Matchers::Contains;
 using test::CliResult;
 using test::run;
 
-const std::vector<std::string> kSmall = {
+const std::vector<std::string> kSmallLimitsFrame = {
     "--set", "viewport.width=64", "--set", "viewport.height=48",
     "--set", "grid.width=48",     "--set", "grid.height=48"};
 
 CliResult render_small(std::vector<std::string> args) {
   args.insert(args.begin(), "render");
-  args.insert(args.end(), kSmall.begin(), kSmall.end());
+  args.insert(args.end(), kSmallLimitsFrame.begin(), kSmallLimitsFrame.end());
   return run(args);
 }
 
@@ -149,7 +149,7 @@ TEST_CASE("anOutputNamingAnInputIsRefusedAndTheInputKept", "[cli]") {
   std::vector<std::string> render = {"render",       scene_file.string(),
                                      "--stats-json", scene_file.string(),
                                      "-o",           (dir.path() / "o.png").string()};
-  render.insert(render.end(), kSmall.begin(), kSmall.end());
+  render.insert(render.end(), kSmallLimitsFrame.begin(), kSmallLimitsFrame.end());
   require_alias_refused(render, kExitBadInput, scene_file, {dir.path() / "o.png"});
 }
 
@@ -163,11 +163,11 @@ TEST_CASE("twoOutputsNamingOneFileAreRefused", "[cli]") {
                         4, a, {x});
   const fs::path r = dir.path() / "r.png", pfm = dir.path() / "x.pfm";
   std::vector<std::string> stats = {"render", "-o", r.string(), "--stats-json", r.string()};
-  stats.insert(stats.end(), kSmall.begin(), kSmall.end());
+  stats.insert(stats.end(), kSmallLimitsFrame.begin(), kSmallLimitsFrame.end());
   require_alias_refused(stats, kExitBadInput, a, {r});
   std::vector<std::string> floats = {"render",     "-o",      r.string(),  "--float",
                                      pfm.string(), "--depth", pfm.string()};
-  floats.insert(floats.end(), kSmall.begin(), kSmall.end());
+  floats.insert(floats.end(), kSmallLimitsFrame.begin(), kSmallLimitsFrame.end());
   require_alias_refused(floats, kExitBadInput, a, {r, pfm});
 }
 

@@ -22,12 +22,12 @@ using Catch::Contains;
 using test::CliResult;
 using test::run;
 
-const std::vector<std::string> kSmall = {
+const std::vector<std::string> kSmallRefusalFrame = {
     "--set", "viewport.width=64", "--set", "viewport.height=48",
     "--set", "grid.width=48",     "--set", "grid.height=48"};
 
 std::vector<std::string> with_small(std::vector<std::string> args) {
-  args.insert(args.end(), kSmall.begin(), kSmall.end());
+  args.insert(args.end(), kSmallRefusalFrame.begin(), kSmallRefusalFrame.end());
   return args;
 }
 

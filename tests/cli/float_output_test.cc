@@ -26,11 +26,11 @@ using test::CliResult;
 using test::read_bytes;
 using test::run;
 
-const std::vector<std::string> kSmall = {"viewport.width=48", "viewport.height=36", "grid.width=24",
-                                         "grid.height=24"};
+const std::vector<std::string> kSmallFloatFrame = {"viewport.width=48", "viewport.height=36",
+                                                   "grid.width=24", "grid.height=24"};
 
 std::vector<std::string> with_scene(std::vector<std::string> args) {
-  for (const std::string& o : kSmall) {
+  for (const std::string& o : kSmallFloatFrame) {
     args.insert(args.end(), {"--set", o});
   }
   return args;
@@ -97,7 +97,7 @@ TEST_CASE("renderWritesFloatOutputsAsExrWithThePfmsFloats", "[float_output]") {
   }
   // The EXR carries the software and the scene as string attributes, and no time stamp: the
   // same scene gives the same bytes.
-  const Scene scene = resolve_scene("", kSmall);
+  const Scene scene = resolve_scene("", kSmallFloatFrame);
   const OiioImage linear = read_with_oiio(at("linear.exr"));
   CHECK(linear.spec.get_string_attribute("Software") ==
         test::concat({"relief ", relief_version()}));
@@ -148,7 +148,7 @@ TEST_CASE("openImageIoReadsTheMetadataOfReliefsPng", "[float_output]") {
   const std::filesystem::path png = dir.path() / "r.png";
   REQUIRE(run(with_scene({"render", "-o", png.string()})).code == 0);
   const OiioImage image = read_with_oiio(png);
-  const Scene scene = resolve_scene("", kSmall);
+  const Scene scene = resolve_scene("", kSmallFloatFrame);
   CHECK(image.spec.get_string_attribute("Software") == test::concat({"relief ", relief_version()}));
   const std::string text = image.spec.get_string_attribute(std::string(kSceneKey));
   CHECK(nlohmann::json::parse(text) == scene_to_json(scene));

@@ -4,25 +4,19 @@
 // with the exit-2 error, and each corpus holds inputs that are accepted (so that a change that
 // refuses them all shows here, not as a fuzzer that quietly explores nothing).
 #include <filesystem>
-#include <fstream>
 #include <functional>
-#include <iterator>
 #include <string>
 #include <vector>
 
 #include <catch2/catch.hpp>
 
 #include "fuzz/fuzz_inputs.h"
+#include "tests/support/cli_support.h"
 
 namespace relief {
 namespace {
 
 const std::filesystem::path kFuzzDir = std::filesystem::path(RELIEF_SOURCE_DIR) / "fuzz";
-
-std::string read_bytes(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
 
 // Replays every file of `folder` whose name starts with `prefix`; returns how many were
 // accepted.
@@ -35,7 +29,8 @@ int replay(const std::filesystem::path& folder, const std::string& prefix,
       continue;
     }
     INFO(entry.path().string());
-    const std::string bytes = read_bytes(entry.path());
+    const std::vector<unsigned char> file = test::read_bytes(entry.path());
+    const std::string bytes(file.begin(), file.end());
     bool ok = false;
     CHECK_NOTHROW(ok = input(bytes));
     accepted += ok;

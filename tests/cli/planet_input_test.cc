@@ -13,13 +13,13 @@
 namespace relief {
 namespace {
 
-const std::vector<std::string> kSmall = {
+const std::vector<std::string> kSmallPlanetFrame = {
     "--set", "viewport.width=64", "--set", "viewport.height=48",
     "--set", "grid.width=32",     "--set", "grid.height=32"};
 
 test::CliResult render(const std::string& preset, const std::vector<std::string>& sets,
                        const std::filesystem::path& out) {
-  return test::render_preset(preset, sets, out, kSmall);
+  return test::render_preset(preset, sets, out, kSmallPlanetFrame);
 }
 
 TEST_CASE("nothingOfAPlanetMayReachItsCentre", "[planet][cli]") {
@@ -95,7 +95,7 @@ TEST_CASE("aPathRefusesADirectoryThatAlreadyHoldsFrames", "[planet][cli]") {
   std::filesystem::create_directories(out / "frame_0001.png");  // a directory in the way
   std::vector<std::string> args = {"path", "planet",          "--out", out.string(),    "--frames",
                                    "2",    "--from-altitude", "1e6",   "--to-altitude", "1e4"};
-  args.insert(args.end(), kSmall.begin(), kSmall.end());
+  args.insert(args.end(), kSmallPlanetFrame.begin(), kSmallPlanetFrame.end());
   const test::CliResult r = test::run(args);
   INFO(r.err);
   CHECK(r.code == 2);

@@ -28,8 +28,8 @@
 namespace relief {
 namespace {
 
-const std::vector<std::string> kSmall = {"viewport.width=160", "viewport.height=120",
-                                         "grid.width=96", "grid.height=80"};
+const std::vector<std::string> kGradientFrame = {"viewport.width=160", "viewport.height=120",
+                                                 "grid.width=96", "grid.height=80"};
 
 std::vector<std::string> with(std::vector<std::string> a, const std::vector<std::string>& b) {
   a.insert(a.end(), b.begin(), b.end());
@@ -228,7 +228,7 @@ TEST_CASE("theGradientFieldsAreReadAndBadOnesRefusedByName", "[gradient][scene]"
 TEST_CASE("gradientPixelsAreLitByTheirTrianglesVertexLight", "[gradient][frame]") {
   const Scene scene = resolve_scene(
       "badlands",
-      with(kSmall,
+      with(kGradientFrame,
            {"shading.mode=\"gradient\"",
             "shading.gradient.stops=[{\"at\": 0, \"color\": [1, 1, 1]}, {\"at\": 1, "
             "\"color\": [1, 1, 1]}]",
@@ -298,9 +298,9 @@ TEST_CASE("gradientFramesFetchNoTextureAndEqualTheUnfusedOracle", "[gradient][fr
   for (const std::vector<std::string>& extra :
        {std::vector<std::string>{},
         {"lighting.shadows=true", "shading.gradient.range=[-20, 600]"}}) {
-    const Scene textured = resolve_scene("default", with(kSmall, extra));
+    const Scene textured = resolve_scene("default", with(kGradientFrame, extra));
     const Scene scene =
-        resolve_scene("default", with(with(kSmall, extra), {"shading.mode=\"gradient\""}));
+        resolve_scene("default", with(with(kGradientFrame, extra), {"shading.mode=\"gradient\""}));
     const SceneResources resources = load_scene_resources(scene);
     FrameRequest request;
     request.backend = Backend::kSimd;
@@ -323,8 +323,9 @@ TEST_CASE("gradientFramesFetchNoTextureAndEqualTheUnfusedOracle", "[gradient][fr
 // The per-vertex Lambert term is counted in the render's memory estimate: one value a grid
 // vertex in the frame's precision.
 TEST_CASE("theRenderEstimateCountsTheVertexLight", "[gradient]") {
-  const Scene textured = resolve_scene("default", kSmall);
-  const Scene gradient = resolve_scene("default", with(kSmall, {"shading.mode=\"gradient\""}));
+  const Scene textured = resolve_scene("default", kGradientFrame);
+  const Scene gradient =
+      resolve_scene("default", with(kGradientFrame, {"shading.mode=\"gradient\""}));
   const auto grid_bytes = [](const Scene& scene, Backend backend) {
     for (const auto& [part, size] : estimate_render_memory(scene, backend, {}).parts) {
       if (part.rfind("grid ", 0) == 0) {

@@ -25,11 +25,11 @@ namespace relief {
 namespace {
 
 // Small frames: llvmpipe draws on the CPU.
-const std::vector<std::string> kSmall = {"viewport.width=96", "viewport.height=64", "grid.width=48",
-                                         "grid.height=48"};
+const std::vector<std::string> kSmallGlFrame = {"viewport.width=96", "viewport.height=64",
+                                                "grid.width=48", "grid.height=48"};
 
 std::vector<std::string> small(std::vector<std::string> more) {
-  std::vector<std::string> overrides = kSmall;
+  std::vector<std::string> overrides = kSmallGlFrame;
   overrides.insert(overrides.end(), more.begin(), more.end());
   return overrides;
 }
@@ -272,7 +272,7 @@ TEST_CASE("glFramesReportTheGpuTimeOfEveryPass", "[gl]") {
   const test::TempDir dir("gl-passes");
   std::vector<std::string> args = {"render",   "default", "--backend", "gl",
                                    "--repeat", "3",       "--stats"};
-  for (const std::string& s : kSmall) {
+  for (const std::string& s : kSmallGlFrame) {
     args.push_back("--set");
     args.push_back(s);
   }

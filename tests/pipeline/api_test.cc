@@ -29,11 +29,11 @@ std::string message_of(const api::Result<T>& result) {
 }
 
 // A frame small enough for the sanitizer build.
-const std::vector<std::string> kSmall = {"viewport.width=64", "viewport.height=48", "grid.width=32",
-                                         "grid.height=32"};
+const std::vector<std::string> kSmallApiFrame = {"viewport.width=64", "viewport.height=48",
+                                                 "grid.width=32", "grid.height=32"};
 
 api::Scene small_scene() {
-  const api::Result<api::Scene> scene = api::Scene::load("", kSmall);
+  const api::Result<api::Scene> scene = api::Scene::load("", kSmallApiFrame);
   INFO(message_of(scene));
   REQUIRE(scene);
   return *scene;
@@ -278,7 +278,7 @@ TEST_CASE("renderRefusesAFrameLargerThanItsMemoryBudgetWithExitCodeTwo", "[api]"
 }
 
 TEST_CASE("renderRefusesAMissingTextureFileWithTheCommandLinesMessage", "[api]") {
-  std::vector<std::string> overrides = kSmall;
+  std::vector<std::string> overrides = kSmallApiFrame;
   overrides.emplace_back("shading.layers={\"0\": {\"texture\": \"/nonexistent/bed.png\"}}");
   const api::Result<api::Scene> scene = api::Scene::load("", overrides);
   INFO(message_of(scene));
@@ -313,7 +313,7 @@ TEST_CASE("encodePngGivesTheFileTheRenderCommandWrites", "[api]") {
   relief::test::TempDir dir("api-png");
   const std::filesystem::path file = dir.path() / "cli.png";
   std::vector<std::string> args = {"render", "-o", file.string()};
-  for (const std::string& assignment : kSmall) {
+  for (const std::string& assignment : kSmallApiFrame) {
     args.insert(args.end(), {"--set", assignment});
   }
   REQUIRE(relief::test::run(args).code == 0);

@@ -79,7 +79,7 @@ void look_over_the_ridges(Scene& scene) {
   scene.camera.pitch_deg = -14.0;
 }
 
-FrameRequest request_for(Backend backend, FrameSkips skips = {}) {
+FrameRequest geometry_request(Backend backend, FrameSkips skips = {}) {
   FrameRequest request;
   request.backend = backend;
   request.skips = skips;
@@ -133,7 +133,7 @@ TEST_CASE("aGeoMipMapFrameShowsNoBackgroundThroughAnySeamOverACameraSweep", "[ge
     scene.camera.pitch_deg = view < 9 ? -25.0 - 5.0 * view : -4.0 - view;
     scene.terrain.heightfield->geomipmap->pixel_error = 0.5 + (view % 4) * 2.5;
     const SceneResources resources = load_scene_resources(scene);
-    const Frame frame = render_frame(scene, resources, request_for(Backend::kReference));
+    const Frame frame = render_frame(scene, resources, geometry_request(Backend::kReference));
     const auto [must_cover, holes] = seam_holes(scene, frame, lowest);
     INFO("view " << view);
     CHECK(holes == 0);
@@ -154,9 +154,10 @@ TEST_CASE("everyCpuBackendDrawsTheGeoMipMapMeshTheSimdOneInTheReferencesBytes", 
   build(f, false, 1.0);
   look_over_the_ridges(f.scene);
   const SceneResources resources = load_scene_resources(f.scene);
-  const Frame reference = render_frame(f.scene, resources, request_for(Backend::kReference));
-  const Frame simd = render_frame(f.scene, resources, request_for(Backend::kSimd));
-  const Frame precise = render_frame(f.scene, resources, request_for(Backend::kReferenceDouble));
+  const Frame reference = render_frame(f.scene, resources, geometry_request(Backend::kReference));
+  const Frame simd = render_frame(f.scene, resources, geometry_request(Backend::kSimd));
+  const Frame precise =
+      render_frame(f.scene, resources, geometry_request(Backend::kReferenceDouble));
   CHECK(simd.image.srgb == reference.image.srgb);
   CHECK(simd.image.primitive == reference.image.primitive);
   CHECK(simd.image.depth == reference.image.depth);
@@ -189,12 +190,12 @@ TEST_CASE("aGeoMipMapFrameOnAHighBaseHeightKeepsItsGeometryExactly", "[geomipmap
   build(f, false, 1.0);
   look_over_the_ridges(f.scene);
   const SceneResources resources = load_scene_resources(f.scene);
-  const Frame low = render_frame(f.scene, resources, request_for(Backend::kReference));
+  const Frame low = render_frame(f.scene, resources, geometry_request(Backend::kReference));
   Scene high = f.scene;
   high.terrain.base_height = 1e6;
   high.camera.position[1] += 1e6;
   const Frame lifted =
-      render_frame(high, load_scene_resources(high), request_for(Backend::kReference));
+      render_frame(high, load_scene_resources(high), geometry_request(Backend::kReference));
   CHECK(lifted.image.depth == low.image.depth);
   CHECK(lifted.image.primitive == low.image.primitive);
 }
@@ -213,8 +214,8 @@ TEST_CASE("occlusionCullingOfGeoMipMapTilesChangesNoOutputAndSkipsTiles", "[geom
   FrameSkips without;
   without.occluded_tiles = false;
   for (Backend backend : {Backend::kReference, Backend::kReferenceDouble}) {
-    const Frame on = render_frame(f.scene, resources, request_for(backend));
-    const Frame off = render_frame(f.scene, resources, request_for(backend, without));
+    const Frame on = render_frame(f.scene, resources, geometry_request(backend));
+    const Frame off = render_frame(f.scene, resources, geometry_request(backend, without));
     INFO(backend_name(backend));
     CHECK(on.image.srgb == off.image.srgb);
     CHECK(on.image.depth == off.image.depth);
@@ -287,7 +288,7 @@ TEST_CASE("aGeoMipMapFrameBeyondTheMemoryBudgetIsRefusedBeforeItsMeshIsBuilt", "
   f.scene.camera.position = {0.0, 2000.0, 0.0};
   f.scene.camera.pitch_deg = -90.0;
   const SceneResources resources = load_scene_resources(f.scene);
-  FrameRequest request = request_for(Backend::kReference);
+  FrameRequest request = geometry_request(Backend::kReference);
   request.max_bin_bytes = 1u << 20;
   CHECK_THROWS_WITH(render_frame(f.scene, resources, request),
                     Catch::Contains("GeoMipMap mesh") && Catch::Contains("pixel_error"));

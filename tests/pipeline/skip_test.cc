@@ -20,16 +20,16 @@ namespace relief {
 namespace {
 
 // grid.width 90 leaves padding at the end of each row (the pitch is a multiple of 16).
-const std::vector<std::string> kSmall = {"viewport.width=200", "viewport.height=150",
-                                         "grid.width=90", "grid.height=90"};
+const std::vector<std::string> kSkipTestFrame = {"viewport.width=200", "viewport.height=150",
+                                                 "grid.width=90", "grid.height=90"};
 
 std::vector<std::string> small(std::vector<std::string> extra) {
-  std::vector<std::string> overrides = kSmall;
+  std::vector<std::string> overrides = kSkipTestFrame;
   overrides.insert(overrides.end(), extra.begin(), extra.end());
   return overrides;
 }
 
-FrameRequest request_for(Backend backend, const FrameSkips& skips) {
+FrameRequest every_output_request(Backend backend, const FrameSkips& skips) {
   FrameRequest request;
   request.backend = backend;
   request.outputs = {true, true, true, true, true, true};
@@ -75,21 +75,22 @@ FrameSkips nothing_skipped() {
 
 TEST_CASE("noSkipChangesAnyOutputOfAnyPresetInEitherBackend", "[skip]") {
   for (const std::string& preset : preset_names()) {
-    const Scene scene = resolve_scene(preset, kSmall);
+    const Scene scene = resolve_scene(preset, kSkipTestFrame);
     const SceneResources resources = load_scene_resources(scene);
     for (Backend backend : {Backend::kReference, Backend::kReferenceDouble}) {
-      const Frame all = render_frame(scene, resources, request_for(backend, FrameSkips{}));
+      const Frame all = render_frame(scene, resources, every_output_request(backend, FrameSkips{}));
       INFO(preset << ", " << backend_name(backend));
       for (const SkipField& skip : kSkips) {
         FrameSkips skips;
         skips.*skip.field = false;
         INFO("without skip " << skip.name);
-        require_same_outputs(all.image,
-                             render_frame(scene, resources, request_for(backend, skips)).image);
+        require_same_outputs(
+            all.image, render_frame(scene, resources, every_output_request(backend, skips)).image);
       }
       INFO("without any skip");
       require_same_outputs(
-          all.image, render_frame(scene, resources, request_for(backend, nothing_skipped())).image);
+          all.image,
+          render_frame(scene, resources, every_output_request(backend, nothing_skipped())).image);
     }
   }
 }
@@ -156,8 +157,10 @@ TEST_CASE("everySkipLowersTheCountersOfTheWorkItSaves", "[skip]") {
     const SceneResources resources = load_scene_resources(scene);
     FrameSkips without = c.base;
     without.*c.field = false;
-    const Frame on = render_frame(scene, resources, request_for(Backend::kReference, c.base));
-    const Frame off = render_frame(scene, resources, request_for(Backend::kReference, without));
+    const Frame on =
+        render_frame(scene, resources, every_output_request(Backend::kReference, c.base));
+    const Frame off =
+        render_frame(scene, resources, every_output_request(Backend::kReference, without));
     INFO("skip " << c.skip << " on " << c.preset);
     require_same_outputs(on.image, off.image);
     for (const std::string& name : c.counters) {
@@ -169,9 +172,10 @@ TEST_CASE("everySkipLowersTheCountersOfTheWorkItSaves", "[skip]") {
 
 TEST_CASE("theCountersOfAFrameAddUp", "[skip]") {
   for (const std::string& preset : preset_names()) {
-    const Scene scene = resolve_scene(preset, kSmall);
+    const Scene scene = resolve_scene(preset, kSkipTestFrame);
     const SceneResources resources = load_scene_resources(scene);
-    const Frame frame = render_frame(scene, resources, request_for(Backend::kReference, {}));
+    const Frame frame =
+        render_frame(scene, resources, every_output_request(Backend::kReference, {}));
     INFO(preset);
     const std::uint64_t pixels = 200u * 150u;
     // Every pixel is shaded once, as terrain exactly where a triangle covers it.
@@ -217,11 +221,12 @@ TEST_CASE("theCountersOfAFrameAddUp", "[skip]") {
 }
 
 TEST_CASE("aStageWithNothingToDoIsReportedSkipped", "[skip]") {
-  const Scene scene = resolve_scene("default", kSmall);
+  const Scene scene = resolve_scene("default", kSkipTestFrame);
   const SceneResources resources = load_scene_resources(scene);
   FrameSkips skips;
   skips.unseen_vertices = false;  // no outcodes needed, before stage 3 or after it
-  const Frame frame = render_frame(scene, resources, request_for(Backend::kReference, skips));
+  const Frame frame =
+      render_frame(scene, resources, every_output_request(Backend::kReference, skips));
   int skipped = 0;
   for (const StageTime& stage : frame.stats.stages) {
     INFO(stage.name);
@@ -235,12 +240,13 @@ TEST_CASE("aStageWithNothingToDoIsReportedSkipped", "[skip]") {
 }
 
 TEST_CASE("theCountersAreTheSameForEveryThreadCount", "[skip]") {
-  const Scene scene = resolve_scene("lake", kSmall);
+  const Scene scene = resolve_scene("lake", kSkipTestFrame);
   const SceneResources resources = load_scene_resources(scene);
   std::vector<std::vector<std::pair<std::string, std::uint64_t>>> runs;
   for (int threads : {1, 2, 3}) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    const Frame frame = render_frame(scene, resources, request_for(Backend::kReference, {}));
+    const Frame frame =
+        render_frame(scene, resources, every_output_request(Backend::kReference, {}));
     std::vector<std::pair<std::string, std::uint64_t>> counters;
     for (const StageTime& stage : frame.stats.stages) {
       for (const WorkCounter& c : stage.counters) {

@@ -25,12 +25,12 @@
 namespace relief {
 namespace {
 
-const std::vector<std::string> kSmall = {"viewport.width=96", "viewport.height=72", "grid.width=64",
-                                         "grid.height=64"};
+const std::vector<std::string> kSmallSkyboxFrame = {"viewport.width=96", "viewport.height=72",
+                                                    "grid.width=64", "grid.height=64"};
 
 Scene skybox_scene(const std::string& preset, const std::array<std::string, 6>& faces,
                    const std::string& extra = "") {
-  std::vector<std::string> overrides = kSmall;
+  std::vector<std::string> overrides = kSmallSkyboxFrame;
   overrides.push_back(test::skybox_override(faces, extra));
   return resolve_scene(preset, overrides);
 }
@@ -75,7 +75,7 @@ TEST_CASE("skyboxFilesThatCannotServeAreRefusedNamingTheFace", "[skybox][cli]") 
   const std::filesystem::path out = dir.path() / "out.png";
   const auto refused = [&](const std::array<std::string, 6>& f, const std::string& message,
                            const std::string& extra = "") {
-    std::vector<std::string> sets = kSmall;
+    std::vector<std::string> sets = kSmallSkyboxFrame;
     sets.push_back(test::skybox_override(f, extra));
     test::require_refused(test::render_preset("default", sets, out), message, out);
   };
@@ -121,7 +121,7 @@ TEST_CASE("skyboxFilesThatCannotServeAreRefusedNamingTheFace", "[skybox][cli]") 
   refused(faces, "sky.skybox.intensity", ", \"intensity\": -1");
   refused(faces, "sky.skybox.intensity", ", \"intensity\": 1e300");
   refused(faces, "sky.skybox.sun_disc", ", \"sun_disc\": 3");
-  std::vector<std::string> five = kSmall;
+  std::vector<std::string> five = kSmallSkyboxFrame;
   five.push_back("sky.skybox={\"faces\": [\"a.png\", \"b.png\", \"c.png\", \"d.png\", \"e.png\"]}");
   test::require_refused(test::render_preset("default", five, out), "sky.skybox.faces", out);
   {
@@ -141,7 +141,7 @@ TEST_CASE("skyboxFilesThatCannotServeAreRefusedNamingTheFace", "[skybox][cli]") 
     f[2] = "builtin:sky";
     refused(f, "sky.skybox.faces[2] = \"builtin:sky\" names no file");
   }
-  std::vector<std::string> none = kSmall;
+  std::vector<std::string> none = kSmallSkyboxFrame;
   none.push_back("sky.skybox={\"intensity\": 2}");
   test::require_refused(test::render_preset("default", none, out), "\"faces\"", out);
 }

@@ -33,10 +33,10 @@
 namespace relief {
 namespace {
 
-constexpr int kRows = 6;
+constexpr int kGridRows = 6;
 
 // The rows tried on every width: none, the first, one inside, and all but the border rows.
-const RowRange kRowRanges[] = {{2, 2}, {0, 1}, {3, 4}, {1, kRows - 1}};
+const RowRange kRowRanges[] = {{2, 2}, {0, 1}, {3, 4}, {1, kGridRows - 1}};
 
 // A frame of the lake (water, so stage 4 computes depths) on a grid 53 vertices wide, the
 // widest tried; narrower grids take the first columns of its rows. The kernels read the width
@@ -112,7 +112,7 @@ TEST_CASE("simdProjectedDomainOnAwkwardWidthsIsTheScalarStageAndWritesOnlyItsRow
   const EachTarget targets;
   const WideFrame frame;
   for (const std::size_t width : test::awkward_lengths()) {
-    const GridLayout layout = make_grid_layout(int(width), kRows);
+    const GridLayout layout = make_grid_layout(int(width), kGridRows);
     DomainParams<float> params = frame.params.domain;
     params.width = layout.width;
     params.pitch = layout.pitch;

@@ -32,7 +32,7 @@
 namespace relief {
 namespace {
 
-constexpr int kRows = 2;
+constexpr int kPixelRows = 2;
 
 // Resolved attributes of plausible terrain (camera-relative positions below the camera,
 // normals pointing up, shallow and dry ground) at `count` pixels, a quarter of them uncovered
@@ -113,7 +113,7 @@ TEST_CASE("simdShadingOfAwkwardRectanglesIsTheScalarShadingAndWritesOnlyTheRecta
     for (const std::size_t width : test::awkward_lengths()) {
       // Rows a few pixels longer than the rectangle, so no row starts aligned.
       const int stride = int(width) + 7;
-      const std::size_t pixels = std::size_t(kRows) * std::size_t(stride);
+      const std::size_t pixels = std::size_t(kPixelRows) * std::size_t(stride);
       for (const std::size_t start : test::kRangeStarts) {
         const int x0 = 40 + int(start), y0 = 30 + int(start);
         const ResolvedPixels attributes(start + pixels);
@@ -121,7 +121,7 @@ TEST_CASE("simdShadingOfAwkwardRectanglesIsTheScalarShadingAndWritesOnlyTheRecta
         // The scalar loop of the tile pass, pixel by pixel.
         std::vector<float> expected = test::sentinel_buffer<float>(3 * start, 3 * pixels);
         ShadeWork expected_work;
-        for (int j = 0; j < kRows; ++j) {
+        for (int j = 0; j < kPixelRows; ++j) {
           for (int i = 0; i < int(width); ++i) {
             const std::size_t k = std::size_t(j) * std::size_t(stride) + std::size_t(i);
             const Vec3<float> radiance =
@@ -140,7 +140,7 @@ TEST_CASE("simdShadingOfAwkwardRectanglesIsTheScalarShadingAndWritesOnlyTheRecta
           simd::force_target(target);
           std::vector<float> got = test::sentinel_buffer<float>(3 * start, 3 * pixels);
           ShadeWork work;
-          simd::shade_rect(params, shade_resources, in, x0, y0, int(width), kRows, stride,
+          simd::shade_rect(params, shade_resources, in, x0, y0, int(width), kPixelRows, stride,
                            std::span<float>(got).subspan(3 * start), work);
           INFO(preset << " on " << target << ", width " << width << ", start " << start);
           CHECK(test::same_bits(got, expected));
