@@ -158,13 +158,7 @@ bool refined_vertices(const CameraFrame& camera, const Projector& global,
       append_intersection_vertices(frustum, prism_polytope(quad, h.lo, h.hi), row);
     }
   };
-  if (parallel) {
-    parallel(n, row_cells);
-  } else {
-    for (int b = 0; b < n; ++b) {
-      row_cells(b);
-    }
-  }
+  run_rows(parallel, n, row_cells);
   for (const std::vector<glm::dvec3>& row : rows) {  // row order: the serial loop's
     out.insert(out.end(), row.begin(), row.end());
   }

@@ -38,6 +38,7 @@
 
 #include "core/camera.h"
 #include "core/height_bounds.h"
+#include "core/parallel_rows.h"
 #include "core/stage_param_fields.h"
 
 namespace relief {
@@ -71,12 +72,6 @@ inline constexpr int kRefinePasses = 2;
 // Vertices of (frustum between near and far plane) intersected with the slab
 // y_lo <= y <= y_hi; positions relative to the camera, slab heights relative to the camera.
 std::vector<glm::dvec3> frustum_slab_vertices(const CameraFrame& camera, double y_lo, double y_hi);
-
-// Runs body(0) ... body(count - 1), each exactly once, in any order and possibly at once; each
-// call writes only its own outputs. The core knows no threads: the pipeline hands in its
-// thread pool's loop (pipeline/parallel_rows.h, for the CPU and GL backends' frame plans);
-// empty: a plain loop. The result never depends on the order.
-using ParallelRows = std::function<void(int count, const std::function<void(int)>& body)>;
 
 // `terrain`: refine the polytope by the regional height bound of this terrain (header); null
 // takes the global slab alone. The refinement's rows of cells run through `parallel`; their

@@ -1,8 +1,9 @@
-// The frame plan's parallel loop (core/projector.h, ParallelRows) on oneTBB's pool: the core
-// knows no threads, the pipeline hands it this.
+// The core's parallel loop (core/parallel_rows.h, ParallelRows) on oneTBB's pool, for the frame
+// plan's projector and a height field's GeoMipMap: the core knows no threads, the pipeline hands
+// it this.
 #pragma once
 
-#include "core/projector.h"
+#include "core/parallel_rows.h"
 
 namespace relief {
 

@@ -23,6 +23,7 @@
 #include "image/png_header.h"
 #include "image/png_layout.h"
 #include "pipeline/builtin_sketches.h"
+#include "pipeline/parallel_rows.h"
 #include "pipeline/png_checks.h"
 
 namespace relief {
@@ -213,7 +214,7 @@ SceneResources load_scene_resources(const Scene& scene) {
     try {
       resources.field_mesh =
           build_field_mesh(*resources.sketch, sketch_extent(*field, *resources.sketch),
-                           field->geomipmap->tile_cells);
+                           field->geomipmap->tile_cells, thread_pool_rows());
     } catch (const std::invalid_argument& e) {
       throw SceneError("terrain.heightfield.geomipmap", e.what());
     }

@@ -44,7 +44,7 @@ std::uintmax_t field_mesh_vertices(int width, int height, int tile_cells) {
 }
 
 FieldMesh build_field_mesh(const HeightSketch& field, const std::array<double, 4>& extent,
-                           int tile_cells) {
+                           int tile_cells, const ParallelRows& parallel) {
   if (!geomipmap::valid_tile_cells(tile_cells)) {
     throw std::invalid_argument("terrain.heightfield.geomipmap.tile_cells = " +
                                 std::to_string(tile_cells) + " is not a power of two in 2..256");
@@ -65,7 +65,7 @@ FieldMesh build_field_mesh(const HeightSketch& field, const std::array<double, 4
                  extent[1] + (mesh.rows - 0.5) * mesh.cell_z};
   const Texels t = texels_of(field);
   mesh.heights.resize(std::size_t(mesh.columns) * mesh.rows);
-  for (int r = 0; r < mesh.rows; ++r) {
+  run_rows(parallel, mesh.rows, [&](int r) {
     for (int c = 0; c < mesh.columns; ++c) {
       double sum = 0;
       for (int b = -1; b <= 1; ++b) {
@@ -77,8 +77,8 @@ FieldMesh build_field_mesh(const HeightSketch& field, const std::array<double, 4
       }
       mesh.heights[std::size_t(r) * mesh.columns + c] = static_cast<float>(sum);
     }
-  }
-  mesh.map = geomipmap::build_geomipmap(mesh.lattice(), tile_cells);
+  });
+  mesh.map = geomipmap::build_geomipmap(mesh.lattice(), tile_cells, parallel);
   return mesh;
 }
 

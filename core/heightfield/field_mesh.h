@@ -11,8 +11,9 @@
 // the B-spline there: the taps (1, 4, 1) / 6 along each axis, the edge texels extended
 // (GL_CLAMP_TO_EDGE, as the projected grid reads them). The lattice has whole tiles:
 // ceil((W - 1) / T) T + 1 vertices along x (likewise z), up to T - 1 of them beyond the last
-// texel centre on the extended edge (a field smaller than a tile grows with T). Its normals are the B-spline's own gradient at the vertex, at the
-// field's full resolution whatever the tile's level (a normal does not pop with the level).
+// texel centre on the extended edge (a field smaller than a tile grows with T). Its normals are the
+// B-spline's own gradient at the vertex, at the field's full resolution whatever the tile's level
+// (a normal does not pop with the level).
 #pragma once
 
 #include <array>
@@ -23,6 +24,7 @@
 #include "core/grid_buffers.h"
 #include "core/height_sketch.h"
 #include "core/heightfield/geomipmap.h"
+#include "core/parallel_rows.h"
 
 namespace relief {
 
@@ -50,8 +52,9 @@ struct FieldMesh {
 
 // The lattice of `field` (level 0 of its texels) over `extent`, and its GeoMipMap with tiles of
 // `tile_cells` (a power of two, 2..256). Throws std::invalid_argument as build_geomipmap does.
+// The lattice's rows and the tiles' rows run through `parallel` (core/parallel_rows.h).
 FieldMesh build_field_mesh(const HeightSketch& field, const std::array<double, 4>& extent,
-                           int tile_cells);
+                           int tile_cells, const ParallelRows& parallel = {});
 
 // Lattice vertices of a field of `width` x `height` texels in tiles of `tile_cells`.
 std::uintmax_t field_mesh_vertices(int width, int height, int tile_cells);

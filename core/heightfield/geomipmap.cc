@@ -82,7 +82,7 @@ bool valid_tile_cells(int tile_cells) {
   return tile_cells >= 2 && tile_cells <= kMaxTileCells && (tile_cells & (tile_cells - 1)) == 0;
 }
 
-GeoMipMap build_geomipmap(const FieldLattice& f, int tile_cells) {
+GeoMipMap build_geomipmap(const FieldLattice& f, int tile_cells, const ParallelRows& parallel) {
   if (!valid_tile_cells(tile_cells)) {
     throw std::invalid_argument("tile cells = " + std::to_string(tile_cells) +
                                 "; allowed a power of two in [2, 256]");
@@ -103,6 +103,14 @@ GeoMipMap build_geomipmap(const FieldLattice& f, int tile_cells) {
     if (!std::isfinite(e))
       throw std::invalid_argument("lattice extent: not finite");
   }
+  // Checked here, in order, so that the message names the first whichever row runs first.
+  const auto not_finite =
+      std::find_if(f.heights.begin(), f.heights.end(), [](float h) { return !std::isfinite(h); });
+  if (not_finite != f.heights.end()) {
+    const auto at = static_cast<std::size_t>(not_finite - f.heights.begin());
+    throw std::invalid_argument("lattice height at column " + std::to_string(at % f.columns) +
+                                ", row " + std::to_string(at / f.columns) + ": not finite");
+  }
   // The spans too: an extent from -1.5e308 to 1.5e308 has finite ends and no finite width.
   if (!(f.extent[2] > f.extent[0] && f.extent[3] > f.extent[1] &&
         std::isfinite(f.extent[2] - f.extent[0]) && std::isfinite(f.extent[3] - f.extent[1]))) {
@@ -115,7 +123,7 @@ GeoMipMap build_geomipmap(const FieldLattice& f, int tile_cells) {
   map.tiles_z = (f.rows - 1) / tile_cells;
   map.extent = f.extent;
   map.tiles.resize(static_cast<std::size_t>(map.tiles_x) * map.tiles_z);
-  for (int tz = 0; tz < map.tiles_z; ++tz) {
+  run_rows(parallel, map.tiles_z, [&](int tz) {
     for (int tx = 0; tx < map.tiles_x; ++tx) {
       TileBounds& t = map.tiles[static_cast<std::size_t>(tz) * map.tiles_x + tx];
       const int c0 = tx * tile_cells, r0 = tz * tile_cells;
@@ -123,10 +131,6 @@ GeoMipMap build_geomipmap(const FieldLattice& f, int tile_cells) {
       for (int v = 0; v <= tile_cells; ++v) {
         for (int u = 0; u <= tile_cells; ++u) {
           const float h = f.heights[static_cast<std::size_t>(r0 + v) * f.columns + (c0 + u)];
-          if (!std::isfinite(h)) {
-            throw std::invalid_argument("lattice height at column " + std::to_string(c0 + u) +
-                                        ", row " + std::to_string(r0 + v) + ": not finite");
-          }
           low = std::min(low, h);
           high = std::max(high, h);
         }
@@ -144,7 +148,7 @@ GeoMipMap build_geomipmap(const FieldLattice& f, int tile_cells) {
         t.error[level] = worst;
       }
     }
-  }
+  });
   // The quadtree of height ranges, bottom up.
   map.quadtree.emplace_back();
   map.quadtree_size.push_back({map.tiles_x, map.tiles_z});

@@ -22,6 +22,7 @@
 #include <glm/glm.hpp>
 
 #include "core/camera.h"
+#include "core/parallel_rows.h"
 
 namespace relief::geomipmap {
 
@@ -66,8 +67,11 @@ struct GeoMipMap {
 
 // Valid T: a power of two in [2, 256]; the lattice's columns - 1 and rows - 1 multiples of T.
 bool valid_tile_cells(int tile_cells);
-// Throws std::invalid_argument naming the size that does not fit.
-GeoMipMap build_geomipmap(const FieldLattice& lattice, int tile_cells);
+// Throws std::invalid_argument naming the size that does not fit, or the first non-finite
+// height in row-major order. The rows of tiles run through `parallel` (each tile's bounds and
+// errors are its own), so the map is the same bits however they ran.
+GeoMipMap build_geomipmap(const FieldLattice& lattice, int tile_cells,
+                          const ParallelRows& parallel = {});
 
 // The frame's view: the camera (core/camera.h: world position in double, its axes and field
 // of view, near and far), the viewport in pixels, tau, and whether to cull by occlusion.
