@@ -288,6 +288,16 @@ inline constexpr int kMaxShadowResolution = 1024;
 // Fog per world unit: exp2_det clamps its argument, so any density is total; 1 per unit is
 // already opaque fog one unit from the camera.
 inline constexpr double kMaxFogDensity = 1.0;
+// sky.atmosphere (core/atmosphere.h). Scattering per world unit: any value at most 1e-2 keeps
+// every optical depth finite in float (they are capped at kMaxOpticalDepth, 1e20, where the
+// transmittance of any coefficient from 1e-18 up is exp(-100) already). The scale height from
+// 10 units (the camera's height is divided by it in double, the density at the camera capped
+// at e^40) to 1e6. The haze's g at most 0.95: its phase function's denominator
+// 1 + g^2 - 2 g cos stays at least (1 - g)^2 = 0.0025.
+inline constexpr double kMaxScattering = 1e-2;
+inline constexpr double kMinScaleHeight = 10.0;
+inline constexpr double kMaxScaleHeight = 1e6;
+inline constexpr double kMaxMieG = 0.95;
 
 // time, seconds: the wave offsets (camera + speed x time) / wave_length are reduced in double.
 inline constexpr double kMaxTime = 1e9;

@@ -97,6 +97,12 @@ ShadingPlan make_shading_plan(const Scene& scene, const FramePlan& frame, int la
   plan.sky.fog_density_log2 = scene.sky.fog_density / M_LN2;
   plan.sky.skybox = scene.sky.skybox.has_value();
   plan.sky.skybox_sun = !scene.sky.skybox || scene.sky.skybox->sun_disc;
+  if (scene.sky.atmosphere) {
+    // The atmosphere's sun: what reaches the camera's height lights the ground (atmosphere_plan.h).
+    plan.sky.atmosphere = make_atmosphere_plan(*scene.sky.atmosphere, camera.y, elevation,
+                                               scene.sky.sun_disc_deg * kDegree, plan.light.sun);
+    plan.light.sun = plan.sky.atmosphere.ground_sun;
+  }
 
   const WaterSettings& w = scene.water;
   WaterPlan& water = plan.water;

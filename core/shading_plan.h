@@ -6,6 +6,7 @@
 #include <span>
 #include <vector>
 
+#include "core/atmosphere_plan.h"
 #include "core/camera.h"
 #include "core/frame_plan.h"
 #include "core/limits.h"
@@ -45,6 +46,7 @@ struct SkyPlan {
   double fog_density_log2 = 0;                  // density / ln 2, for exp2
   bool skybox = false;                          // sky.skybox given (core/skybox.h)
   bool skybox_sun = true;                       // its sun_disc
+  AtmospherePlan atmosphere;                    // sky.atmosphere (core/atmosphere.h)
 };
 
 inline constexpr int kWaveOctaves = 3;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/atmosphere.h"
 #include "core/det_math.h"
 
 namespace relief {
@@ -19,12 +20,17 @@ Real power_of_half_cosine(Real c, int squarings) {
 }
 
 // The sun disc (20 x the sun) with its smooth edge and the halo around it, in direction d.
+// Under the atmosphere no halo: its haze scatters the glow (atmosphere.h), and p.sun is
+// already the light that reaches the camera's height.
 template <class Real>
 Vec3<Real> sun_light(const ShadeParams<Real>& p, const Vec3<Real>& d) {
   const Vec3<Real>& sun = p.sun;
   const Real c = dot(d, p.sun_direction);
   const Real inner = p.sun_cos_inner, outer = p.sun_cos_outer;
   const Real disc = inner > outer ? smooth01((c - outer) / (inner - outer)) : Real(c >= inner);
+  if (p.atmosphere != 0) {
+    return sun * (Real(20) * disc);
+  }
   const Real halo = Real(0.06) * power_of_half_cosine(c, 5);
   return sun * (Real(20) * disc + halo);
 }
@@ -37,6 +43,9 @@ Vec3<Real> sky_radiance(const ShadeParams<Real>& p, const Skybox* skybox, const 
     const Vec3<Real> color = skybox_radiance(*skybox, d);
     return p.skybox_sun != 0 ? color + sun_light(p, d) : color;
   }
+  if (p.atmosphere != 0) {
+    return atmosphere_sky(p, d) + sun_light(p, d);
+  }
   const Vec3<Real>& zenith = p.zenith;
   const Vec3<Real>& horizon = p.horizon;
   Vec3<Real> color = horizon;
@@ -48,6 +57,9 @@ Vec3<Real> sky_radiance(const ShadeParams<Real>& p, const Skybox* skybox, const 
 
 template <class Real>
 Vec3<Real> fog_color(const ShadeParams<Real>& p, const Vec3<Real>& d) {
+  if (p.atmosphere != 0) {
+    return atmosphere_sky(p, d);
+  }
   const Real c = dot(d, p.sun_direction);
   return p.horizon + p.sun * (Real(0.05) * power_of_half_cosine(c, 3));
 }
@@ -55,6 +67,9 @@ Vec3<Real> fog_color(const ShadeParams<Real>& p, const Vec3<Real>& d) {
 template <class Real>
 Vec3<Real> apply_fog(const ShadeParams<Real>& p, const Vec3<Real>& radiance, const Vec3<Real>& d,
                      Real distance) {
+  if (p.atmosphere != 0) {
+    return atmosphere_over(p, radiance, d, distance);
+  }
   const Real clear = exp2_det(-p.fog_density_log2 * distance);  // in (0, 1]
   if (!(clear < Real(1))) {
     return radiance;  // no fog: exactly the radiance (a mix with weight 1 could round)

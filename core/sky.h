@@ -1,5 +1,7 @@
 // Sky and distance fog (stage 8): a zenith-to-horizon gradient with a sun disc and halo where
-// no terrain covers the pixel, and fog toward the horizon colour over every surface.
+// no terrain covers the pixel, and fog toward the horizon colour over every surface; or, where
+// params.atmosphere is set, the sky and the aerial perspective of core/atmosphere.h (the
+// gradient's colours and the fog's density are then not read).
 #pragma once
 
 #include "core/skybox.h"

@@ -186,6 +186,16 @@
   F(std::int32_t, nearest_mip, 0) E /* 1: GL_LINEAR_MIPMAP_NEAREST (nearest_mip_lod) */         \
   /* The skybox (core/skybox.h) in place of the gradient, and the sun drawn over it. */       \
   F(std::int32_t, skybox, 0) F(std::int32_t, skybox_sun, 1) E                                   \
+  /* sky.atmosphere (core/atmosphere.h; atmosphere_plan.h derives each): 1 in place of the   \
+     gradient and the fog. */                                                                   \
+  F(std::int32_t, atmosphere, 0) E                                                              \
+  F(Real, atmosphere_density, 0) F(Real, atmosphere_scale_height, 1) E                          \
+  F(Real, atmosphere_inv_scale_height, 1) F(Real, atmosphere_sun_depth, 0) E                    \
+  F(Real, atmosphere_grazing_cosine_sq, 1) F(Real, atmosphere_mie_a, 1) E                       \
+  F(Real, atmosphere_mie_b, 0) E                                                                \
+  F(Vec3<Real>, atmosphere_extinction_log2, {}) E                                               \
+  F(Vec3<Real>, atmosphere_camera_sun_depth_log2, {}) E                                         \
+  F(Vec3<Real>, atmosphere_rayleigh_sun, {}) F(Vec3<Real>, atmosphere_mie_sun, {}) E            \
   /* castledragmire's height gradient (shading.mode = gradient, core/gradient_shade.h): the   \
      stops at camera-relative heights, 1 / (height[i + 1] - height[i]) per segment (0 for a  \
      step), the colours (linear RGB). */                                                       \

@@ -179,6 +179,19 @@ ShadeParams<Real> make_shade_params(const ShadingPlan& plan) {
   p.fog_density_log2 = Real(plan.sky.fog_density_log2);
   p.skybox = plan.sky.skybox ? 1 : 0;
   p.skybox_sun = plan.sky.skybox_sun ? 1 : 0;
+  const AtmospherePlan& a = plan.sky.atmosphere;
+  p.atmosphere = a.enabled ? 1 : 0;
+  p.atmosphere_density = Real(a.density);
+  p.atmosphere_scale_height = Real(a.scale_height);
+  p.atmosphere_inv_scale_height = Real(a.inv_scale_height);
+  p.atmosphere_sun_depth = Real(a.sun_depth);
+  p.atmosphere_grazing_cosine_sq = Real(a.grazing_cosine_sq);
+  p.atmosphere_mie_a = Real(a.mie_a);
+  p.atmosphere_mie_b = Real(a.mie_b);
+  p.atmosphere_extinction_log2 = rounded<Real>(a.extinction_log2);
+  p.atmosphere_camera_sun_depth_log2 = rounded<Real>(a.camera_sun_depth_log2);
+  p.atmosphere_rayleigh_sun = rounded<Real>(a.rayleigh_sun);
+  p.atmosphere_mie_sun = rounded<Real>(a.mie_sun);
   const WaterPlan& w = plan.water;
   p.water_enabled = w.enabled ? 1 : 0;
   p.terrain_water = p.water_enabled;  // until the frame knows the heights it draws
@@ -200,7 +213,8 @@ ShadeParams<Real> make_shade_params(const ShadingPlan& plan) {
   p.dither_offset_x = Real(plan.dither.offset_x);
   p.dither_offset_z = Real(plan.dither.offset_z);
   p.pixel_angle = Real(plan.pixel_angle);
-  p.fog_enabled = plan.sky.fog_density_log2 > 0.0 ? 1 : 0;
+  // The atmosphere replaces the fog: its pass runs wherever it is on.
+  p.fog_enabled = a.enabled || plan.sky.fog_density_log2 > 0.0 ? 1 : 0;
   p.camera_forward = rounded<Real>(plan.camera.forward);
   for (int c = 0; c < 3; ++c) {
     p.forward[c] = plan.camera.forward[c];

@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "core/atmosphere.h"
 #include "core/det_math.h"
 #include "core/limits.h"
 #include "core/proto_texture.h"
@@ -137,6 +138,17 @@ std::string glsl_prelude() {
   constant(out, "kReflectivityBase", float(kReflectivityBase));
   constant(out, "kReflectivityDepth", float(kReflectivityDepth));
   constant(out, "kLocalFrameMinCos", float(kLocalFrameMinCos));
+  constant(out, "kMaxOpticalDepth", float(kMaxOpticalDepth));
+  constant(out, "kMaxDepthRatio", float(kMaxDepthRatio));
+  constant(out, "kGrowthSeriesLimit", float(kGrowthSeriesLimit));
+  out += "const int kGrowthTerms = " + std::to_string(kGrowthTerms) + ";\n";
+  out += "const float kGrowthSeries[kGrowthTerms] = float[](";
+  for (int k = 0; k < kGrowthTerms; ++k) {
+    out += (k > 0 ? ", " : "") + literal(float(kGrowthSeries[k]));
+  }
+  out += ");\n";
+  constant(out, "kLn2", float(kLn2));
+  constant(out, "kLog2e", float(kLog2e));
   // sin_cos_det<double> and atan2_det<double> (det_trig.glsl.in, in planet_shading.glsl: a
   // planet's background), under the names the terrain stages' prelude gives their floats.
   using Trig = det_math_detail::TrigTerms<double>;

@@ -1,6 +1,7 @@
 // Per-target sky and distance fog of core/sky.cc for float, one direction per lane:
 // sky_radiance, fog_color and apply_fog with the scalar code's operations in its order; the
-// scalar branches (above the horizon, no fog) become masks.
+// scalar branches (above the horizon, no fog) become masks, the atmosphere's (a frame's
+// constant) stays a branch.
 // Included by a kernel's -inl.h inside its per-target section (Highway's re-inclusion guard).
 #if defined(RELIEF_SIMD_SKY_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef RELIEF_SIMD_SKY_INL_H_
@@ -12,6 +13,7 @@
 #include <hwy/highway.h>
 
 #include "core/stage_params.h"
+#include "simd/atmosphere-inl.h"
 #include "simd/det_math-inl.h"
 #include "simd/shade_vec3-inl.h"
 #include "simd/skybox-inl.h"
@@ -43,6 +45,9 @@ HWY_INLINE V3<V> SunLight(D d, const ShadeParams<float>& p, const V3<V>& dir) {
   } else {
     disc = hn::IfThenElseZero(hn::Ge(c, hn::Set(d, inner)), hn::Set(d, 1.0f));
   }
+  if (p.atmosphere != 0) {
+    return Scale3(Set3(d, p.sun), hn::Mul(hn::Set(d, 20.0f), disc));
+  }
   const V halo = hn::Mul(hn::Set(d, float(0.06)), PowerOfHalfCosine(d, c, 5));
   const V k = hn::Add(hn::Mul(hn::Set(d, 20.0f), disc), halo);
   return Scale3(Set3(d, p.sun), k);
@@ -57,6 +62,9 @@ HWY_INLINE V3<V> SkyRadiance(D d, const ShadeParams<float>& p, const SkyboxView&
     const V3<V> color = SkyboxRadiance(d, box, dir);
     return p.skybox_sun != 0 ? Add3(color, SunLight(d, p, dir)) : color;
   }
+  if (p.atmosphere != 0) {
+    return Add3(AtmosphereSky(d, p, dir), SunLight(d, p, dir));
+  }
   const V3<V> horizon = Set3(d, p.horizon);
   V3<V> color = horizon;
   const auto above = hn::Gt(dir.y, hn::Zero(d));
@@ -70,6 +78,9 @@ HWY_INLINE V3<V> SkyRadiance(D d, const ShadeParams<float>& p, const SkyboxView&
 // fog_color (sky.cc): the horizon plus the sun's glow.
 template <class D, class V = hn::Vec<D>>
 HWY_INLINE V3<V> FogColor(D d, const ShadeParams<float>& p, const V3<V>& dir) {
+  if (p.atmosphere != 0) {
+    return AtmosphereSky(d, p, dir);
+  }
   const V c = Dot3(dir, Set3(d, p.sun_direction));
   return Add3(Set3(d, p.horizon),
               Scale3(Set3(d, p.sun), hn::Mul(hn::Set(d, float(0.05)), PowerOfHalfCosine(d, c, 3))));
@@ -80,6 +91,9 @@ HWY_INLINE V3<V> FogColor(D d, const ShadeParams<float>& p, const V3<V>& dir) {
 template <class D, class V = hn::Vec<D>>
 HWY_INLINE V3<V> ApplyFog(D d, const ShadeParams<float>& p, const V3<V>& radiance, const V3<V>& dir,
                           V distance) {
+  if (p.atmosphere != 0) {
+    return AtmosphereOver(d, p, radiance, dir, distance);
+  }
   const V clear = Exp2Det(d, hn::Mul(hn::Set(d, -p.fog_density_log2), distance));
   const auto fogged = hn::Lt(clear, hn::Set(d, 1.0f));
   if (hn::AllFalse(d, fogged)) {

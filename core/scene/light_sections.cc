@@ -48,6 +48,28 @@ const Schema<SkyboxSettings>& skybox_schema() {
   return schema;
 }
 
+const Schema<AtmosphereSettings>& atmosphere_schema() {
+  using S = AtmosphereSettings;
+  const Range scattering{0.0, limits::kMaxScattering};
+  static const Schema<S> schema({
+      number_field("scale_height", &S::scale_height,
+                   Range{limits::kMinScaleHeight, limits::kMaxScaleHeight},
+                   {"world units", "the air thins by e over this height (0 is height 0)"}),
+      vector_field("rayleigh", &S::rayleigh, scattering,
+                   {"per world unit", "RGB scattering of the air at height 0 (blue sky)"}),
+      number_field("mie", &S::mie, scattering,
+                   {"per world unit", "grey scattering of haze at height 0 (extinction / 0.9)"}),
+      vector_field("absorption", &S::absorption, scattering,
+                   {"per world unit",
+                    "RGB absorption at height 0 without scattering (ozone: the twilight's blue)"}),
+      number_field("mie_g", &S::mie_g, Range{0.0, limits::kMaxMieG},
+                   {"", "the haze's forward scattering (0: even, 0.95: a tight glow)"}),
+      number_field("intensity", &S::intensity, kRadiance,
+                   {"", "the sun in the sky's light, times lighting's sun"}),
+  });
+  return schema;
+}
+
 }  // namespace
 
 const Schema<LightingSettings>& lighting_schema() {
@@ -119,6 +141,11 @@ const Schema<SkySettings>& sky_schema() {
                               "six images in place of the gradient above the horizon and in "
                               "the water's reflection (docs/stages.md, \"Skybox\"); `null`: the "
                               "gradient"}),
+      optional_section_field("atmosphere", &S::atmosphere, atmosphere_schema(), "", "",
+                             {"",
+                              "sky and aerial perspective from the sun's light scattered once "
+                              "(docs/stages.md, \"Atmosphere\"), in place of the gradient and "
+                              "the fog; `null`: the gradient and the fog"}),
   });
   return schema;
 }

@@ -106,6 +106,14 @@ void validate_planet(const Scene& scene) {
                          format_number(radius) +
                          "): cast shadows are built for the plane only; allowed false here");
   }
+  // The atmosphere's closed form integrates over flat ground (core/atmosphere.h); a sphere's
+  // shell has none.
+  if (scene.sky.atmosphere) {
+    throw SceneError("sky.atmosphere",
+                     "scene: sky.atmosphere is set on a planet (terrain.planet.radius = " +
+                         format_number(radius) +
+                         "): the atmosphere is built for the plane only; allowed null here");
+  }
   // The water sphere's radius R + (water level - base height) must be positive: at or below
   // the centre there is no sphere (its equation would draw one of radius |R + w| instead).
   if (t.water_level && !(radius + (*t.water_level - t.base_height) > 0.0)) {

@@ -288,12 +288,26 @@ struct SkyboxSettings {
   bool sun_disc = true;    // the sun's disc and halo drawn over the faces
 };
 
+// Aerial perspective and sky from one scattering of the sun's light in an exponential
+// atmosphere (Bruneton & Neyret 2008's single scattering, in closed form over flat ground:
+// core/atmosphere.h). Coefficients per world unit at height 0; the air thins by e every
+// scale_height. Replaces the gradient and the fog where given.
+struct AtmosphereSettings {
+  double scale_height = 8000.0;                      // world units
+  Vec3d rayleigh = {5.8e-6, 13.5e-6, 33.1e-6};       // molecules' scattering (Bruneton's)
+  double mie = 3.2e-6;                               // haze's scattering, grey; extinction / 0.9
+  Vec3d absorption = {0.65e-6, 1.881e-6, 0.085e-6};  // ozone's (Bruneton's), no scattering
+  double mie_g = 0.76;                               // haze's forward lobe (Cornette-Shanks g)
+  double intensity = 20.0;                           // the sun in the sky's light, x lighting's sun
+};
+
 struct SkySettings {
   Vec3d zenith_color = {0.17, 0.33, 0.70};
   Vec3d horizon_color = {0.66, 0.75, 0.86};
-  double sun_disc_deg = 0.6;             // angular radius of the sun disc
-  double fog_density = 2.2e-5;           // per world unit: fog = 1 - exp(-density distance)
-  std::optional<SkyboxSettings> skybox;  // nullopt: the gradient
+  double sun_disc_deg = 0.6;                     // angular radius of the sun disc
+  double fog_density = 2.2e-5;                   // per world unit: fog = 1 - exp(-density distance)
+  std::optional<SkyboxSettings> skybox;          // nullopt: the gradient
+  std::optional<AtmosphereSettings> atmosphere;  // nullopt: the gradient and the fog
 };
 
 struct OutputSettings {

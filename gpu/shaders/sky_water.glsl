@@ -1,4 +1,5 @@
-// Sky, fog (core/sky.cc) and water (§4.3; core/water.cc), operation for operation.
+// Sky, fog, atmosphere (core/sky.cc, core/atmosphere.cc) and water (§4.3; core/water.cc),
+// operation for operation.
 
 // ((1 + c) / 2)^(2^n) by repeated squaring.
 float power_of_half_cosine(float c, int squarings) {
@@ -65,12 +66,78 @@ vec3 skybox_radiance(vec3 d) {
   return r;
 }
 
-// sky.cc, sun_light: the disc and its halo.
+// atmosphere.cc, column_growth: phi(z) = (1 - e^-z) / z given e = e^-z.
+float column_growth(float z, float e) {
+  if (abs(z) < kGrowthSeriesLimit) {
+    precise float series = kGrowthSeries[kGrowthTerms - 1];
+    for (int k = kGrowthTerms - 2; k >= 0; --k) {
+      series = kGrowthSeries[k] + z * series;
+    }
+    return series;
+  }
+  precise float quotient = divide(1.0 - e, z);
+  return quotient;
+}
+
+// atmosphere.cc, scatter: per channel the transmittance and the in-scattered light of a ray
+// whose column is `column` and whose end has the sun's column `end_sun_column` above it.
+void atmosphere_scatter(vec3 d, float column, float end_sun_column, out vec3 transmittance,
+                        out vec3 inscatter) {
+  precise float c = dot3(d, f3(P.sun_direction));
+  precise float one_plus_c2 = 1.0 + c * c;
+  precise float q = P.atmosphere_mie_a - P.atmosphere_mie_b * c;  // >= 0.0025
+  precise float mie_phase = divide(one_plus_c2, q * square_root(q));
+  const vec3 extinction = f3(P.atmosphere_extinction_log2);
+  const vec3 camera_sun = f3(P.atmosphere_camera_sun_depth_log2);
+  const vec3 rayleigh = f3(P.atmosphere_rayleigh_sun);
+  const vec3 mie = f3(P.atmosphere_mie_sun);
+  for (int k = 0; k < 3; ++k) {
+    precise float view = extinction[k] * column;
+    transmittance[k] = exp2_det(-view);
+    precise float a = camera_sun[k];
+    precise float b = view + extinction[k] * end_sun_column;
+    precise float z = abs(a - b);
+    precise float integral = exp2_det(-min(a, b)) *
+                             (column * column_growth(z * kLn2, exp2_det(-z)));
+    precise float s = (rayleigh[k] * one_plus_c2 + mie[k] * mie_phase) * integral;
+    inscatter[k] = s;
+  }
+}
+
+// atmosphere.cc, atmosphere_over.
+vec3 atmosphere_over(vec3 radiance, vec3 d, float distance) {
+  precise float w = max(d.y * distance * P.atmosphere_inv_scale_height, -kMaxDepthRatio);
+  precise float x = exp2_det(-w * kLog2e);
+  precise float column =
+      min(P.atmosphere_density * (distance * column_growth(w, x)), kMaxOpticalDepth);
+  precise float end_sun_column = min(P.atmosphere_sun_depth * x, kMaxOpticalDepth);
+  vec3 transmittance, inscatter;
+  atmosphere_scatter(d, column, end_sun_column, transmittance, inscatter);
+  precise vec3 r = radiance * transmittance + inscatter;
+  return r;
+}
+
+// atmosphere.cc, atmosphere_sky.
+vec3 atmosphere_sky(vec3 d) {
+  precise float mu = max(d.y, 0.0);
+  precise float slope = square_root(mu * mu + P.atmosphere_grazing_cosine_sq);
+  precise float column =
+      min(P.atmosphere_density * divide(P.atmosphere_scale_height, slope), kMaxOpticalDepth);
+  vec3 transmittance, inscatter;
+  atmosphere_scatter(d, column, 0.0, transmittance, inscatter);
+  return inscatter;
+}
+
+// sky.cc, sun_light: the disc and its halo (no halo under the atmosphere).
 vec3 sun_light(vec3 d) {
   precise float c = dot3(d, f3(P.sun_direction));
   const float inner = P.sun_cos_inner, outer = P.sun_cos_outer;
   precise float disc =
       inner > outer ? smooth01(divide(c - outer, inner - outer)) : (c >= inner ? 1.0 : 0.0);
+  if (P.atmosphere != 0) {
+    precise vec3 a = f3(P.sun) * (20.0 * disc);
+    return a;
+  }
   precise float halo = kHaloWeight * power_of_half_cosine(c, 5);
   precise vec3 r = f3(P.sun) * (20.0 * disc + halo);
   return r;
@@ -85,6 +152,10 @@ vec3 sky_radiance(vec3 d) {
     precise vec3 lit = color + sun_light(d);
     return lit;
   }
+  if (P.atmosphere != 0) {
+    precise vec3 air = atmosphere_sky(d) + sun_light(d);
+    return air;
+  }
   const vec3 horizon = f3(P.horizon);
   precise vec3 color = horizon;
   if (d.y > 0.0) {
@@ -95,12 +166,18 @@ vec3 sky_radiance(vec3 d) {
 }
 
 vec3 fog_color(vec3 d) {
+  if (P.atmosphere != 0) {
+    return atmosphere_sky(d);
+  }
   precise float c = dot3(d, f3(P.sun_direction));
   precise vec3 r = f3(P.horizon) + f3(P.sun) * (kFogSunWeight * power_of_half_cosine(c, 3));
   return r;
 }
 
 vec3 apply_fog(vec3 radiance, vec3 d, float distance) {
+  if (P.atmosphere != 0) {
+    return atmosphere_over(radiance, d, distance);
+  }
   precise float clear = exp2_det(-P.fog_density_log2 * distance);
   if (!(clear < 1.0)) {
     return radiance;

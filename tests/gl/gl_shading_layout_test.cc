@@ -105,6 +105,18 @@ Offsets<ShadeParams<float>> shade_offsets() {
   o.add("nearest_mip", &p.nearest_mip);
   o.add("skybox", &p.skybox);
   o.add("skybox_sun", &p.skybox_sun);
+  o.add("atmosphere", &p.atmosphere);
+  o.add("atmosphere_density", &p.atmosphere_density);
+  o.add("atmosphere_scale_height", &p.atmosphere_scale_height);
+  o.add("atmosphere_inv_scale_height", &p.atmosphere_inv_scale_height);
+  o.add("atmosphere_sun_depth", &p.atmosphere_sun_depth);
+  o.add("atmosphere_grazing_cosine_sq", &p.atmosphere_grazing_cosine_sq);
+  o.add("atmosphere_mie_a", &p.atmosphere_mie_a);
+  o.add("atmosphere_mie_b", &p.atmosphere_mie_b);
+  o.add3("atmosphere_extinction_log2", p.atmosphere_extinction_log2);
+  o.add3("atmosphere_camera_sun_depth_log2", p.atmosphere_camera_sun_depth_log2);
+  o.add3("atmosphere_rayleigh_sun", p.atmosphere_rayleigh_sun);
+  o.add3("atmosphere_mie_sun", p.atmosphere_mie_sun);
   o.add("gradient_enabled", &p.gradient_enabled);
   o.add("gradient_count", &p.gradient_count);
   o.add("gradient_height[0]", &p.gradient_height[0], sizeof(float));

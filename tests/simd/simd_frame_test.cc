@@ -80,7 +80,19 @@ TEST_CASE("simdFramesMatchTheReferenceWithEverySkipOffAndAtOddSizes", "[simd]") 
            // Gradient shading: the vertices' light (stage 5), its resolve and the gradient.
            {"default", {"shading.mode=\"gradient\"", "lighting.shadows=true"}},
            {"lake", {"shading.mode=\"gradient\"", "shading.gradient.range=[-30, 300]"}},
-           {"planet", {"shading.mode=\"gradient\"", "viewport.width=96"}}}) {
+           {"planet", {"shading.mode=\"gradient\"", "viewport.width=96"}},
+           // The atmosphere at its ends (core/atmosphere.h's domains): the sun at the zenith,
+           // set, the camera in space, below height 0 in thin air, every coefficient at its
+           // maximum (every column capped).
+           {"default", {"sky.atmosphere={}", "lighting.sun_elevation_deg=90", "viewport.width=80"}},
+           {"default",
+            {"sky.atmosphere={}", "lighting.sun_elevation_deg=-30", "viewport.width=80"}},
+           {"default", {"sky.atmosphere={}", "camera.position=[0, 1e6, 0]", "viewport.width=80"}},
+           {"lake",
+            {"sky.atmosphere.scale_height=10", "camera.position=[0, -50, 0]", "viewport.width=80"}},
+           {"lake",
+            {"sky.atmosphere.mie=0.01", "sky.atmosphere.rayleigh=[0.01, 0.01, 0.01]",
+             "sky.atmosphere.mie_g=0.95", "sky.atmosphere.intensity=1000", "viewport.width=80"}}}) {
     std::vector<std::string> all = {"grid.width=61", "grid.height=53"};
     all.insert(all.end(), overrides.begin(), overrides.end());
     const Scene scene = resolve_scene(preset, all);
