@@ -13,11 +13,15 @@ AtmospherePlan make_atmosphere_plan(const AtmosphereSettings& s, double camera_y
   a.enabled = true;
   a.scale_height = s.scale_height;  // >= kMinScaleHeight > 0 (validated)
   a.inv_scale_height = 1.0 / s.scale_height;
-  a.density = std::exp(std::min(-camera_y / s.scale_height, kMaxLogDensity));
-  a.grazing_cosine_sq = 2.0 * s.scale_height / (M_PI * kAtmosphereGroundRadius);
+  const double log_density = std::min(-camera_y / s.scale_height, kMaxLogDensity);
+  a.density = std::exp(log_density);
+  a.log2_density = log_density / M_LN2;
+  a.grazing_term = 8.0 * s.scale_height / (M_PI * kAtmosphereGroundRadius);
   const double sin_elevation = std::max(std::sin(elevation), 0.0);
-  const double sun_slope = std::sqrt(sin_elevation * sin_elevation + a.grazing_cosine_sq);
-  a.sun_depth = std::min(a.density * s.scale_height / sun_slope, kMaxOpticalDepth);
+  const double sun_slope =
+      0.5 * (sin_elevation + std::sqrt(sin_elevation * sin_elevation + a.grazing_term));
+  a.sun_slope_length = s.scale_height / sun_slope;
+  a.sun_depth = std::min(a.density * a.sun_slope_length, kMaxOpticalDepth);
 
   const glm::dvec3 rayleigh(s.rayleigh[0], s.rayleigh[1], s.rayleigh[2]);
   const glm::dvec3 absorption(s.absorption[0], s.absorption[1], s.absorption[2]);

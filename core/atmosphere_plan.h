@@ -16,13 +16,16 @@ inline constexpr double kMaxLogDensity = 40.0;
 
 struct AtmospherePlan {
   bool enabled = false;
-  double density = 0;  // rho0 = exp(-camera y / H), at most e^40
+  double density = 0;       // rho0 = exp(-camera y / H), at most e^40
+  double log2_density = 0;  // log2 rho0, at most 40 / ln 2
   double scale_height = 1, inv_scale_height = 1;
-  // The sun's column above the camera per unit coefficient, H rho0 / mu_s (capped at
-  // kMaxOpticalDepth), with mu_s = sqrt(sin^2(elevation) + c^2) for the sun above the horizon.
-  double sun_depth = 0;
-  double grazing_cosine_sq = 1;        // c^2 = 2 H / (pi R)
-  glm::dvec3 extinction_log2{};        // (rayleigh + mie / 0.9 + absorption) / ln 2 per unit at 0
+  // H / mu_s, mu_s = (sin e + sqrt(sin^2 e + 4 c^2)) / 2 for the sun's elevation e, or e = 0
+  // for a sun below the horizon (atmosphere.h): the sun's column above a point per unit of its
+  // density.
+  double sun_slope_length = 1;
+  double sun_depth = 0;          // the sun's column above the camera: rho0 H / mu_s, capped at 1e20
+  double grazing_term = 1;       // 4 c^2 = 8 H / (pi R): a slope is (mu + sqrt(mu^2 + 4 c^2)) / 2
+  glm::dvec3 extinction_log2{};  // (rayleigh + mie / 0.9 + absorption) / ln 2 per unit at 0
   glm::dvec3 camera_sun_depth_log2{};  // extinction_log2 sun_depth: A / ln 2 per channel
   // The sun's light in the sky: lighting's sun x intensity x the share of its disc above the
   // horizon x each coefficient x its phase function's constant.

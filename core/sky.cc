@@ -4,6 +4,7 @@
 
 #include "core/atmosphere.h"
 #include "core/det_math.h"
+#include "core/limits.h"
 
 namespace relief {
 
@@ -58,7 +59,9 @@ Vec3<Real> sky_radiance(const ShadeParams<Real>& p, const Skybox* skybox, const 
 template <class Real>
 Vec3<Real> fog_color(const ShadeParams<Real>& p, const Vec3<Real>& d) {
   if (p.atmosphere != 0) {
-    return atmosphere_sky(p, d);
+    // The air along the whole ray (kMaxCameraRelativeDistance: below the horizon the limit at
+    // infinity), as the fog's colour is its own limit there.
+    return atmosphere_over(p, Vec3<Real>{0, 0, 0}, d, Real(limits::kMaxCameraRelativeDistance));
   }
   const Real c = dot(d, p.sun_direction);
   return p.horizon + p.sun * (Real(0.05) * power_of_half_cosine(c, 3));

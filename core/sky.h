@@ -18,7 +18,9 @@ namespace relief {
 template <class Real>
 Vec3<Real> sky_radiance(const ShadeParams<Real>& params, const Skybox* skybox, const Vec3<Real>& d);
 
-// The fog colour seen along unit direction `d`: the horizon, warmer toward the sun.
+// The fog colour seen along unit direction `d`: the horizon, warmer toward the sun; under the
+// atmosphere the air's light along the whole ray (atmosphere_over of black at
+// kMaxCameraRelativeDistance).
 template <class Real>
 Vec3<Real> fog_color(const ShadeParams<Real>& params, const Vec3<Real>& d);
 

@@ -189,9 +189,10 @@
   /* sky.atmosphere (core/atmosphere.h; atmosphere_plan.h derives each): 1 in place of the   \
      gradient and the fog. */                                                                   \
   F(std::int32_t, atmosphere, 0) E                                                              \
-  F(Real, atmosphere_density, 0) F(Real, atmosphere_scale_height, 1) E                          \
-  F(Real, atmosphere_inv_scale_height, 1) F(Real, atmosphere_sun_depth, 0) E                    \
-  F(Real, atmosphere_grazing_cosine_sq, 1) F(Real, atmosphere_mie_a, 1) E                       \
+  F(Real, atmosphere_density, 0) F(Real, atmosphere_log2_density, 0) E                         \
+  F(Real, atmosphere_scale_height, 1) F(Real, atmosphere_inv_scale_height, 1) E                 \
+  F(Real, atmosphere_sun_slope_length, 0) E                                                     \
+  F(Real, atmosphere_grazing_term, 1) F(Real, atmosphere_mie_a, 1) E                       \
   F(Real, atmosphere_mie_b, 0) E                                                                \
   F(Vec3<Real>, atmosphere_extinction_log2, {}) E                                               \
   F(Vec3<Real>, atmosphere_camera_sun_depth_log2, {}) E                                         \
@@ -205,7 +206,7 @@
   A(Vec3<Real>, gradient_color, [limits::kMaxGradientStops], {}) E                                  \
   /* Unused: keeps the float struct's size a multiple of 16 bytes, the size GL gives the     \
      std430 block that mirrors it (gpu/shaders/shade_params.glsl.in). */                        \
-  A(std::int32_t, reserved, [3], {}) E                                                          \
+  A(std::int32_t, reserved, [2], {}) E                                                          \
   F(Vec3<Real>, camera_forward, {}) E                                                           \
   /* The background's view ray per pixel is formed in double (it is the sky's direction to   \
      a thousandth of a pixel at any field of view) and rounded once: these stay double. */     \

@@ -182,10 +182,11 @@ ShadeParams<Real> make_shade_params(const ShadingPlan& plan) {
   const AtmospherePlan& a = plan.sky.atmosphere;
   p.atmosphere = a.enabled ? 1 : 0;
   p.atmosphere_density = Real(a.density);
+  p.atmosphere_log2_density = Real(a.log2_density);
   p.atmosphere_scale_height = Real(a.scale_height);
   p.atmosphere_inv_scale_height = Real(a.inv_scale_height);
-  p.atmosphere_sun_depth = Real(a.sun_depth);
-  p.atmosphere_grazing_cosine_sq = Real(a.grazing_cosine_sq);
+  p.atmosphere_sun_slope_length = Real(a.sun_slope_length);
+  p.atmosphere_grazing_term = Real(a.grazing_term);
   p.atmosphere_mie_a = Real(a.mie_a);
   p.atmosphere_mie_b = Real(a.mie_b);
   p.atmosphere_extinction_log2 = rounded<Real>(a.extinction_log2);

@@ -139,7 +139,7 @@ std::string glsl_prelude() {
   constant(out, "kReflectivityDepth", float(kReflectivityDepth));
   constant(out, "kLocalFrameMinCos", float(kLocalFrameMinCos));
   constant(out, "kMaxOpticalDepth", float(kMaxOpticalDepth));
-  constant(out, "kMaxDepthRatio", float(kMaxDepthRatio));
+  constant(out, "kMaxCameraRelativeDistance", float(limits::kMaxCameraRelativeDistance));
   constant(out, "kGrowthSeriesLimit", float(kGrowthSeriesLimit));
   out += "const int kGrowthTerms = " + std::to_string(kGrowthTerms) + ";\n";
   out += "const float kGrowthSeries[kGrowthTerms] = float[](";

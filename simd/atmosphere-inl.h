@@ -13,6 +13,7 @@
 #include <hwy/highway.h>
 
 #include "core/atmosphere.h"
+#include "core/limits.h"
 #include "core/stage_params.h"
 #include "simd/det_math-inl.h"
 #include "simd/shade_vec3-inl.h"
@@ -36,13 +37,16 @@ HWY_INLINE V ColumnGrowth(D d, V z, V e) {
                         quotient);
 }
 
-// One channel of scatter (atmosphere.cc): the in-scattered light and the transmittance.
-template <class D, class V = hn::Vec<D>>
+// One channel of scatter (atmosphere.cc): the in-scattered light, and the transmittance where
+// kTransmittance.
+template <bool kTransmittance, class D, class V = hn::Vec<D>>
 HWY_INLINE void ScatterChannel(D d, float extinction, float camera_sun, float rayleigh, float mie,
                                V one_plus_c2, V mie_phase, V column, V end_sun_column,
                                V& transmittance, V& inscatter) {
   const V view = hn::Mul(hn::Set(d, extinction), column);
-  transmittance = Exp2Det(d, hn::Neg(view));
+  if (kTransmittance) {
+    transmittance = Exp2Det(d, hn::Neg(view));
+  }
   const V a = hn::Set(d, camera_sun);
   const V b = hn::Add(view, hn::Mul(hn::Set(d, extinction), end_sun_column));
   const V z = hn::Abs(hn::Sub(a, b));
@@ -53,7 +57,7 @@ HWY_INLINE void ScatterChannel(D d, float extinction, float camera_sun, float ra
   inscatter = hn::Mul(weight, integral);
 }
 
-template <class D, class V = hn::Vec<D>>
+template <bool kTransmittance, class D, class V = hn::Vec<D>>
 HWY_INLINE void Scatter(D d, const ShadeParams<float>& p, const V3<V>& dir, V column,
                         V end_sun_column, V3<V>& transmittance, V3<V>& inscatter) {
   const V c = Dot3(dir, Set3(d, p.sun_direction));
@@ -64,27 +68,34 @@ HWY_INLINE void Scatter(D d, const ShadeParams<float>& p, const V3<V>& dir, V co
   const Vec3<float>& a = p.atmosphere_camera_sun_depth_log2;
   const Vec3<float>& r = p.atmosphere_rayleigh_sun;
   const Vec3<float>& m = p.atmosphere_mie_sun;
-  ScatterChannel(d, e.x, a.x, r.x, m.x, one_plus_c2, mie_phase, column, end_sun_column,
-                 transmittance.x, inscatter.x);
-  ScatterChannel(d, e.y, a.y, r.y, m.y, one_plus_c2, mie_phase, column, end_sun_column,
-                 transmittance.y, inscatter.y);
-  ScatterChannel(d, e.z, a.z, r.z, m.z, one_plus_c2, mie_phase, column, end_sun_column,
-                 transmittance.z, inscatter.z);
+  ScatterChannel<kTransmittance>(d, e.x, a.x, r.x, m.x, one_plus_c2, mie_phase, column,
+                                 end_sun_column, transmittance.x, inscatter.x);
+  ScatterChannel<kTransmittance>(d, e.y, a.y, r.y, m.y, one_plus_c2, mie_phase, column,
+                                 end_sun_column, transmittance.y, inscatter.y);
+  ScatterChannel<kTransmittance>(d, e.z, a.z, r.z, m.z, one_plus_c2, mie_phase, column,
+                                 end_sun_column, transmittance.z, inscatter.z);
 }
 
 // atmosphere_over (atmosphere.cc).
 template <class D, class V = hn::Vec<D>>
 HWY_INLINE V3<V> AtmosphereOver(D d, const ShadeParams<float>& p, const V3<V>& radiance,
                                 const V3<V>& dir, V distance) {
-  const V w = StdMax(hn::Mul(hn::Mul(dir.y, distance), hn::Set(d, p.atmosphere_inv_scale_height)),
-                     hn::Set(d, float(-kMaxDepthRatio)));
-  const V x = Exp2Det(d, hn::Mul(hn::Neg(w), hn::Set(d, float(kLog2e))));
-  const V cap = hn::Set(d, float(kMaxOpticalDepth));
-  const V column = StdMin(
-      hn::Mul(hn::Set(d, p.atmosphere_density), hn::Mul(distance, ColumnGrowth(d, w, x))), cap);
-  const V end_sun_column = StdMin(hn::Mul(hn::Set(d, p.atmosphere_sun_depth), x), cap);
+  distance = StdMin(distance, hn::Set(d, float(limits::kMaxCameraRelativeDistance)));
+  const V w = hn::Mul(hn::Mul(dir.y, distance), hn::Set(d, p.atmosphere_inv_scale_height));
+  const V rise = hn::Abs(w);
+  const V fall = Exp2Det(d, hn::Mul(hn::Neg(rise), hn::Set(d, float(kLog2e))));
+  const V length = hn::Mul(distance, ColumnGrowth(d, rise, fall));
+  const V dense =
+      Exp2Det(d, hn::Add(hn::Set(d, p.atmosphere_log2_density),
+                         StdMax(hn::Mul(hn::Neg(w), hn::Set(d, float(kLog2e))), hn::Zero(d))));
+  const V slope_length = hn::Set(d, p.atmosphere_sun_slope_length);
+  const V sun_length =
+      hn::IfThenElse(hn::Gt(w, hn::Zero(d)), hn::Mul(slope_length, fall), slope_length);
+  const V density =
+      StdMin(dense, hn::Div(hn::Set(d, float(kMaxOpticalDepth)), StdMax(length, sun_length)));
   V3<V> transmittance, inscatter;
-  Scatter(d, p, dir, column, end_sun_column, transmittance, inscatter);
+  Scatter<true>(d, p, dir, hn::Mul(density, length), hn::Mul(density, sun_length), transmittance,
+                inscatter);
   return Add3(Mul3(radiance, transmittance), inscatter);
 }
 
@@ -92,12 +103,14 @@ HWY_INLINE V3<V> AtmosphereOver(D d, const ShadeParams<float>& p, const V3<V>& r
 template <class D, class V = hn::Vec<D>>
 HWY_INLINE V3<V> AtmosphereSky(D d, const ShadeParams<float>& p, const V3<V>& dir) {
   const V mu = StdMax(dir.y, hn::Zero(d));
-  const V slope = hn::Sqrt(hn::Add(hn::Mul(mu, mu), hn::Set(d, p.atmosphere_grazing_cosine_sq)));
+  const V slope = hn::Mul(
+      hn::Set(d, 0.5f),
+      hn::Add(mu, hn::Sqrt(hn::Add(hn::Mul(mu, mu), hn::Set(d, p.atmosphere_grazing_term)))));
   const V column = StdMin(hn::Mul(hn::Set(d, p.atmosphere_density),
                                   hn::Div(hn::Set(d, p.atmosphere_scale_height), slope)),
                           hn::Set(d, float(kMaxOpticalDepth)));
-  V3<V> transmittance, inscatter;
-  Scatter(d, p, dir, column, hn::Zero(d), transmittance, inscatter);
+  V3<V> unused, inscatter;
+  Scatter<false>(d, p, dir, column, hn::Zero(d), unused, inscatter);
   return inscatter;
 }
 

@@ -79,7 +79,8 @@ HWY_INLINE V3<V> SkyRadiance(D d, const ShadeParams<float>& p, const SkyboxView&
 template <class D, class V = hn::Vec<D>>
 HWY_INLINE V3<V> FogColor(D d, const ShadeParams<float>& p, const V3<V>& dir) {
   if (p.atmosphere != 0) {
-    return AtmosphereSky(d, p, dir);
+    return AtmosphereOver(d, p, Set3(d, 0.0f, 0.0f, 0.0f), dir,
+                          hn::Set(d, float(limits::kMaxCameraRelativeDistance)));
   }
   const V c = Dot3(dir, Set3(d, p.sun_direction));
   return Add3(Set3(d, p.horizon),

@@ -79,10 +79,11 @@ float column_growth(float z, float e) {
   return quotient;
 }
 
-// atmosphere.cc, scatter: per channel the transmittance and the in-scattered light of a ray
-// whose column is `column` and whose end has the sun's column `end_sun_column` above it.
-void atmosphere_scatter(vec3 d, float column, float end_sun_column, out vec3 transmittance,
-                        out vec3 inscatter) {
+// atmosphere.cc, scatter: per channel the in-scattered light of a ray whose column is
+// `column` and whose end has the sun's column `end_sun_column` above it, and where
+// `with_transmittance` its transmittance.
+void atmosphere_scatter(vec3 d, float column, float end_sun_column, bool with_transmittance,
+                        out vec3 transmittance, out vec3 inscatter) {
   precise float c = dot3(d, f3(P.sun_direction));
   precise float one_plus_c2 = 1.0 + c * c;
   precise float q = P.atmosphere_mie_a - P.atmosphere_mie_b * c;  // >= 0.0025
@@ -91,40 +92,47 @@ void atmosphere_scatter(vec3 d, float column, float end_sun_column, out vec3 tra
   const vec3 camera_sun = f3(P.atmosphere_camera_sun_depth_log2);
   const vec3 rayleigh = f3(P.atmosphere_rayleigh_sun);
   const vec3 mie = f3(P.atmosphere_mie_sun);
+  transmittance = vec3(1.0);
   for (int k = 0; k < 3; ++k) {
     precise float view = extinction[k] * column;
-    transmittance[k] = exp2_det(-view);
+    if (with_transmittance) {
+      transmittance[k] = exp2_det(-view);
+    }
     precise float a = camera_sun[k];
     precise float b = view + extinction[k] * end_sun_column;
     precise float z = abs(a - b);
-    precise float integral = exp2_det(-min(a, b)) *
-                             (column * column_growth(z * kLn2, exp2_det(-z)));
+    precise float integral =
+        exp2_det(-min_cpp(a, b)) * (column * column_growth(z * kLn2, exp2_det(-z)));
     precise float s = (rayleigh[k] * one_plus_c2 + mie[k] * mie_phase) * integral;
     inscatter[k] = s;
   }
 }
 
 // atmosphere.cc, atmosphere_over.
-vec3 atmosphere_over(vec3 radiance, vec3 d, float distance) {
-  precise float w = max(d.y * distance * P.atmosphere_inv_scale_height, -kMaxDepthRatio);
-  precise float x = exp2_det(-w * kLog2e);
-  precise float column =
-      min(P.atmosphere_density * (distance * column_growth(w, x)), kMaxOpticalDepth);
-  precise float end_sun_column = min(P.atmosphere_sun_depth * x, kMaxOpticalDepth);
+vec3 atmosphere_over(vec3 radiance, vec3 d, float distance_in) {
+  precise float ray_distance = min_cpp(distance_in, kMaxCameraRelativeDistance);
+  precise float w = d.y * ray_distance * P.atmosphere_inv_scale_height;
+  precise float rise = abs(w);
+  precise float fall = exp2_det(-rise * kLog2e);
+  precise float ray_length = ray_distance * column_growth(rise, fall);
+  precise float dense = exp2_det(P.atmosphere_log2_density + max_cpp(-w * kLog2e, 0.0));
+  precise float sun_length =
+      w > 0.0 ? P.atmosphere_sun_slope_length * fall : P.atmosphere_sun_slope_length;
+  precise float density = min_cpp(dense, divide(kMaxOpticalDepth, max_cpp(ray_length, sun_length)));
   vec3 transmittance, inscatter;
-  atmosphere_scatter(d, column, end_sun_column, transmittance, inscatter);
+  atmosphere_scatter(d, density * ray_length, density * sun_length, true, transmittance, inscatter);
   precise vec3 r = radiance * transmittance + inscatter;
   return r;
 }
 
 // atmosphere.cc, atmosphere_sky.
 vec3 atmosphere_sky(vec3 d) {
-  precise float mu = max(d.y, 0.0);
-  precise float slope = square_root(mu * mu + P.atmosphere_grazing_cosine_sq);
+  precise float mu = max_cpp(d.y, 0.0);
+  precise float slope = 0.5 * (mu + square_root(mu * mu + P.atmosphere_grazing_term));
   precise float column =
-      min(P.atmosphere_density * divide(P.atmosphere_scale_height, slope), kMaxOpticalDepth);
-  vec3 transmittance, inscatter;
-  atmosphere_scatter(d, column, 0.0, transmittance, inscatter);
+      min_cpp(P.atmosphere_density * divide(P.atmosphere_scale_height, slope), kMaxOpticalDepth);
+  vec3 unused, inscatter;
+  atmosphere_scatter(d, column, 0.0, false, unused, inscatter);
   return inscatter;
 }
 
@@ -167,7 +175,7 @@ vec3 sky_radiance(vec3 d) {
 
 vec3 fog_color(vec3 d) {
   if (P.atmosphere != 0) {
-    return atmosphere_sky(d);
+    return atmosphere_over(vec3(0.0), d, kMaxCameraRelativeDistance);
   }
   precise float c = dot3(d, f3(P.sun_direction));
   precise vec3 r = f3(P.horizon) + f3(P.sun) * (kFogSunWeight * power_of_half_cosine(c, 3));

@@ -97,6 +97,16 @@ std::vector<RealField> real_fields() {
       {"sky.horizon_color", "sky.horizon_color", {0.66, 0.75, 0.86}, 0, kColor},
       {"sky.sun_disc_deg", "sky.sun_disc_deg", {0.6}, 0.11, 10},
       {"sky.fog_density", "sky.fog_density", {2.2e-5}, 0, 1},
+      {"sky.atmosphere.scale_height", "sky.atmosphere.scale_height", {8000}, 10, 1e6},
+      {"sky.atmosphere.rayleigh", "sky.atmosphere.rayleigh", {5.8e-6, 13.5e-6, 33.1e-6}, 0, 1e-2},
+      {"sky.atmosphere.mie", "sky.atmosphere.mie", {3.2e-6}, 0, 1e-2},
+      {"sky.atmosphere.absorption",
+       "sky.atmosphere.absorption",
+       {0.65e-6, 1.881e-6, 0.085e-6},
+       0,
+       1e-2},
+      {"sky.atmosphere.mie_g", "sky.atmosphere.mie_g", {0.76}, 0, 0.95},
+      {"sky.atmosphere.intensity", "sky.atmosphere.intensity", {20}, 0, kColor},
       {"time", "time", {0}, -1e9, 1e9},
   };
 }

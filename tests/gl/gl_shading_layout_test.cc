@@ -107,10 +107,11 @@ Offsets<ShadeParams<float>> shade_offsets() {
   o.add("skybox_sun", &p.skybox_sun);
   o.add("atmosphere", &p.atmosphere);
   o.add("atmosphere_density", &p.atmosphere_density);
+  o.add("atmosphere_log2_density", &p.atmosphere_log2_density);
   o.add("atmosphere_scale_height", &p.atmosphere_scale_height);
   o.add("atmosphere_inv_scale_height", &p.atmosphere_inv_scale_height);
-  o.add("atmosphere_sun_depth", &p.atmosphere_sun_depth);
-  o.add("atmosphere_grazing_cosine_sq", &p.atmosphere_grazing_cosine_sq);
+  o.add("atmosphere_sun_slope_length", &p.atmosphere_sun_slope_length);
+  o.add("atmosphere_grazing_term", &p.atmosphere_grazing_term);
   o.add("atmosphere_mie_a", &p.atmosphere_mie_a);
   o.add("atmosphere_mie_b", &p.atmosphere_mie_b);
   o.add3("atmosphere_extinction_log2", p.atmosphere_extinction_log2);

@@ -15,14 +15,11 @@
 #include "pipeline/frame.h"
 #include "pipeline/scene_resources.h"
 #include "simd/targets.h"
+#include "tests/simd/kernel_ranges.h"
 #include "tests/support/simd_targets.h"
 
 namespace relief {
 namespace {
-
-bool same_bits(std::span<const float> a, std::span<const float> b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
-}
 
 FrameRequest all_outputs(Backend backend) {
   FrameRequest request;
@@ -33,12 +30,12 @@ FrameRequest all_outputs(Backend backend) {
 
 void require_same_frames(const Frame& a, const Frame& b) {
   REQUIRE(a.image.srgb == b.image.srgb);
-  REQUIRE(same_bits(a.image.linear, b.image.linear));
-  REQUIRE(same_bits(a.image.depth, b.image.depth));
+  REQUIRE(test::same_bits<float>(a.image.linear, b.image.linear));
+  REQUIRE(test::same_bits<float>(a.image.depth, b.image.depth));
   REQUIRE(a.image.primitive == b.image.primitive);
-  REQUIRE(same_bits(a.image.normal, b.image.normal));
-  REQUIRE(same_bits(a.image.world_height, b.image.world_height));
-  REQUIRE(same_bits(a.image.octaves, b.image.octaves));
+  REQUIRE(test::same_bits<float>(a.image.normal, b.image.normal));
+  REQUIRE(test::same_bits<float>(a.image.world_height, b.image.world_height));
+  REQUIRE(test::same_bits<float>(a.image.octaves, b.image.octaves));
   // The same work, stage by stage (the times differ, the counters must not).
   REQUIRE(a.stats.stages.size() == b.stats.stages.size());
   for (std::size_t s = 0; s < a.stats.stages.size(); ++s) {

@@ -32,15 +32,12 @@
 #include "simd/surface.h"
 #include "simd/targets.h"
 #include "simd/vertex_transform.h"
+#include "tests/simd/kernel_ranges.h"
 #include "tests/support/simd_targets.h"
 #include "tests/support/test_support.h"
 
 namespace relief {
 namespace {
-
-bool same_bits(std::span<const float> a, std::span<const float> b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
-}
 
 TEST_CASE("theTargetsCompiledInAreListedAndThoseThisCpuCannotRunAreNamed", "[simd]") {
   const EachTarget targets;
@@ -106,7 +103,7 @@ void check_fbm(const std::vector<std::string>& overrides, const EachTarget& targ
       const FbmWork work =
           simd::evaluate_fbm(params.fbm, lattice, range, grid.dx, grid.dz, grid.nu, mask, got);
       INFO("target " << target << ", mask of " << mask.size());
-      CHECK(same_bits(got, expected));
+      CHECK(test::same_bits<float>(got, expected));
       CHECK(work.points == expected_work.points);
       CHECK(work.octaves == expected_work.octaves);
     }
@@ -167,7 +164,7 @@ TEST_CASE("simdVertexTransformIsBitIdenticalToTheReferenceOnEveryTarget", "[simd
       simd::transform_vertices(t, range, dx, dz, height, mask, {g[0], g[1], g[2], g[3]});
       INFO(target << ", mask of " << mask.size());
       for (int c = 0; c < 4; ++c) {
-        CHECK(same_bits(g[c], e[c]));
+        CHECK(test::same_bits<float>(g[c], e[c]));
       }
     }
   }
@@ -201,11 +198,11 @@ TEST_CASE("simdSurfacePassIsBitIdenticalToTheReferenceOnEveryTarget", "[simd]") 
         GridBuffers<float> got(plan.layout);
         simd::surface_pass(params.surface, rows, in, got.surface());
         INFO(target << ", rows " << rows.begin << ".." << rows.end << ", need " << with_need);
-        CHECK(same_bits(got.nx, expected.nx));
-        CHECK(same_bits(got.ny, expected.ny));
-        CHECK(same_bits(got.nz, expected.nz));
-        CHECK(same_bits(got.slope, expected.slope));
-        CHECK(same_bits(got.water_depth, expected.water_depth));
+        CHECK(test::same_bits<float>(got.nx, expected.nx));
+        CHECK(test::same_bits<float>(got.ny, expected.ny));
+        CHECK(test::same_bits<float>(got.nz, expected.nz));
+        CHECK(test::same_bits<float>(got.slope, expected.slope));
+        CHECK(test::same_bits<float>(got.water_depth, expected.water_depth));
       }
     }
   }
@@ -236,10 +233,10 @@ TEST_CASE("simdProjectedDomainIsBitIdenticalToTheReferenceOnEveryTarget", "[simd
       GridBuffers<float> got(plan.layout);
       simd::project_domain(params.domain, params.domain_rows, rows, got.domain());
       INFO(target << ", " << (overrides.empty() ? std::string("default") : overrides.front()));
-      CHECK(same_bits(got.dx, expected.dx));
-      CHECK(same_bits(got.dz, expected.dz));
-      CHECK(same_bits(got.sigma, expected.sigma));
-      CHECK(same_bits(got.nu, expected.nu));
+      CHECK(test::same_bits<float>(got.dx, expected.dx));
+      CHECK(test::same_bits<float>(got.dz, expected.dz));
+      CHECK(test::same_bits<float>(got.sigma, expected.sigma));
+      CHECK(test::same_bits<float>(got.nu, expected.nu));
       CHECK(std::equal(got.valid.begin(), got.valid.end(), expected.valid.begin()));
     }
   }
