@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/atmosphere.h"
+#include "core/vec3.h"
 
 namespace relief {
 
@@ -31,10 +32,8 @@ AtmospherePlan make_atmosphere_plan(const AtmosphereSettings& s, double camera_y
 
   // The disc's share above the horizon, a smooth step over its diameter: a set sun neither
   // lights the air nor the ground (the flat ground has no twilight).
-  const double above = disc_radius > 0.0
-                           ? std::clamp((elevation + disc_radius) / (2.0 * disc_radius), 0.0, 1.0)
-                           : (elevation >= 0.0 ? 1.0 : 0.0);
-  const double share = above * above * (3.0 - 2.0 * above);
+  // Domain: disc_radius >= sky.sun_disc_deg's minimum 0.11 degrees > 0 (validated).
+  const double share = smooth01((elevation + disc_radius) / (2.0 * disc_radius));
   const glm::dvec3 sky_sun = sun * (s.intensity * share);
   const double g = s.mie_g;
   a.rayleigh_sun = sky_sun * rayleigh * (3.0 / (16.0 * M_PI));
