@@ -57,4 +57,51 @@ Vec3<Real> planet_sky_direction(const double d[3], double limb_angle) {
   return Vec3<Real>{Real(hx * cosine), Real(sine), Real(hz * cosine)};
 }
 
+// What a planet frame's background ray meets (planet_background, core/shade.cc), in double:
+// the water sphere (when water is on), else the datum sphere (the ground beyond the horizon;
+// below the horizontal where the camera is below the datum), else the sky.
+enum class PlanetBackgroundKind { kSky, kWater, kGround };
+
+template <class Real>
+struct PlanetBackgroundRay {
+  PlanetBackgroundKind kind = PlanetBackgroundKind::kSky;
+  Vec3<Real> up{};   // water: the sphere's unit normal at the hit
+  Real surface = 0;  // water: the distance to the hit
+  Vec3<Real> sky{};  // sky: the direction the sky gradient reads (planet_sky_direction)
+};
+
+// `ray`: the view ray in double (any length >= 1: the frame's forward is a unit vector and the
+// image-plane offsets are perpendicular to it); the planet's fields of ShadeParams.
+template <class Real>
+PlanetBackgroundRay<Real> planet_background_ray(const double ray[3], bool water_enabled,
+                                                double center_distance, double water_c,
+                                                double datum_c, double limb_angle) {
+  PlanetBackgroundRay<Real> out;
+  const double length = std::sqrt(ray[0] * ray[0] + ray[1] * ray[1] + ray[2] * ray[2]);
+  const double unit[3] = {ray[0] / length, ray[1] / length, ray[2] / length};  // length >= 1
+  const double D = center_distance;
+  if (water_enabled) {
+    const double t = planet_sphere_hit(unit, D, water_c);
+    if (t >= 0.0) {
+      // The local up there: the hit relative to the centre, normalised (its length is the
+      // water sphere's radius, > 0).
+      const double hit[3] = {t * unit[0], t * unit[1] + D, t * unit[2]};
+      const double radius = std::sqrt(hit[0] * hit[0] + hit[1] * hit[1] + hit[2] * hit[2]);
+      out.kind = PlanetBackgroundKind::kWater;
+      out.up = Vec3<Real>{Real(hit[0] / radius), Real(hit[1] / radius), Real(hit[2] / radius)};
+      out.surface = Real(t);
+      return out;
+    }
+  }
+  // The ground beyond the horizon; a camera below the datum (in a valley, or inside the
+  // planet) has the plane's rule: below the horizontal.
+  const bool ground = datum_c > 0.0 ? planet_sphere_hit(unit, D, datum_c) >= 0.0 : unit[1] < 0.0;
+  if (ground) {
+    out.kind = PlanetBackgroundKind::kGround;
+    return out;
+  }
+  out.sky = planet_sky_direction<Real>(unit, limb_angle);
+  return out;
+}
+
 }  // namespace relief

@@ -114,38 +114,26 @@ Real surface_footprint(const ShadeParams<Real>& p, Real distance, const Vec3<Rea
 template <class Real>
 Vec3<Real> planet_background(const ShadeParams<Real>& p, const ShadeResources& r,
                              const double ray[3], const Vec3<Real>& d, ShadeWork& work) {
-  const double length = std::sqrt(ray[0] * ray[0] + ray[1] * ray[1] + ray[2] * ray[2]);
-  const double unit[3] = {ray[0] / length, ray[1] / length, ray[2] / length};  // length >= 1
-  const double D = p.planet_center_distance;
-  if (p.water_enabled) {
-    const double t = planet_sphere_hit(unit, D, p.planet_water_c);
-    if (t >= 0.0) {
-      // The local up there: the hit relative to the centre, normalised (its length is the
-      // water sphere's radius, > 0).
-      const double hit[3] = {t * unit[0], t * unit[1] + D, t * unit[2]};
-      const double radius = std::sqrt(hit[0] * hit[0] + hit[1] * hit[1] + hit[2] * hit[2]);
-      const Vec3<Real> up{Real(hit[0] / radius), Real(hit[1] / radius), Real(hit[2] / radius)};
-      const Vec3<Real> view = to_local_frame(d, up);
-      const Real surface = Real(t);
-      const Real footprint = surface_footprint(p, surface, view);
-      const Vec3<Real> open = shade_water(p, *r.lattice, r.skybox, view, surface, Real(1e6),
-                                          Vec3<Real>{0, 0, 0}, footprint);
-      ++work.water_pixels;
-      if (!p.fog_enabled) {
-        return open;
-      }
-      ++work.fogged_pixels;
-      return apply_fog(p, open, d, surface);
+  const PlanetBackgroundRay<Real> hit =
+      planet_background_ray<Real>(ray, p.water_enabled != 0, p.planet_center_distance,
+                                  p.planet_water_c, p.planet_datum_c, p.planet_limb_angle);
+  if (hit.kind == PlanetBackgroundKind::kWater) {
+    const Vec3<Real> view = to_local_frame(d, hit.up);
+    const Real surface = hit.surface;
+    const Real footprint = surface_footprint(p, surface, view);
+    const Vec3<Real> open = shade_water(p, *r.lattice, r.skybox, view, surface, Real(1e6),
+                                        Vec3<Real>{0, 0, 0}, footprint);
+    ++work.water_pixels;
+    if (!p.fog_enabled) {
+      return open;
     }
+    ++work.fogged_pixels;
+    return apply_fog(p, open, d, surface);
   }
-  // The ground beyond the horizon; a camera below the datum (in a valley, or inside the
-  // planet) has the plane's rule: below the horizontal.
-  const bool ground =
-      p.planet_datum_c > 0.0 ? planet_sphere_hit(unit, D, p.planet_datum_c) >= 0.0 : unit[1] < 0.0;
-  if (ground) {
+  if (hit.kind == PlanetBackgroundKind::kGround) {
     return fog_color(p, d);
   }
-  return sky_radiance(p, r.skybox, planet_sky_direction<Real>(unit, p.planet_limb_angle));
+  return sky_radiance(p, r.skybox, hit.sky);
 }
 
 }  // namespace

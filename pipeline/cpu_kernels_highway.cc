@@ -24,11 +24,6 @@ constexpr const char* kSetupReason =
     "vectorised part";
 constexpr const char* kBinningReason =
     "integer bounding boxes appended to per-chunk bins: memory-bound, no Highway kernel";
-constexpr const char* kPlanetResolveReason =
-    "the Highway resolve interpolates no curvature drop (core/planet_bend.h)";
-constexpr const char* kPlanetShadeReason =
-    "the Highway shade has neither the curvature drop nor the planet's sky, water and datum "
-    "spheres (core/planet_shading.h)";
 constexpr const char* kHullSweepReason =
     "a stack per row whose pushes and pops depend on the heights "
     "(core/sun_horizons.h)";
@@ -48,8 +43,8 @@ CpuKernels<float> highway_kernels(bool planet) {
   const KernelKind h = KernelKind::kHighway;
   k.tiles.raster = h;
   k.tiles.encode = h;
-  k.tiles.resolve = planet ? KernelKind::kPortable : h;
-  k.tiles.shade = planet ? KernelKind::kPortable : h;
+  k.tiles.resolve = h;
+  k.tiles.shade = h;
   k.tiles.sun = h;  // no shadows on a planet (its table has no entry)
   for (KernelChoice& c : k.choices) {
     const std::string_view name = c.kernel;
@@ -63,10 +58,6 @@ CpuKernels<float> highway_kernels(bool planet) {
       c.reason = kBinningReason;
     } else if (name == "hull sweep") {
       c.reason = kHullSweepReason;
-    } else if (planet && name == "tile resolve") {
-      c.reason = kPlanetResolveReason;
-    } else if (planet && name == "tile shade") {
-      c.reason = kPlanetShadeReason;
     } else {
       c.kind = h;
     }

@@ -225,16 +225,17 @@ void TilePass<Real>::resolve_simd(const raster::TileVisibility& visibility,
                                        s.slope.data(),
                                        shade_.terrain_water != 0 ? s.water_depth.data() : nullptr,
                                        with_nu ? s.nu.data() : nullptr,
-                                       s.lambert.empty() ? nullptr : s.lambert.data()};
+                                       s.lambert.empty() ? nullptr : s.lambert.data(),
+                                       s.drop.empty() ? nullptr : s.drop.data()};
     simd::gather_slot_records(streams, vertex, static_cast<std::size_t>(slots), scratch->records);
     const simd::ResolveSlots table{{scratch->k[0], scratch->k[1], scratch->k[2]},
                                    {scratch->ku[0], scratch->ku[1], scratch->ku[2]},
                                    {scratch->kv[0], scratch->kv[1], scratch->kv[2]},
                                    scratch->records};
-    const simd::ResolveTargets targets{out.dx,         out.dz,          out.height, out.dx_ddx,
-                                       out.dx_ddy,     out.dz_ddx,      out.dz_ddy, out.height_ddx,
-                                       out.height_ddy, out.nx,          out.ny,     out.nz,
-                                       out.slope,      out.water_depth, out.nu,     out.lambert};
+    const simd::ResolveTargets targets{
+        out.dx,     out.dz,          out.height,     out.dx_ddx,  out.dx_ddy, out.dz_ddx,
+        out.dz_ddy, out.height_ddx,  out.height_ddy, out.nx,      out.ny,     out.nz,
+        out.slope,  out.water_depth, out.nu,         out.lambert, out.drop};
     simd::resolve_rect(table, streams, scratch->slot, visibility.x0, visibility.y0,
                        visibility.width, visibility.height, raster::kTileSize, targets);
   }
@@ -300,7 +301,7 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
           {a.nz, n},
           {a.slope, n},
           {a.water_depth, n},
-          {},
+          streams_.drop.empty() ? std::span<const float>{} : std::span<const float>(a.drop, n),
           shadows_.params != nullptr ? std::span<const float>(a.sun, n) : std::span<const float>{},
           streams_.lambert.empty() ? std::span<const float>{}
                                    : std::span<const float>(a.lambert, n)};

@@ -134,11 +134,14 @@ void ResolveRect(const ResolveSlots& slots, const ResolveStreams& streams,
         t.kv[c] = hn::GatherIndex(d, slots.kv[c], wide_index);
       }
       // The lanes' records: column 3 f + c is stream f at vertex c (the group of nu and
-      // lambert only when one of them is resolved).
-      const auto record = hn::ShiftLeft<5>(index);
-      static_assert(kSlotRecordFloats == 32);
-      const int groups = streams.nu != nullptr || streams.lambert != nullptr ? 4 : 3;
-      hn::Vec<decltype(df)> column[32];
+      // lambert only when one of them, or the drop, is resolved; the drop's last value in a
+      // fifth group). 40 index = 32 index + 8 index: shifts, on every target.
+      const auto record = hn::Add(hn::ShiftLeft<5>(index), hn::ShiftLeft<3>(index));
+      static_assert(kSlotRecordFloats == 40);
+      const int groups = streams.drop != nullptr                               ? 5
+                         : streams.nu != nullptr || streams.lambert != nullptr ? 4
+                                                                               : 3;
+      hn::Vec<decltype(df)> column[kSlotRecordFloats];
 #if RELIEF_LANE_LOADS
       HWY_ALIGN std::int32_t lane_record[HWY_MAX_BYTES / sizeof(double)];
       hn::Store(record, di, lane_record);
@@ -205,6 +208,9 @@ void ResolveRect(const ResolveSlots& slots, const ResolveStreams& streams,
       }
       if (streams.lambert != nullptr) {
         plain(9, out.lambert);
+      }
+      if (streams.drop != nullptr) {
+        plain(10, out.drop);
       }
     }
   }

@@ -26,8 +26,8 @@ void set_up_planes(const float* clip_x, const float* clip_y, const float* clip_w
 void gather_slot_records(const ResolveStreams& streams, const std::int32_t* const vertex[3],
                          std::size_t count, float* records) {
   const float* const stream[kResolveStreams] = {
-      streams.dx, streams.dz,    streams.height,      streams.nx, streams.ny,
-      streams.nz, streams.slope, streams.water_depth, streams.nu, streams.lambert};
+      streams.dx,    streams.dz,          streams.height, streams.nx,      streams.ny,  streams.nz,
+      streams.slope, streams.water_depth, streams.nu,     streams.lambert, streams.drop};
   // Absent streams and the padding are zero; the present ones are copied slot by slot.
   std::fill(records, records + count * kSlotRecordFloats, 0.0f);
   for (int f = 0; f < kResolveStreams; ++f) {

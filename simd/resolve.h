@@ -20,21 +20,23 @@ struct ResolveSlots {
   const float* records;
 };
 
-// Per grid vertex, the streams the resolve interpolates (stage 2-5 buffers, float). nu and
-// lambert (gradient mode's per-vertex Lambert term) may be null (not resolved); water_depth
-// null resolves zero depths.
+// Per grid vertex, the streams the resolve interpolates (stage 2-5 buffers, float). nu,
+// lambert (gradient mode's per-vertex Lambert term) and drop (a planet's curvature drop,
+// core/planet_bend.h) may be null (not resolved); water_depth null resolves zero depths.
 struct ResolveStreams {
   const float *dx, *dz, *height, *nx, *ny, *nz, *slope, *water_depth, *nu;
   const float* lambert = nullptr;
+  const float* drop = nullptr;
 };
-inline constexpr int kResolveStreams = 10;
+inline constexpr int kResolveStreams = 11;
 
 // A slot's record: the value of stream f (in ResolveStreams' order) at the triangle's vertex c
-// at float 3 f + c (a null stream's values 0), padded to 32 floats. The resolve reads a
-// pixel's 30 values from its slot's record in four 8-float loads (three where neither nu nor
-// lambert is resolved), where gathering them from the streams took 30 gathers (the record is
-// written once per slot, read by every pixel of it).
-inline constexpr int kSlotRecordFloats = 32;
+// at float 3 f + c (a null stream's values 0), padded to 40 floats. The resolve reads a
+// pixel's values from its slot's record in 8-float loads: three for the plane's 24 values,
+// four where nu or lambert is resolved, five where a planet's drop is, where gathering them
+// from the streams took a gather each (the record is written once per slot, read by every
+// pixel of it).
+inline constexpr int kSlotRecordFloats = 40;
 static_assert(3 * kResolveStreams <= kSlotRecordFloats);
 
 // Fills records [0, count) (count * kSlotRecordFloats floats) from the slots' vertices.
@@ -42,11 +44,12 @@ void gather_slot_records(const ResolveStreams& streams, const std::int32_t* cons
                          std::size_t count, float* records);
 
 // The resolved fields (pipeline/tile_pass.h's TileAttributes<float>), written at covered
-// pixels only; nu only when streams.nu is not null, lambert only when streams.lambert is not.
+// pixels only; nu, lambert and drop only when their streams are not null.
 struct ResolveTargets {
   float *dx, *dz, *height, *dx_ddx, *dx_ddy, *dz_ddx, *dz_ddy, *height_ddx, *height_ddy;
   float *nx, *ny, *nz, *slope, *water_depth, *nu;
   float* lambert = nullptr;  // written when streams.lambert is not null
+  float* drop = nullptr;     // written when streams.drop is not null
 };
 
 // The window transform of the clip coordinates (raster::VertexPositions): X = x scale_x +

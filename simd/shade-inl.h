@@ -24,6 +24,7 @@
 #include "core/stage_params.h"
 #include "simd/background_rays-inl.h"
 #include "simd/gradient_shade-inl.h"
+#include "simd/planet_shade-inl.h"
 #include "simd/shade_vec3-inl.h"
 #include "simd/sky-inl.h"
 #include "simd/textured_shade-inl.h"
@@ -43,7 +44,10 @@ HWY_INLINE V3<V> TerrainRadiance(D d, const ShadeContext& ctx, const AttributeVe
   const V zero = hn::Zero(d);
   work.terrain_pixels += hn::CountTrue(d, covered);
   const V relative_y = a.height;
-  const V3<V> position{a.dx, relative_y, a.dz};
+  // On a planet the position is the bent one, the height a.drop above it (shade.cc; on the
+  // plane the drop is 0 and y - 0 is y: not formed).
+  const bool planet = p.planet_center_distance > 0.0;
+  const V3<V> position{a.dx, planet ? hn::Sub(relative_y, a.drop) : relative_y, a.dz};
   const V length_sq = Dot3(position, position);
   const V distance = hn::Sqrt(length_sq);
   const V3<V> view = NormalizeOrWith(d, position, length_sq, Set3(d, p.camera_forward));
@@ -58,9 +62,18 @@ HWY_INLINE V3<V> TerrainRadiance(D d, const ShadeContext& ctx, const AttributeVe
         hn::And(covered, hn::And(hn::Lt(relative_y, level), hn::Lt(view.y, zero)));
     const std::size_t count = hn::CountTrue(d, under_water);
     if (count != 0) {
-      const V surface = hn::Div(level, view.y);
-      const V footprint = SurfaceFootprint(d, p, surface, view.y);
-      const V3<V> water = ShadeWater(d, p, ctx.lattice, ctx.skybox, view, surface,
+      // On a planet the surface lies a.drop lower too, and is shaded in the local frame of
+      // the point (its up the sphere's radial direction through the bent position).
+      const V surface = hn::Div(planet ? hn::Sub(level, a.drop) : level, view.y);
+      V3<V> water_view = view;
+      if (planet) {
+        const V center_y = hn::Set(d, float(p.planet_center_distance));
+        const V3<V> radial{position.x, hn::Add(position.y, center_y), position.z};
+        const V3<V> up = NormalizeOr(d, radial, Set3(d, 0.0f, 1.0f, 0.0f));
+        water_view = ToLocalFrame(d, view, up);
+      }
+      const V footprint = SurfaceFootprint(d, p, surface, water_view.y);
+      const V3<V> water = ShadeWater(d, p, ctx.lattice, ctx.skybox, water_view, surface,
                                      StdMax(zero, a.water_depth), radiance, footprint, under_water);
       radiance = Select3(under_water, water, radiance);
       fog_distance = hn::IfThenElse(under_water, surface, distance);
@@ -82,6 +95,9 @@ HWY_INLINE V3<V> BackgroundRadiance(D d, const ShadeContext& ctx, int px0, int p
   const V zero = hn::Zero(d);
   work.background_pixels += hn::CountTrue(d, background);
   const V3<V> dir = NormalizeOr(d, BackgroundRays(d, p, px0, py), Set3(d, p.camera_forward));
+  if (p.planet_center_distance > 0.0) {
+    return PlanetBackground(d, ctx, px0, py, dir, background, work);
+  }
   const M below = hn::Lt(dir.y, zero);
   const M below_lanes = hn::And(background, below);
   V3<V> result{zero, zero, zero};
@@ -126,9 +142,9 @@ HWY_INLINE V3<V> ShadeVector(D d, const ShadeContext& ctx, const std::uint32_t* 
     const auto load = [&](int field) {
       return hn::IfThenElseZero(covered, hn::LoadU(d, fields[field]));
     };
-    const AttributeVectors<V> a{load(0),  load(1),  load(2),  load(3), load(4),  load(5),
-                                load(6),  load(7),  load(8),  load(9), load(10), load(11),
-                                load(12), load(13), load(14), load(15)};
+    const AttributeVectors<V> a{load(0),  load(1),  load(2),  load(3),  load(4),  load(5),
+                                load(6),  load(7),  load(8),  load(9),  load(10), load(11),
+                                load(12), load(13), load(14), load(15), load(16)};
     radiance = TerrainRadiance(d, ctx, a, covered, work);
   }
   if (!hn::AllFalse(d, background)) {
@@ -154,12 +170,13 @@ void ShadeRect(const ShadeParams<float>& p, const ShadeResources& r, const Shadi
   }
   ctx.skybox = skybox_view_of(r.skybox);
   const std::span<const float> spans[kShadeFields] = {
-      in.dx,     in.dz,          in.height,     in.dx_ddx, in.dx_ddy, in.dz_ddx,
-      in.dz_ddy, in.height_ddx,  in.height_ddy, in.nx,     in.ny,     in.nz,
-      in.slope,  in.water_depth, in.sun,        in.lambert};
+      in.dx,     in.dz,          in.height,     in.dx_ddx,  in.dx_ddy, in.dz_ddx,
+      in.dz_ddy, in.height_ddx,  in.height_ddy, in.nx,      in.ny,     in.nz,
+      in.slope,  in.water_depth, in.sun,        in.lambert, in.drop};
   // The water depth is not resolved (and may be absent) where no terrain lies under water.
   const bool reads_depth = p.water_enabled && p.terrain_water;
-  // Fields read from the constant tail (0; the sun's share 1, the whole disc): absent, or unread.
+  // Fields read from the constant tail (0, the plane's drop among them; the sun's share 1, the
+  // whole disc): absent, or unread.
   const auto absent = [&](int f) { return spans[f].empty() || (f == kDepthField && !reads_depth); };
   constexpr int kMaxLanes = HWY_MAX_BYTES / sizeof(float);
   HWY_ALIGN float tail[kShadeFields][kMaxLanes] = {};

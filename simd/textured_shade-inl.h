@@ -33,8 +33,9 @@ namespace hn = hwy::HWY_NAMESPACE;
 constexpr double kShadeMinProjectionWeight = 0.01;
 constexpr double kShadeMinLayerWeight = 1e-3;
 
-// The per-pixel fields ShadeRect reads, in AttributeVectors' order; three may be absent.
-constexpr int kShadeFields = 16, kDepthField = 13, kSunField = 14, kLambertField = 15;
+// The per-pixel fields ShadeRect reads, in AttributeVectors' order; four may be absent.
+constexpr int kShadeFields = 17, kDepthField = 13, kSunField = 14, kLambertField = 15,
+              kDropField = 16;
 
 // What the kernel reads besides the pixels: the parameters and the resources' views.
 struct ShadeContext {
@@ -53,6 +54,7 @@ struct AttributeVectors {
   V slope, water_depth;
   V sun;      // the sun disc's visible share (1 without cast shadows)
   V lambert;  // gradient mode's interpolated per-vertex Lambert term (0 otherwise)
+  V drop;     // a planet's curvature drop (0 on the plane)
 };
 
 // sample (shade.cc): texture_lod at level 0's size (nearest_mip_lod's level where the frame

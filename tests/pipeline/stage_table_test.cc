@@ -154,13 +154,13 @@ TEST_CASE("theSimdBackendStatesWhyEachPortableKernelIsNotHighway", "[pipeline][s
   // The reported reasons reach the reports (--stats, relief info).
   const std::vector<KernelReport> reports =
       kernel_reports(cpu_kernels<float>(Backend::kSimd, true).choices, false);
-  bool resolve_reported = false;
+  bool binning_reported = false;
   for (const KernelReport& r : reports) {
-    if (r.kernel == "tile resolve") {
-      resolve_reported = r.implementation == "portable loop (float)" && !r.reason.empty();
+    if (r.kernel == "binning") {
+      binning_reported = r.implementation == "portable loop (float)" && !r.reason.empty();
     }
   }
-  CHECK(resolve_reported);
+  CHECK(binning_reported);
 }
 
 TEST_CASE("aBackendThatIsNotACpuFloatOneHasNoFloatKernelTable", "[pipeline]") {

@@ -21,7 +21,8 @@ namespace relief {
 namespace {
 
 constexpr int kVertices = 64;
-constexpr int kStreams = 10;  // dx, dz, height, nx, ny, nz, slope, water_depth, nu, lambert
+// dx, dz, height, nx, ny, nz, slope, water_depth, nu, lambert, drop
+constexpr int kStreams = 11;
 constexpr std::size_t kMaxSlots = 5 + 53 + test::kGuardElements;
 
 // Per-vertex clip positions in front of the camera, the streams the resolve interpolates, and
@@ -105,25 +106,28 @@ TEST_CASE("simdPlaneSetUpForAwkwardSlotCountsIsRastersPlaneAndWritesOnlyItsSlots
   }
 }
 
-// Which of the optional streams (7-9) are given: none, all, or lambert alone (gradient
-// shading without the octave output: the fourth group of a record read for lambert alone).
-enum class Optional { kNone, kAll, kLambert };
+// Which of the optional streams (7-10) are given: none, all, lambert alone (gradient shading
+// without the octave output: the fourth group of a record read for lambert alone), or a
+// planet's drop alone (the fourth and fifth groups read for the drop alone).
+enum class Optional { kNone, kAll, kLambert, kDrop };
 
 bool present(Optional optional, int stream) {
   return stream < 7 || optional == Optional::kAll ||
-         (optional == Optional::kLambert && stream == 9);
+         (optional == Optional::kLambert && stream == 9) ||
+         (optional == Optional::kDrop && stream == 10);
 }
 
 simd::ResolveStreams streams_of(const TileTriangles& t, Optional optional) {
   const auto at = [&](int s) { return present(optional, s) ? t.stream[s].data() : nullptr; };
-  return {at(0), at(1), at(2), at(3), at(4), at(5), at(6), at(7), at(8), at(9)};
+  return {at(0), at(1), at(2), at(3), at(4), at(5), at(6), at(7), at(8), at(9), at(10)};
 }
 
 TEST_CASE("slotRecordsForAwkwardSlotCountsHoldTheirVerticesValuesAndNothingBeyond", "[simd]") {
-  // simd/resolve.h's layout: stream f at vertex c of slot s at s * 32 + 3 f + c, 0 for a null
+  // simd/resolve.h's layout: stream f at vertex c of slot s at s * 40 + 3 f + c, 0 for a null
   // stream. (Plain C++ shared by every target, tried with the other kernels of the family.)
   const TileTriangles t;
-  for (const Optional optional : {Optional::kNone, Optional::kAll, Optional::kLambert}) {
+  for (const Optional optional :
+       {Optional::kNone, Optional::kAll, Optional::kLambert, Optional::kDrop}) {
     const simd::ResolveStreams streams = streams_of(t, optional);
     for (const std::size_t start : test::kRangeStarts) {
       for (const std::size_t count : test::awkward_lengths()) {
@@ -149,16 +153,16 @@ TEST_CASE("slotRecordsForAwkwardSlotCountsHoldTheirVerticesValuesAndNothingBeyon
   }
 }
 
-// The sixteen resolved fields in ResolveTargets' order.
-constexpr int kTargets = 16;
+// The seventeen resolved fields in ResolveTargets' order.
+constexpr int kTargets = 17;
 
 simd::ResolveTargets targets_of(std::vector<float> (&out)[kTargets], std::size_t start) {
   float* p[kTargets];
   for (int f = 0; f < kTargets; ++f) {
     p[f] = out[f].data() + start;
   }
-  return {p[0], p[1], p[2],  p[3],  p[4],  p[5],  p[6],  p[7],
-          p[8], p[9], p[10], p[11], p[12], p[13], p[14], p[15]};
+  return {p[0], p[1],  p[2],  p[3],  p[4],  p[5],  p[6],  p[7], p[8],
+          p[9], p[10], p[11], p[12], p[13], p[14], p[15], p[16]};
 }
 
 // The scalar tile resolve of pipeline/tile_pass.cc at one pixel: raster's quad weights of the
@@ -189,13 +193,17 @@ void resolve_pixel(const TileTriangles& t, const simd::ResolveStreams& streams, 
   if (streams.lambert != nullptr) {
     out[15][k] = float(at(streams.lambert, q.b));
   }
+  if (streams.drop != nullptr) {
+    out[16][k] = float(at(streams.drop, q.b));
+  }
 }
 
 TEST_CASE("simdResolveOfAwkwardRectanglesIsTheScalarResolveAndWritesOnlyCoveredPixels", "[simd]") {
   const EachTarget targets;
   const TileTriangles t;
   test::TestRandom random(71);
-  for (const Optional optional : {Optional::kNone, Optional::kAll, Optional::kLambert}) {
+  for (const Optional optional :
+       {Optional::kNone, Optional::kAll, Optional::kLambert, Optional::kDrop}) {
     const simd::ResolveStreams streams = streams_of(t, optional);
     for (const std::size_t width : test::awkward_lengths()) {
       // Rows of whole 16-pixel groups (the kernel reads whole vectors of a row); the
