@@ -81,11 +81,15 @@ TEST_CASE("simdFramesMatchTheReferenceWithEverySkipOffAndAtOddSizes", "[simd]") 
            // The planet's background and water (core/planet_shading.h): near the surface
            // looking at the horizon (the water sphere, the datum's fog, the sky from the
            // limb), below the datum (the plane's rule), without water or fog.
-           {"planet",
-            {"camera.position=[0, 700, 0]", "camera.pitch_deg=1", "viewport.width=96"}},
-           {"planet",
-            {"camera.position=[0, -10, 0]", "camera.pitch_deg=8", "viewport.width=96"}},
+           {"planet", {"camera.position=[0, 700, 0]", "camera.pitch_deg=1", "viewport.width=96"}},
+           {"planet", {"camera.position=[0, -10, 0]", "camera.pitch_deg=8", "viewport.width=96"}},
            {"planet", {"terrain.water_level=null", "sky.fog_density=0", "viewport.width=96"}},
+           // Rays along the axis through the camera (the sky's azimuth undefined: its
+           // horizontal length 0 at the centre pixel of an odd image), down and up.
+           {"planet", {"camera.pitch_deg=-90", "viewport.width=33", "viewport.height=33"}},
+           {"planet",
+            {"camera.position=[0, 700, 0]", "camera.pitch_deg=90", "viewport.width=33",
+             "viewport.height=33"}},
            // The atmosphere at its ends (core/atmosphere.h's domains): the sun at the zenith,
            // set, the camera in space, below height 0 in thin air, every coefficient at its
            // maximum (every column capped).
