@@ -109,6 +109,23 @@ Real surface_footprint(const ShadeParams<Real>& p, Real distance, const Vec3<Rea
   return distance * p.pixel_angle / std::max(std::abs(view.y), Real(0.05));
 }
 
+// Open water in the background (no ground in view below it: depth 1e6), `surface` along the
+// view ray `d` (> 0), seen as `view` in the water's own frame (d itself on the plane; the
+// local frame of the hit on a planet), then fogged along d.
+template <class Real>
+Vec3<Real> open_water(const ShadeParams<Real>& p, const ShadeResources& r, const Vec3<Real>& view,
+                      const Vec3<Real>& d, Real surface, ShadeWork& work) {
+  const Real footprint = surface_footprint(p, surface, view);
+  const Vec3<Real> open = shade_water(p, *r.lattice, r.skybox, view, surface, Real(1e6),
+                                      Vec3<Real>{0, 0, 0}, footprint);
+  ++work.water_pixels;
+  if (!p.fog_enabled) {
+    return open;
+  }
+  ++work.fogged_pixels;
+  return apply_fog(p, open, d, surface);
+}
+
 // A planet's background (planet_shading.h): the water sphere, else the datum sphere's fog,
 // else the sky. `ray`: the view ray in double, `d`: it normalised in Real.
 template <class Real>
@@ -118,17 +135,7 @@ Vec3<Real> planet_background(const ShadeParams<Real>& p, const ShadeResources& r
       planet_background_ray<Real>(ray, p.water_enabled != 0, p.planet_center_distance,
                                   p.planet_water_c, p.planet_datum_c, p.planet_limb_angle);
   if (hit.kind == PlanetBackgroundKind::kWater) {
-    const Vec3<Real> view = to_local_frame(d, hit.up);
-    const Real surface = hit.surface;
-    const Real footprint = surface_footprint(p, surface, view);
-    const Vec3<Real> open = shade_water(p, *r.lattice, r.skybox, view, surface, Real(1e6),
-                                        Vec3<Real>{0, 0, 0}, footprint);
-    ++work.water_pixels;
-    if (!p.fog_enabled) {
-      return open;
-    }
-    ++work.fogged_pixels;
-    return apply_fog(p, open, d, surface);
+    return open_water(p, r, to_local_frame(d, hit.up), d, hit.surface, work);
   }
   if (hit.kind == PlanetBackgroundKind::kGround) {
     return fog_color(p, d);
@@ -260,16 +267,7 @@ Vec3<Real> background_radiance(const ShadeParams<Real>& p, const ShadeResources&
   }
   if (d.y < Real(0)) {
     if (p.water_enabled) {
-      const Real surface = p.water_level / d.y;
-      const Real footprint = surface_footprint(p, surface, d);
-      const Vec3<Real> open = shade_water(p, *r.lattice, r.skybox, d, surface, Real(1e6),
-                                          Vec3<Real>{0, 0, 0}, footprint);
-      ++work.water_pixels;
-      if (!p.fog_enabled) {
-        return open;
-      }
-      ++work.fogged_pixels;
-      return apply_fog(p, open, d, surface);
+      return open_water(p, r, d, d, p.water_level / d.y, work);
     }
     return fog_color(p, d);
   }

@@ -73,16 +73,8 @@ HWY_INLINE V3<V> PlanetBackground(D d, const ShadeContext& ctx, int px0, int py,
   }
   const std::size_t count = hn::CountTrue(d, water);
   if (count != 0) {
-    const V3<V> view = ToLocalFrame(d, dir, rays.up);
-    const V surface = rays.surface;
-    const V footprint = SurfaceFootprint(d, p, surface, view.y);
-    V3<V> open = ShadeWater(d, p, ctx.lattice, ctx.skybox, view, surface, hn::Set(d, 1e6f),
-                            V3<V>{zero, zero, zero}, footprint, water);
-    work.water_pixels += count;
-    if (p.fog_enabled) {
-      work.fogged_pixels += count;
-      open = ApplyFog(d, p, open, dir, surface);
-    }
+    const V3<V> open = OpenWater(d, p, ctx.lattice, ctx.skybox, ToLocalFrame(d, dir, rays.up), dir,
+                                 rays.surface, water, count, work);
     result = Select3(water, open, result);
   }
   return result;

@@ -108,20 +108,10 @@ HWY_INLINE V3<V> BackgroundRadiance(D d, const ShadeContext& ctx, int px0, int p
   if (count == 0) {
     return result;
   }
-  V3<V> ground;
-  if (p.water_enabled) {
-    const V surface = hn::Div(hn::Set(d, p.water_level), dir.y);
-    const V footprint = SurfaceFootprint(d, p, surface, dir.y);
-    ground = ShadeWater(d, p, ctx.lattice, ctx.skybox, dir, surface, hn::Set(d, 1e6f),
-                        V3<V>{zero, zero, zero}, footprint, below_lanes);
-    work.water_pixels += count;
-    if (p.fog_enabled) {
-      work.fogged_pixels += count;
-      ground = ApplyFog(d, p, ground, dir, surface);
-    }
-  } else {
-    ground = FogColor(d, p, dir);
-  }
+  const V3<V> ground = p.water_enabled ? OpenWater(d, p, ctx.lattice, ctx.skybox, dir, dir,
+                                                   hn::Div(hn::Set(d, p.water_level), dir.y),
+                                                   below_lanes, count, work)
+                                       : FogColor(d, p, dir);
   return Select3(below, ground, result);
 }
 

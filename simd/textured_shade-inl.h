@@ -164,13 +164,6 @@ HWY_INLINE V3<V> Light(D d, const ShadeParams<float>& p, const V3<V>& albedo, co
   return Select3(lit, Add3(radiance, Scale3(sun, term)), radiance);
 }
 
-// surface_footprint (shade.cc): distance pixel_angle / max(|view.y|, 0.05).
-template <class D, class V = hn::Vec<D>>
-HWY_INLINE V SurfaceFootprint(D d, const ShadeParams<float>& p, V distance, V view_y) {
-  return hn::Div(hn::Mul(distance, hn::Set(d, p.pixel_angle)),
-                 StdMax(hn::Abs(view_y), hn::Set(d, float(0.05))));
-}
-
 // The proto-texture part of terrain_radiance (shade.cc, textured_radiance) for the lanes of
 // `covered`: the layers' albedo, lit per pixel.
 template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>

@@ -13,6 +13,7 @@
 
 #include <hwy/highway.h>
 
+#include "core/shade.h"
 #include "core/stage_params.h"
 #include "simd/det_math-inl.h"
 #include "simd/lattice-inl.h"
@@ -131,6 +132,32 @@ HWY_INLINE V3<V> ShadeWater(D d, const ShadeParams<float>& p, const LatticeView&
       Add3(Mul3(ground, transmitted), Mul3(body, Sub3(Set3(d, 1.0f, 1.0f, 1.0f), transmitted)));
   const V reflectivity = hn::Add(hn::Set(d, float(0.3)), hn::Mul(hn::Set(d, float(0.7)), f));
   return Mix3(under, sky, hn::Mul(fresnel, reflectivity));
+}
+
+// surface_footprint (shade.cc): distance pixel_angle / max(|view.y|, 0.05).
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE V SurfaceFootprint(D d, const ShadeParams<float>& p, V distance, V view_y) {
+  return hn::Div(hn::Mul(distance, hn::Set(d, p.pixel_angle)),
+                 StdMax(hn::Abs(view_y), hn::Set(d, float(0.05))));
+}
+
+// open_water (shade.cc) for the lanes of `active`, `count` of them: open water `surface` along
+// the view ray `dir`, seen as `view` in the water's own frame, then fogged along dir; counted
+// as the scalar code counts it.
+template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
+HWY_INLINE V3<V> OpenWater(D d, const ShadeParams<float>& p, const LatticeView& lattice,
+                           const SkyboxView& skybox, const V3<V>& view, const V3<V>& dir, V surface,
+                           M active, std::size_t count, ShadeWork& work) {
+  const V zero = hn::Zero(d);
+  const V footprint = SurfaceFootprint(d, p, surface, view.y);
+  const V3<V> open = ShadeWater(d, p, lattice, skybox, view, surface, hn::Set(d, 1e6f),
+                                V3<V>{zero, zero, zero}, footprint, active);
+  work.water_pixels += count;
+  if (!p.fog_enabled) {
+    return open;
+  }
+  work.fogged_pixels += count;
+  return ApplyFog(d, p, open, dir, surface);
 }
 
 }  // namespace HWY_NAMESPACE
