@@ -33,8 +33,8 @@ template <class Real>
 struct VertexStreams {
   std::span<const Real> clip_x, clip_y, clip_w;
   std::span<const Real> dx, dz, height, nx, ny, nz, slope, water_depth, nu;
-  // A planet's curvature drop (planet_bend.h); empty on the plane. Read by the portable
-  // resolve alone: a planet frame's resolve is portable (cpu_kernels_highway.cc).
+  // A planet's curvature drop (planet_bend.h); empty on the plane, where neither resolve
+  // interpolates it.
   std::span<const Real> drop = {};
   // Gradient mode's per-vertex Lambert term (stage 5, gradient_shade.h); empty otherwise.
   std::span<const Real> lambert = {};
@@ -50,7 +50,7 @@ struct TileAttributes {
   Real height_ddx[kPixels], height_ddy[kPixels];
   Real nx[kPixels], ny[kPixels], nz[kPixels];
   Real slope[kPixels], water_depth[kPixels], nu[kPixels];
-  Real drop[kPixels];     // a planet's (resolve() only); 0 on the plane
+  Real drop[kPixels];     // a planet's; 0 on the plane (unwritten by the simd resolve there)
   Real sun[kPixels];      // the sun disc's visible share (sun_visibility.h); 1 without shadows
   Real lambert[kPixels];  // gradient mode's interpolated Lambert term (gradient_shade.h)
 

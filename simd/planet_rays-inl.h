@@ -72,7 +72,8 @@ HWY_INLINE VD Atan2Double(DD dd, VD y, VD x) {
 
 // sin_cos_det<double> (core/det_math.h) per lane for finite x: the quadrant k = round(x / (pi/2))
 // clamped to +-64 (as the scalar code's int), kept as an exact double; the reduction in three
-// pieces; the series; k mod 4 picks and negates.
+// pieces; the series; k mod 4 picks and negates. The sky's direction calls it on [0, pi/2]
+// (k 0 or 1: what the frame tests reach); the other quadrants follow the same definition.
 template <class DD, class VD = hn::Vec<DD>>
 HWY_INLINE void SinCosDouble(DD dd, VD x, VD& sine, VD& cosine) {
   using namespace det_math_detail;
