@@ -7,8 +7,9 @@
 //   py      = hc - drop,  drop = (R + e) 2 sin^2(theta / 2)
 // R + e = D + hc, with D = R + a formed in double per frame. The normals of stage 4, computed
 // in the unbent frame, are rotated into the bent one: the local frame at (theta, direction u)
-// is the camera's rotated by theta about the horizontal axis perpendicular to u. Every backend
-// runs this scalar code; sin and cos are core/det_math.h's, so every target bends alike.
+// is the camera's rotated by theta about the horizontal axis perpendicular to u. sin and cos
+// are core/det_math.h's, so every backend bends alike: the reference backends run this scalar
+// code, the simd backend its Highway twin (simd/planet_bend.h), the GL backend bend.comp.
 #pragma once
 
 #include <cstdint>

@@ -19,8 +19,8 @@
 
 namespace relief {
 
-// Rows [rows.begin, rows.end) of `out`, as project_domain. Every backend runs this scalar code
-// (the simd backend too: bit-identical by construction).
+// Rows [rows.begin, rows.end) of `out`, as project_domain. The reference backends run this
+// scalar code; the simd backend's Highway twin (simd/projected_domain.h) gives its bits.
 template <class Real>
 void project_planet_domain(const DomainParams<Real>& params, const PlanetParams<Real>& planet,
                            const DomainRows<Real>& rows_table, RowRange rows,

@@ -9,8 +9,6 @@
 #include "core/input_file.h"
 #include "core/limits.h"
 #include "core/octave_coordinates.h"
-#include "core/planet_bend.h"
-#include "core/planet_domain.h"
 #include "core/projected_domain.h"
 #include "core/surface.h"
 #include "core/terrain_stages.h"
@@ -124,9 +122,9 @@ void CpuBackend<Real>::run(StageId id, std::size_t begin, std::size_t end) {
   }
   switch (id) {
     case StageId::kProjectedDomain:
-      if (planet()) {  // the portable loops on every backend (cpu_kernels_highway.cc)
-        project_planet_domain<Real>(params_.domain, params_.planet, params_.domain_rows, rows,
-                                    grid_.domain());
+      if (planet()) {
+        kernels_.project_planet_domain(params_.domain, params_.planet, params_.domain_rows, rows,
+                                       grid_.domain());
       } else {
         kernels_.project_domain(params_.domain, params_.domain_rows, rows, grid_.domain());
       }
@@ -168,15 +166,15 @@ void CpuBackend<Real>::run(StageId id, std::size_t begin, std::size_t end) {
                         grid_.nu, need_, grid_.height);
       }
       if (planet()) {  // the bend, once the rows' heights are known (planet_bend.h)
-        bend_vertices<Real>(params_.planet, range, grid_.dx, grid_.dz, grid_.height, grid_.valid,
-                            grid_.bent());
+        kernels_.bend_vertices(params_.planet, range, grid_.dx, grid_.dz, grid_.height, grid_.valid,
+                               grid_.bent());
       }
       return;
     }
     case StageId::kSurface: {
       kernels_.surface(params_.surface, rows, surface_inputs(grid_, need_), grid_.surface());
       if (planet()) {  // the unbent frame's normals into the bent one
-        bend_normals<Real>(
+        kernels_.bend_normals(
             params_.planet,
             IndexRange{plan_.layout.index(0, rows.begin), plan_.layout.index(0, rows.end)},
             grid_.dx, grid_.dz, grid_.valid, grid_.nx, grid_.ny, grid_.nz);

@@ -45,6 +45,9 @@ struct CpuKernels {
   // Stage 2 on the plane (core/projected_domain.h).
   void (*project_domain)(const DomainParams<Real>&, const DomainRows<Real>&, RowRange,
                          DomainSpans<Real>) = nullptr;
+  // Stage 2 on a planet (core/planet_domain.h).
+  void (*project_planet_domain)(const DomainParams<Real>&, const PlanetParams<Real>&,
+                                const DomainRows<Real>&, RowRange, DomainSpans<Real>) = nullptr;
   // Which frustum planes each vertex (or its height range) lies outside (vertex_culling.h).
   void (*vertex_outcodes)(const CullParams<Real>&, RowRange, std::span<const Real> x,
                           std::span<const Real> z, std::span<const Real> height,
@@ -57,6 +60,13 @@ struct CpuKernels {
   void (*sketch)(const SketchParams<Real>&, std::span<const float> heights, IndexRange,
                  std::span<const Real> dx, std::span<const Real> dz, std::span<const Real> nu,
                  std::span<const std::uint8_t> mask, std::span<Real> height) = nullptr;
+  // A planet's bend after stage 3, and its normals' rotation after stage 4 (core/planet_bend.h).
+  void (*bend_vertices)(const PlanetParams<Real>&, IndexRange, std::span<const Real> dx,
+                        std::span<const Real> dz, std::span<const Real> height,
+                        std::span<const std::uint8_t> valid, BentSpans<Real>) = nullptr;
+  void (*bend_normals)(const PlanetParams<Real>&, IndexRange, std::span<const Real> dx,
+                       std::span<const Real> dz, std::span<const std::uint8_t> valid,
+                       std::span<Real> nx, std::span<Real> ny, std::span<Real> nz) = nullptr;
   // Stage 4 (core/surface.h).
   void (*surface)(const SurfaceParams<Real>&, RowRange, SurfaceInputs<Real>,
                   SurfaceSpans<Real>) = nullptr;
@@ -72,8 +82,8 @@ struct CpuKernels {
   const raster::SnapKernels* snap = nullptr;
   // Stages 6-9 per tile.
   TileKernels tiles;
-  // Every kernel of the frame, the ones above and those with one kind only (a planet's bend,
-  // binning), in stage order, as `--stats` and `relief info` print them.
+  // Every kernel of the frame, the ones above and those with one kind only (set-up, binning),
+  // in stage order, as `--stats` and `relief info` print them.
   std::vector<KernelChoice> choices;
 };
 

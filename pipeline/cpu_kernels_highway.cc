@@ -4,6 +4,7 @@
 #include "pipeline/cpu_kernels.h"
 #include "pipeline/simd_setup.h"
 #include "simd/fbm.h"
+#include "simd/planet_bend.h"
 #include "simd/projected_domain.h"
 #include "simd/sketch.h"
 #include "simd/surface.h"
@@ -15,10 +16,6 @@ namespace relief {
 namespace {
 
 // The reasons, one per entry that stays portable on the simd backend.
-constexpr const char* kPlanetDomainReason =
-    "no Highway kernel meets the rays with the sphere (core/planet_domain.h)";
-constexpr const char* kPlanetBendReason =
-    "no Highway kernel of the bend (core/planet_bend.h), which planet frames alone run";
 constexpr const char* kSetupReason =
     "per-triangle clipping and edge set-up branch on each triangle; its vertices' snap is the "
     "vectorised part";
@@ -33,9 +30,12 @@ constexpr const char* kHullSweepReason =
 CpuKernels<float> highway_kernels(bool planet) {
   CpuKernels<float> k = portable_kernels<float>(planet);
   k.project_domain = &simd::project_domain;
+  k.project_planet_domain = &simd::project_planet_domain;
   k.vertex_outcodes = &simd::vertex_outcodes;
   k.fractal = &simd::evaluate_fbm;
   k.sketch = &simd::add_sketch;
+  k.bend_vertices = &simd::bend_vertices;
+  k.bend_normals = &simd::bend_normals;
   k.surface = &simd::surface_pass;
   k.transform = &simd::transform_vertices;
   k.light_vertices = &simd::light_vertices;
@@ -48,11 +48,7 @@ CpuKernels<float> highway_kernels(bool planet) {
   k.tiles.sun = h;  // no shadows on a planet (its table has no entry)
   for (KernelChoice& c : k.choices) {
     const std::string_view name = c.kernel;
-    if (name == "planet domain") {
-      c.reason = kPlanetDomainReason;
-    } else if (name == "planet bend" || name == "planet normals") {
-      c.reason = kPlanetBendReason;
-    } else if (name == "clip and edge set-up") {
+    if (name == "clip and edge set-up") {
       c.reason = kSetupReason;
     } else if (name == "binning") {
       c.reason = kBinningReason;

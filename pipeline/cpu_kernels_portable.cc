@@ -5,6 +5,8 @@
 #include <type_traits>
 
 #include "core/height_sketch.h"
+#include "core/planet_bend.h"
+#include "core/planet_domain.h"
 #include "core/projected_domain.h"
 #include "core/vertex_culling.h"
 #include "pipeline/cpu_kernels.h"
@@ -15,9 +17,12 @@ template <class Real>
 CpuKernels<Real> portable_kernels(bool planet) {
   CpuKernels<Real> k;
   k.project_domain = &project_domain<Real>;
+  k.project_planet_domain = &project_planet_domain<Real>;
   k.vertex_outcodes = &vertex_outcodes<Real>;
   k.fractal = &evaluate_fbm<Real>;
   k.sketch = &add_sketch<Real>;
+  k.bend_vertices = &bend_vertices<Real>;
+  k.bend_normals = &bend_normals<Real>;
   k.surface = &surface_pass<Real>;
   k.transform = &transform_vertices<Real>;
   k.light_vertices = &light_vertices<Real>;

@@ -19,6 +19,7 @@
 #include "core/det_math.h"
 #include "core/planet_shading.h"
 #include "core/stage_params.h"
+#include "simd/det_trig-inl.h"
 #include "simd/shade_vec3-inl.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -35,78 +36,6 @@ struct PlanetRayVectors {
   hn::Vec<D> surface;         // water lanes: the distance to the hit
   V3<hn::Vec<D>> sky;         // sky lanes: the direction the sky gradient reads
 };
-
-// atan_reduced<double> (core/det_math.h): the odd series, Horner in u^2, its coefficients
-// +-1 / (2k + 1) rounded as the scalar code's Real(+-1) / Real(2k + 1) rounds them.
-template <class DD, class VD = hn::Vec<DD>>
-HWY_INLINE VD AtanReducedDouble(DD dd, VD u) {
-  constexpr int n = det_math_detail::TrigTerms<double>::kAtan;
-  const VD u2 = hn::Mul(u, u);
-  VD series = hn::Set(dd, ((n - 1) % 2 == 0 ? 1.0 : -1.0) / double(2 * (n - 1) + 1));
-  for (int k = n - 2; k >= 0; --k) {
-    series =
-        hn::Add(hn::Mul(series, u2), hn::Set(dd, (k % 2 == 0 ? 1.0 : -1.0) / double(2 * k + 1)));
-  }
-  return hn::Mul(u, series);
-}
-
-// atan2_det<double>(y, x) (core/det_math.h) per lane, its branches as masks; y >= 0.
-template <class DD, class VD = hn::Vec<DD>>
-HWY_INLINE VD Atan2Double(DD dd, VD y, VD x) {
-  using namespace det_math_detail;
-  const VD zero = hn::Zero(dd), one = hn::Set(dd, 1.0);
-  const VD ax = hn::IfThenElse(hn::Lt(x, zero), hn::Neg(x), x);  // -0 stays -0, as there
-  const auto ax_below = hn::Lt(ax, y);
-  const VD lo = hn::IfThenElse(ax_below, ax, y);
-  const VD hi = hn::IfThenElse(ax_below, y, ax);
-  const auto defined = hn::Gt(hi, zero);  // (0, 0) and NaN: 0
-  const VD t = hn::Div(lo, hn::IfThenElse(defined, hi, one));
-  const auto big = hn::Gt(t, hn::Set(dd, kTanEighthPi));
-  const VD u = hn::IfThenElse(big, hn::Div(hn::Sub(t, one), hn::Add(t, one)), t);
-  const VD series = AtanReducedDouble(dd, u);
-  VD a = hn::IfThenElse(big, hn::Add(hn::Set(dd, kQuarterPi), series), series);
-  a = hn::IfThenElse(hn::Gt(y, ax), hn::Sub(hn::Set(dd, kHalfPi), a), a);
-  a = hn::IfThenElse(hn::Lt(x, zero), hn::Sub(hn::Set(dd, 2.0 * kHalfPi), a), a);
-  return hn::IfThenElseZero(defined, a);
-}
-
-// sin_cos_det<double> (core/det_math.h) per lane for finite x: the quadrant k = round(x / (pi/2))
-// clamped to +-64 (as the scalar code's int), kept as an exact double; the reduction in three
-// pieces; the series; k mod 4 picks and negates. The sky's direction calls it on [0, pi/2]
-// (k 0 or 1: what the frame tests reach); the other quadrants follow the same definition.
-template <class DD, class VD = hn::Vec<DD>>
-HWY_INLINE void SinCosDouble(DD dd, VD x, VD& sine, VD& cosine) {
-  using namespace det_math_detail;
-  using Pieces = HalfPiPieces<double>;
-  const VD zero = hn::Zero(dd), half = hn::Set(dd, 0.5);
-  VD q = hn::Mul(x, hn::Set(dd, 1.0 / kHalfPi));
-  const VD limit = hn::Set(dd, 64.0), neg_limit = hn::Set(dd, -64.0);
-  q = hn::IfThenElse(hn::Lt(q, neg_limit), neg_limit, hn::IfThenElse(hn::Gt(q, limit), limit, q));
-  // int(q -+ 0.5) truncates toward zero: Trunc gives the same integer, exact in double.
-  const VD k = hn::Trunc(hn::IfThenElse(hn::Lt(q, zero), hn::Sub(q, half), hn::Add(q, half)));
-  const VD r = hn::Sub(hn::Sub(hn::Sub(x, hn::Mul(k, hn::Set(dd, Pieces::hi))),
-                               hn::Mul(k, hn::Set(dd, Pieces::mid))),
-                       hn::Mul(k, hn::Set(dd, Pieces::lo)));
-  const VD r2 = hn::Mul(r, r);
-  constexpr int kSin = TrigTerms<double>::kSin, kCos = TrigTerms<double>::kCos;
-  VD ps = hn::Set(dd, kSinCoeffs[kSin - 1]);
-  for (int i = kSin - 2; i >= 0; --i) {
-    ps = hn::Add(hn::Mul(ps, r2), hn::Set(dd, kSinCoeffs[i]));
-  }
-  VD pc = hn::Set(dd, kCosCoeffs[kCos - 1]);
-  for (int i = kCos - 2; i >= 0; --i) {
-    pc = hn::Add(hn::Mul(pc, r2), hn::Set(dd, kCosCoeffs[i]));
-  }
-  const VD s = hn::Mul(r, ps), c = pc;
-  // k & 3 of the integer k (two's complement): k - 4 floor(k / 4), exact for |k| <= 64.
-  const VD quadrant =
-      hn::Sub(k, hn::Mul(hn::Set(dd, 4.0), hn::Floor(hn::Mul(k, hn::Set(dd, 0.25)))));
-  const auto q1 = hn::Eq(quadrant, hn::Set(dd, 1.0));
-  const auto q2 = hn::Eq(quadrant, hn::Set(dd, 2.0));
-  const auto q3 = hn::Eq(quadrant, hn::Set(dd, 3.0));
-  sine = hn::IfThenElse(q1, c, hn::IfThenElse(q2, hn::Neg(s), hn::IfThenElse(q3, hn::Neg(c), s)));
-  cosine = hn::IfThenElse(q1, hn::Neg(s), hn::IfThenElse(q2, hn::Neg(c), hn::IfThenElse(q3, s, c)));
-}
 
 // planet_sphere_hit (core/planet_shading.h) per lane: the near side's distance, < 0 for a miss.
 template <class DD, class VD = hn::Vec<DD>>
@@ -176,12 +105,12 @@ HWY_INLINE PlanetRayVectors<D> PlanetRays(D d, const ShadeParams<float>& p, int 
                             : hn::Lt(unit[1], zero);
     // The sky: planet_sky_direction's elevation from the limb, in the ray's azimuth.
     const VD horizontal = hn::Sqrt(hn::Add(hn::Mul(unit[0], unit[0]), hn::Mul(unit[2], unit[2])));
-    const VD alpha = Atan2Double(dd, horizontal, hn::Neg(unit[1]));
+    const VD alpha = Atan2Lanes(dd, horizontal, hn::Neg(unit[1]));
     const VD limb = hn::Set(dd, p.planet_limb_angle);
     const VD span = hn::Set(dd, 3.14159265358979323846 - p.planet_limb_angle);  // > 0
     const VD t = hn::IfThenElseZero(hn::Gt(alpha, limb), hn::Div(hn::Sub(alpha, limb), span));
     VD sine, cosine;
-    SinCosDouble(dd, hn::Mul(t, hn::Set(dd, 1.5707963267948966)), sine, cosine);
+    SinCosLanes(dd, hn::Mul(t, hn::Set(dd, 1.5707963267948966)), sine, cosine);
     const auto level = hn::Gt(horizontal, zero);  // the divisions' domain
     const VD safe_horizontal = hn::IfThenElse(level, horizontal, one);
     const VD hx = hn::IfThenElseZero(level, hn::Div(unit[0], safe_horizontal));

@@ -14,8 +14,10 @@
 #include <hwy/highway.h>
 
 #include "core/limits.h"
+#include "core/planet_plan.h"
 #include "core/stage_params.h"
 #include "simd/det_math-inl.h"
+#include "simd/det_trig-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace relief::simd {
@@ -56,6 +58,63 @@ HWY_INLINE LaneFootprint<D> Footprint(D d, const DomainParams<float>& p, V x, fl
   return {hn::IfThenElseZero(valid, px), hn::IfThenElseZero(valid, pz), valid};
 }
 
+// planet_footprint (core/planet_domain.cc) at image points (x, y) of one row (descent
+// uniform): the ray's nadir angle, its near hit with the grid sphere (the limb's angle where
+// it misses), the blend into equal-angle sampling, and the arc offset; invalid beyond the
+// horizon, where the ray misses the sphere without the blend, or where `visible` is false.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE LaneFootprint<D> PlanetFootprint(D d, const DomainParams<float>& params,
+                                            const PlanetParams<float>& p, bool visible, V x,
+                                            float y, float descent) {
+  const ProjectorRays<float>& r = params.rays;
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+  const V vy = hn::Set(d, y);
+  const V ray_x = hn::Add(hn::Add(hn::Set(d, r.fx), hn::Mul(x, hn::Set(d, r.rx))),
+                          hn::Mul(vy, hn::Set(d, r.ux)));
+  const V ray_z = hn::Add(hn::Add(hn::Set(d, r.fz), hn::Mul(x, hn::Set(d, r.rz))),
+                          hn::Mul(vy, hn::Set(d, r.uz)));
+  const V horizontal = hn::Sqrt(hn::Add(hn::Mul(ray_x, ray_x), hn::Mul(ray_z, ray_z)));
+  const V descent_v = hn::Set(d, descent);
+  const V length =
+      hn::Sqrt(hn::Add(hn::Mul(horizontal, horizontal), hn::Mul(descent_v, descent_v)));
+  const auto has_length = hn::Gt(length, zero);  // the divisions' domain
+  const V safe_length = hn::IfThenElse(has_length, length, one);
+  const V cos_a = hn::Div(descent_v, safe_length);
+  const V sin_a = hn::Div(horizontal, safe_length);
+  const V center = hn::Set(d, p.center_distance);
+  const V grid_c = hn::Set(d, p.grid_c);
+  const V dc = hn::Mul(center, cos_a);
+  const V disc = hn::Sub(hn::Mul(dc, dc), grid_c);
+  const auto hit = hn::And(hn::Gt(cos_a, zero), hn::Ge(disc, zero));
+  // Domain: dc > 0 and c > 0 where it hits; the other lanes divide by 1 and discard it.
+  const V denominator =
+      hn::IfThenElse(hit, hn::Add(dc, hn::Sqrt(hn::IfThenElseZero(hit, disc))), one);
+  const V t = hn::Div(grid_c, denominator);
+  const V theta_hit = Atan2Lanes(d, hn::Mul(t, sin_a), hn::Sub(center, hn::Mul(t, cos_a)));
+  const V theta_true = hn::IfThenElse(hit, theta_hit, hn::Set(d, p.theta_limb));
+  const V alpha = Atan2Lanes(d, horizontal, descent_v);
+  const V theta_eq =
+      hn::Add(hn::Set(d, p.theta_lo),
+              hn::Mul(hn::Set(d, p.eq_slope), hn::Sub(alpha, hn::Set(d, p.alpha_lo))));
+  const V mixed = hn::Add(hn::Mul(hn::Set(d, p.one_minus_blend), theta_true),
+                          hn::Mul(hn::Set(d, p.blend), theta_eq));
+  const V theta = hn::IfThenElse(hn::Lt(zero, mixed), mixed, zero);  // std::max(0, mixed)
+  auto valid = hn::And(has_length, hn::Le(theta, hn::Set(d, p.theta_h)));
+  if (!(p.blend > 0.0f)) {
+    valid = hn::And(valid, hit);
+  }
+  if (!visible) {
+    valid = hn::FirstN(d, 0);
+  }
+  // Straight down the direction is undefined and theta 0: (0, 0). Domain: horizontal > 0.
+  const auto level = hn::Gt(horizontal, zero);
+  const V scale =
+      hn::Div(hn::Mul(hn::Set(d, p.radius), theta), hn::IfThenElse(level, horizontal, one));
+  const auto placed = hn::And(valid, level);
+  return {hn::IfThenElseZero(placed, hn::Mul(scale, ray_x)),
+          hn::IfThenElseZero(placed, hn::Mul(scale, ray_z)), valid};
+}
+
 template <class D, class V = hn::Vec<D>>
 HWY_INLINE V DistanceSq(const LaneFootprint<D>& a, const LaneFootprint<D>& b) {
   const V ex = hn::Sub(a.x, b.x);
@@ -73,8 +132,11 @@ HWY_INLINE V AxisSpacingSq(D d, const LaneFootprint<D>& minus, const LaneFootpri
                         hn::Mul(DistanceSq(minus, plus), hn::Set(d, 0.25f)), result);
 }
 
-void ProjectDomainRows(const DomainParams<float>& p, const DomainRows<float>& table, RowRange rows,
-                       DomainSpans<float> out) {
+// project_domain_rows (core/projected_domain_rows.h) with `footprint(d, x, y, descent)` the
+// lanes' ray footprints: the plane's or the sphere's.
+template <class FootprintOf>
+HWY_INLINE void ProjectRows(const DomainParams<float>& p, const DomainRows<float>& table,
+                            RowRange rows, DomainSpans<float> out, FootprintOf footprint) {
   hn::ScalableTag<float> d;
   const hn::RebindToSigned<decltype(d)> di;
   const hn::Rebind<std::uint8_t, decltype(d)> d8;
@@ -96,14 +158,14 @@ void ProjectDomainRows(const DomainParams<float>& p, const DomainRows<float>& ta
         return hn::Add(hn::Set(d, table.x0[r]), hn::Mul(ci, hn::Set(d, table.step_x[r])));
       };
       const auto inside = hn::RebindMask(d, hn::Lt(column, hn::Set(di, p.width)));
-      const auto centre = Footprint(d, p, x_of(row, 0), y_here, table.descent[row]);
+      const auto centre = footprint(d, x_of(row, 0), y_here, table.descent[row]);
       const auto valid = hn::And(inside, centre.valid);
       V dx = hn::Zero(d), dz = hn::Zero(d), sigma = hn::Zero(d), nu = one;
       if (!hn::AllFalse(d, valid)) {
-        const auto left = Footprint(d, p, x_of(row, -1), y_here, table.descent[row]);
-        const auto right = Footprint(d, p, x_of(row, 1), y_here, table.descent[row]);
-        const auto below = Footprint(d, p, x_of(row - 1, 0), y_below, table.descent[row - 1]);
-        const auto above = Footprint(d, p, x_of(row + 1, 0), y_above, table.descent[row + 1]);
+        const auto left = footprint(d, x_of(row, -1), y_here, table.descent[row]);
+        const auto right = footprint(d, x_of(row, 1), y_here, table.descent[row]);
+        const auto below = footprint(d, x_of(row - 1, 0), y_below, table.descent[row - 1]);
+        const auto above = footprint(d, x_of(row + 1, 0), y_above, table.descent[row + 1]);
         const V along = AxisSpacingSq(d, left, centre, right);
         const V across = AxisSpacingSq(d, below, centre, above);
         // std::max(along, across): along < across ? across : along.
@@ -129,6 +191,22 @@ void ProjectDomainRows(const DomainParams<float>& p, const DomainRows<float>& ta
       hn::StoreU(hn::DemoteTo(d8, flags), d8, out.valid.data() + k);
     }
   }
+}
+
+void ProjectDomainRows(const DomainParams<float>& p, const DomainRows<float>& table, RowRange rows,
+                       DomainSpans<float> out) {
+  ProjectRows(p, table, rows, out, [&](auto d, auto x, float y, float descent) {
+    return Footprint(d, p, x, y, descent);
+  });
+}
+
+void ProjectPlanetDomainRows(const DomainParams<float>& p, const PlanetParams<float>& planet,
+                             const DomainRows<float>& table, RowRange rows,
+                             DomainSpans<float> out) {
+  const bool visible = p.terrain_visible != 0 && planet.visible != 0;
+  ProjectRows(p, table, rows, out, [&](auto d, auto x, float y, float descent) {
+    return PlanetFootprint(d, p, planet, visible, x, y, descent);
+  });
 }
 
 }  // namespace HWY_NAMESPACE

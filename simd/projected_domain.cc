@@ -12,10 +12,16 @@
 namespace relief::simd {
 
 HWY_EXPORT(ProjectDomainRows);
+HWY_EXPORT(ProjectPlanetDomainRows);
 
 void project_domain(const DomainParams<float>& params, const DomainRows<float>& table,
                     RowRange rows, DomainSpans<float> out) {
   HWY_DYNAMIC_DISPATCH(ProjectDomainRows)(params, table, rows, out);
+}
+
+void project_planet_domain(const DomainParams<float>& params, const PlanetParams<float>& planet,
+                           const DomainRows<float>& table, RowRange rows, DomainSpans<float> out) {
+  HWY_DYNAMIC_DISPATCH(ProjectPlanetDomainRows)(params, planet, table, rows, out);
 }
 
 }  // namespace relief::simd

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "core/grid_buffers.h"
+#include "core/planet_plan.h"
 #include "core/projected_domain.h"
 #include "core/stage_params.h"
 
@@ -13,5 +14,11 @@ namespace relief::simd {
 // Precondition: params.pitch is a multiple of 16 (GridLayout's row alignment).
 void project_domain(const DomainParams<float>& params, const DomainRows<float>& table,
                     RowRange rows, DomainSpans<float> out);
+
+// Stage 2 on a planet: project_planet_domain<float> (core/planet_domain.h), planet_footprint
+// per lane (atan2_det through simd/det_trig-inl.h), bit-identical on every target. The same
+// precondition.
+void project_planet_domain(const DomainParams<float>& params, const PlanetParams<float>& planet,
+                           const DomainRows<float>& table, RowRange rows, DomainSpans<float> out);
 
 }  // namespace relief::simd

@@ -80,6 +80,12 @@ void check_pointers_match_kinds(const CpuKernels<Real>& table, const CpuKernels<
     const bool highway = c.kind == KernelKind::kHighway;
     if (name == "projected domain") {
       CHECK((table.project_domain != portable.project_domain) == highway);
+    } else if (name == "planet domain") {
+      CHECK((table.project_planet_domain != portable.project_planet_domain) == highway);
+    } else if (name == "planet bend") {
+      CHECK((table.bend_vertices != portable.bend_vertices) == highway);
+    } else if (name == "planet normals") {
+      CHECK((table.bend_normals != portable.bend_normals) == highway);
     } else if (name == "vertex outcodes") {
       CHECK((table.vertex_outcodes != portable.vertex_outcodes) == highway);
     } else if (name == "fBm") {
@@ -105,7 +111,7 @@ void check_pointers_match_kinds(const CpuKernels<Real>& table, const CpuKernels<
     } else if (name == "tile encode") {
       CHECK((table.tiles.encode == KernelKind::kHighway) == highway);
     } else {
-      // A kernel with one kind only (a planet's domain, bend and normals, set-up, binning).
+      // A kernel with one kind only (set-up, binning).
       CHECK_FALSE(highway);
     }
   }

@@ -1,8 +1,9 @@
-// The Highway kernels that run over whole grid rows (simd/projected_domain.h,
-// simd/vertex_outcodes.h, simd/surface.h) on grids of every awkward width
+// The Highway kernels that run over whole grid rows (simd/projected_domain.h, the plane's and
+// the planet's; simd/vertex_outcodes.h, simd/surface.h) on grids of every awkward width
 // (tests/simd/kernel_ranges.h) on every target this CPU runs: every entry of the rows in range,
 // the row padding included, is the scalar stage's (core/projected_domain.h,
-// core/vertex_culling.h, core/surface.h) bit for bit, and no entry of another row is written.
+// core/planet_domain.h, core/vertex_culling.h, core/surface.h) bit for bit, and no entry of
+// another row is written.
 // A row starts at a multiple of the pitch (16 floats, core/grid_buffers.h), so the unaligned
 // starts of the element-wise kernels have no counterpart here: the ranges start at row 0 and
 // inside the grid instead, and hold no row, one row or several.
@@ -16,6 +17,7 @@
 #include "core/frame_plan.h"
 #include "core/grid_buffers.h"
 #include "core/lattice.h"
+#include "core/planet_domain.h"
 #include "core/projected_domain.h"
 #include "core/scene/scene_json.h"
 #include "core/stage_params.h"
@@ -133,6 +135,52 @@ TEST_CASE("simdProjectedDomainOnAwkwardWidthsIsTheScalarStageAndWritesOnlyItsRow
         CHECK(test::same_bits(got.sigma, expected.sigma));
         CHECK(test::same_bits(got.nu, expected.nu));
         CHECK(test::same_bits(got.valid, expected.valid));
+      }
+    }
+  }
+}
+
+TEST_CASE("simdPlanetDomainOnAwkwardWidthsIsTheScalarStageAndWritesOnlyItsRows", "[simd]") {
+  const EachTarget targets;
+  // From orbit (equal angles), near the surface looking at the horizon (the plain hit with
+  // the grid sphere, rays that miss it), and inside the blend's band (equal_angle from 20 to
+  // 200 km: a missing ray's limb angle blended in), at the horizon and straight down.
+  for (const std::vector<std::string>& view :
+       {std::vector<std::string>{"camera.position=[0, 2000100, 0]"},
+        std::vector<std::string>{"camera.position=[0, 700, 0]", "camera.pitch_deg=0"},
+        std::vector<std::string>{"camera.position=[0, 60000, 0]", "camera.pitch_deg=0"},
+        std::vector<std::string>{"camera.position=[0, 60000, 0]", "camera.pitch_deg=-90"}}) {
+    std::vector<std::string> overrides = {"grid.width=53", "grid.height=6"};
+    overrides.insert(overrides.end(), view.begin(), view.end());
+    const Scene scene = resolve_scene("planet", overrides);
+    const NoiseLattice lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
+    const FramePlan plan = make_frame_plan(scene, lattice);
+    const TerrainParams<float> frame = make_terrain_params<float>(plan);
+    for (const std::size_t width : test::awkward_lengths()) {
+      const GridLayout layout = make_grid_layout(int(width), kGridRows);
+      DomainParams<float> params = frame.domain;
+      params.width = layout.width;
+      params.pitch = layout.pitch;
+      for (const RowRange rows : kRowRanges) {
+        const std::size_t size = layout.size() + test::kGuardElements;
+        DomainOutputs expected(size);
+        project_planet_domain<float>(params, frame.planet, frame.domain_rows, rows,
+                                     expected.spans());
+        const std::size_t begin = first_of(layout, rows), end = end_of(layout, rows);
+        INFO(view.front() << " " << view.back() << ", width " << width << ", rows " << rows.begin
+                          << " to " << rows.end);
+        REQUIRE(test::untouched_outside(expected.nu, begin, end));
+        for (const std::string& target : targets.runnable()) {
+          simd::force_target(target);
+          DomainOutputs got(size);
+          simd::project_planet_domain(params, frame.planet, frame.domain_rows, rows, got.spans());
+          INFO(target);
+          CHECK(test::same_bits(got.dx, expected.dx));
+          CHECK(test::same_bits(got.dz, expected.dz));
+          CHECK(test::same_bits(got.sigma, expected.sigma));
+          CHECK(test::same_bits(got.nu, expected.nu));
+          CHECK(test::same_bits(got.valid, expected.valid));
+        }
       }
     }
   }
