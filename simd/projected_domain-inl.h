@@ -1,7 +1,8 @@
-// Per-target body of simd/projected_domain.h: core/projected_domain.cc and
-// ProjectorRays::footprint (core/projector.cc) per lane, a lane a column of a row; the scalar
-// branches (a footprint off the plane or too far, a missing neighbour, the log's domain)
-// become masks and selections.
+// Per-target body of simd/projected_domain.h: core/projected_domain.cc with
+// ProjectorRays::footprint (core/projector.cc), and core/planet_domain.cc with
+// planet_footprint, per lane, a lane a column of a row; the scalar branches (a footprint off
+// the plane, the sphere missed or too far, a missing neighbour, the log's domain) become masks
+// and selections.
 #if defined(RELIEF_SIMD_PROJECTED_DOMAIN_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef RELIEF_SIMD_PROJECTED_DOMAIN_INL_H_
 #undef RELIEF_SIMD_PROJECTED_DOMAIN_INL_H_
