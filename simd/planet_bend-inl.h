@@ -15,62 +15,13 @@
 
 #include "core/planet_plan.h"
 #include "simd/det_trig-inl.h"
+#include "simd/vertex_vectors-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace relief::simd {
 namespace HWY_NAMESPACE {
 
 namespace hn = hwy::HWY_NAMESPACE;
-
-// Runs `body(valid, in, out)` on every vector of elements [begin, end): `in` the N input
-// streams' lanes, `valid` the lanes whose valid byte is set, and stores the M vectors `body`
-// leaves in `out`. The last, partial vector goes through copies (its missing lanes invalid):
-// nothing outside the range is read or written.
-template <int N, int M, class Body>
-HWY_INLINE void ForEachBendVector(std::size_t begin, std::size_t end,
-                                  const float* const (&inputs)[N],
-                                  const std::uint8_t* HWY_RESTRICT valid,
-                                  float* const (&outputs)[M], const Body& body) {
-  const hn::ScalableTag<float> d;
-  const hn::RebindToSigned<decltype(d)> di;
-  const hn::Rebind<std::uint8_t, decltype(d)> d8;
-  using V = hn::Vec<decltype(d)>;
-  constexpr std::size_t kMaxLanes = HWY_MAX_BYTES / sizeof(float);
-  const std::size_t lanes = hn::Lanes(d);
-  for (std::size_t k = begin; k < end; k += lanes) {
-    const std::size_t count = end - k < lanes ? end - k : lanes;
-    const bool whole = count == lanes;
-    HWY_ALIGN float in[N][kMaxLanes] = {};
-    HWY_ALIGN std::uint8_t flags[kMaxLanes] = {};
-    if (!whole) {
-      for (std::size_t l = 0; l < count; ++l) {
-        for (int c = 0; c < N; ++c) {
-          in[c][l] = inputs[c][k + l];
-        }
-        flags[l] = valid[k + l];
-      }
-    }
-    V values[N];
-    for (int c = 0; c < N; ++c) {
-      values[c] = whole ? hn::LoadU(d, inputs[c] + k) : hn::Load(d, in[c]);
-    }
-    const auto bytes = hn::PromoteTo(di, whole ? hn::LoadU(d8, valid + k) : hn::Load(d8, flags));
-    const auto lane_valid = hn::RebindMask(d, hn::Ne(bytes, hn::Zero(di)));
-    V results[M];
-    body(lane_valid, values, results);
-    HWY_ALIGN float out[kMaxLanes];
-    for (int c = 0; c < M; ++c) {
-      if (whole) {
-        hn::StoreU(results[c], d, outputs[c] + k);
-      } else {
-        hn::Store(results[c], d, out);
-        for (std::size_t l = 0; l < count; ++l) {
-          outputs[c][k + l] = out[l];
-        }
-      }
-    }
-  }
-}
 
 void BendVertices(const PlanetParams<float>& p, IndexRange range, const float* HWY_RESTRICT dx,
                   const float* HWY_RESTRICT dz, const float* HWY_RESTRICT height,
@@ -81,8 +32,8 @@ void BendVertices(const PlanetParams<float>& p, IndexRange range, const float* H
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
   const float* const inputs[3] = {dx, dz, height};
   float* const outputs[4] = {x, y, z, drop};
-  ForEachBendVector(
-      range.begin, range.end, inputs, valid, outputs, [&](auto ok, const V(&in)[3], V(&out)[4]) {
+  ForEachVertexVector(
+      range, inputs, valid, std::uint8_t(0xff), outputs, [&](auto ok, const V(&in)[3], V(&out)[4]) {
         const V rho = hn::Sqrt(hn::Add(hn::Mul(in[0], in[0]), hn::Mul(in[1], in[1])));
         const V theta = hn::Mul(rho, hn::Set(d, p.inv_radius));
         V sine, cosine, half_sine, half_cosine;
@@ -111,8 +62,8 @@ void BendNormals(const PlanetParams<float>& p, IndexRange range, const float* HW
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
   const float* const inputs[5] = {dx, dz, nx, ny, nz};
   float* const outputs[3] = {nx, ny, nz};
-  ForEachBendVector(
-      range.begin, range.end, inputs, valid, outputs, [&](auto ok, const V(&in)[5], V(&out)[3]) {
+  ForEachVertexVector(
+      range, inputs, valid, std::uint8_t(0xff), outputs, [&](auto ok, const V(&in)[5], V(&out)[3]) {
         const V rho = hn::Sqrt(hn::Add(hn::Mul(in[0], in[0]), hn::Mul(in[1], in[1])));
         // The nadir's frame is the camera's: unchanged where rho is not > 0.
         const auto turned = hn::And(ok, hn::Gt(rho, zero));

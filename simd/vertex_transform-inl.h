@@ -15,71 +15,13 @@
 
 #include "core/stage_params.h"
 #include "core/vertex_culling.h"
+#include "simd/vertex_vectors-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace relief::simd {
 namespace HWY_NAMESPACE {
 
 namespace hn = hwy::HWY_NAMESPACE;
-
-// Runs `body(drawn, in, out)` on every vector of vertices [range.begin, range.end): `in` the
-// N input streams' lanes, `drawn` the lanes whose need has kDraw (all where `need` is null),
-// and stores the M vectors `body` leaves in `out` into the M output streams. The last,
-// partial vector reads and writes its lanes through copies: nothing outside the range is
-// touched.
-template <int N, int M, class Body>
-HWY_INLINE void ForEachVertexVector(IndexRange range, const float* const (&inputs)[N],
-                                    const std::uint8_t* HWY_RESTRICT need,
-                                    float* const (&outputs)[M], const Body& body) {
-  const hn::ScalableTag<float> d;
-  const hn::RebindToSigned<decltype(d)> di;
-  const hn::Rebind<std::uint8_t, decltype(d)> d8;
-  using V = hn::Vec<decltype(d)>;
-  const std::size_t lanes = hn::Lanes(d);
-  const auto draw_bit = hn::Set(di, kDraw);
-  const auto one_vector = [&](std::size_t k, std::size_t count) {
-    HWY_ALIGN float in[N][HWY_MAX_BYTES / sizeof(float)] = {};
-    HWY_ALIGN std::uint8_t flags[HWY_MAX_BYTES / sizeof(float)] = {};
-    const bool whole = count == lanes;
-    if (!whole) {
-      for (std::size_t l = 0; l < count; ++l) {
-        for (int c = 0; c < N; ++c) {
-          in[c][l] = inputs[c][k + l];
-        }
-        flags[l] = need == nullptr ? std::uint8_t(kDraw) : need[k + l];
-      }
-    }
-    V values[N];
-    for (int c = 0; c < N; ++c) {
-      values[c] = whole ? hn::LoadU(d, inputs[c] + k) : hn::Load(d, in[c]);
-    }
-    auto drawn = hn::FirstN(d, count);
-    if (need != nullptr || !whole) {
-      const auto bits = hn::PromoteTo(di, whole ? hn::LoadU(d8, need + k) : hn::Load(d8, flags));
-      drawn = hn::RebindMask(d, hn::Ne(hn::And(bits, draw_bit), hn::Zero(di)));
-    }
-    V results[M];
-    body(drawn, values, results);
-    HWY_ALIGN float out[HWY_MAX_BYTES / sizeof(float)];
-    for (int c = 0; c < M; ++c) {
-      if (whole) {
-        hn::StoreU(results[c], d, outputs[c] + k);
-      } else {
-        hn::Store(results[c], d, out);
-        for (std::size_t l = 0; l < count; ++l) {
-          outputs[c][k + l] = out[l];
-        }
-      }
-    }
-  };
-  std::size_t k = range.begin;
-  for (; k + lanes <= range.end; k += lanes) {
-    one_vector(k, lanes);
-  }
-  if (k < range.end) {
-    one_vector(k, range.end - k);
-  }
-}
 
 void TransformVertices(const TransformParams<float>& t, IndexRange range,
                        const float* HWY_RESTRICT dx, const float* HWY_RESTRICT dz,
@@ -95,7 +37,7 @@ void TransformVertices(const TransformParams<float>& t, IndexRange range,
   const float* const inputs[3] = {dx, height, dz};
   float* const outputs[4] = {x, y, z, w};
   ForEachVertexVector(
-      range, inputs, need, outputs, [&](const auto drawn, const V(&p)[3], V(&clip)[4]) {
+      range, inputs, need, kDraw, outputs, [&](const auto drawn, const V(&p)[3], V(&clip)[4]) {
         const V cx = hn::Add(hn::Add(hn::Mul(x0, p[0]), hn::Mul(x1, p[1])), hn::Mul(x2, p[2]));
         const V cy = hn::Add(hn::Add(hn::Mul(y0, p[0]), hn::Mul(y1, p[1])), hn::Mul(y2, p[2]));
         const V cw = hn::Add(hn::Add(hn::Mul(w0, p[0]), hn::Mul(w1, p[1])), hn::Mul(w2, p[2]));
@@ -117,7 +59,7 @@ void LightVertices(const TransformParams<float>& t, IndexRange range, const floa
   const float* const inputs[3] = {nx, ny, nz};
   float* const outputs[1] = {lambert};
   ForEachVertexVector(
-      range, inputs, need, outputs, [&](const auto drawn, const V(&n)[3], V(&out)[1]) {
+      range, inputs, need, kDraw, outputs, [&](const auto drawn, const V(&n)[3], V(&out)[1]) {
         const V ndl =
             hn::Add(hn::Add(hn::Mul(n[0], sun_x), hn::Mul(n[1], sun_y)), hn::Mul(n[2], sun_z));
         out[0] = hn::IfThenElseZero(hn::And(drawn, hn::Gt(ndl, hn::Zero(d))), ndl);

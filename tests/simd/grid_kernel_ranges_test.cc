@@ -110,25 +110,29 @@ struct DomainOutputs {
   DomainSpans<float> spans() { return {dx, dz, sigma, nu, valid}; }
 };
 
-TEST_CASE("simdProjectedDomainOnAwkwardWidthsIsTheScalarStageAndWritesOnlyItsRows", "[simd]") {
+// Stage 2 at every awkward width and row range: `scalar(params, rows, spans)` and
+// `highway(params, rows, spans)` (the plane's or the sphere's, over `wide`'s parameters with
+// the width and pitch changed) write the same bits, only in their rows, on every target.
+template <class Scalar, class Highway>
+void check_domain_kernel(const DomainParams<float>& wide, const Scalar& scalar,
+                         const Highway& highway) {
   const EachTarget targets;
-  const WideFrame frame;
   for (const std::size_t width : test::awkward_lengths()) {
     const GridLayout layout = make_grid_layout(int(width), kGridRows);
-    DomainParams<float> params = frame.params.domain;
+    DomainParams<float> params = wide;
     params.width = layout.width;
     params.pitch = layout.pitch;
     for (const RowRange rows : kRowRanges) {
       const std::size_t size = layout.size() + test::kGuardElements;
       DomainOutputs expected(size);
-      project_domain<float>(params, frame.params.domain_rows, rows, expected.spans());
+      scalar(params, rows, expected.spans());
       const std::size_t begin = first_of(layout, rows), end = end_of(layout, rows);
       INFO("width " << width << ", rows " << rows.begin << " to " << rows.end);
       REQUIRE(test::untouched_outside(expected.nu, begin, end));
       for (const std::string& target : targets.runnable()) {
         simd::force_target(target);
         DomainOutputs got(size);
-        simd::project_domain(params, frame.params.domain_rows, rows, got.spans());
+        highway(params, rows, got.spans());
         INFO(target);
         CHECK(test::same_bits(got.dx, expected.dx));
         CHECK(test::same_bits(got.dz, expected.dz));
@@ -140,8 +144,20 @@ TEST_CASE("simdProjectedDomainOnAwkwardWidthsIsTheScalarStageAndWritesOnlyItsRow
   }
 }
 
+TEST_CASE("simdProjectedDomainOnAwkwardWidthsIsTheScalarStageAndWritesOnlyItsRows", "[simd]") {
+  const WideFrame frame;
+  const DomainRows<float>& table = frame.params.domain_rows;
+  check_domain_kernel(
+      frame.params.domain,
+      [&](const DomainParams<float>& p, RowRange rows, DomainSpans<float> out) {
+        project_domain<float>(p, table, rows, out);
+      },
+      [&](const DomainParams<float>& p, RowRange rows, DomainSpans<float> out) {
+        simd::project_domain(p, table, rows, out);
+      });
+}
+
 TEST_CASE("simdPlanetDomainOnAwkwardWidthsIsTheScalarStageAndWritesOnlyItsRows", "[simd]") {
-  const EachTarget targets;
   // From orbit (equal angles), near the surface looking at the horizon (the plain hit with
   // the grid sphere, rays that miss it), and inside the blend's band (equal_angle from 20 to
   // 200 km: a missing ray's limb angle blended in), at the horizon and straight down.
@@ -156,33 +172,15 @@ TEST_CASE("simdPlanetDomainOnAwkwardWidthsIsTheScalarStageAndWritesOnlyItsRows",
     const NoiseLattice lattice = make_noise_lattice(scene.terrain.seed, scene.terrain.lattice_size);
     const FramePlan plan = make_frame_plan(scene, lattice);
     const TerrainParams<float> frame = make_terrain_params<float>(plan);
-    for (const std::size_t width : test::awkward_lengths()) {
-      const GridLayout layout = make_grid_layout(int(width), kGridRows);
-      DomainParams<float> params = frame.domain;
-      params.width = layout.width;
-      params.pitch = layout.pitch;
-      for (const RowRange rows : kRowRanges) {
-        const std::size_t size = layout.size() + test::kGuardElements;
-        DomainOutputs expected(size);
-        project_planet_domain<float>(params, frame.planet, frame.domain_rows, rows,
-                                     expected.spans());
-        const std::size_t begin = first_of(layout, rows), end = end_of(layout, rows);
-        INFO(view.front() << " " << view.back() << ", width " << width << ", rows " << rows.begin
-                          << " to " << rows.end);
-        REQUIRE(test::untouched_outside(expected.nu, begin, end));
-        for (const std::string& target : targets.runnable()) {
-          simd::force_target(target);
-          DomainOutputs got(size);
-          simd::project_planet_domain(params, frame.planet, frame.domain_rows, rows, got.spans());
-          INFO(target);
-          CHECK(test::same_bits(got.dx, expected.dx));
-          CHECK(test::same_bits(got.dz, expected.dz));
-          CHECK(test::same_bits(got.sigma, expected.sigma));
-          CHECK(test::same_bits(got.nu, expected.nu));
-          CHECK(test::same_bits(got.valid, expected.valid));
-        }
-      }
-    }
+    INFO(view.front() << " " << view.back());
+    check_domain_kernel(
+        frame.domain,
+        [&](const DomainParams<float>& p, RowRange rows, DomainSpans<float> out) {
+          project_planet_domain<float>(p, frame.planet, frame.domain_rows, rows, out);
+        },
+        [&](const DomainParams<float>& p, RowRange rows, DomainSpans<float> out) {
+          simd::project_planet_domain(p, frame.planet, frame.domain_rows, rows, out);
+        });
   }
 }
 
