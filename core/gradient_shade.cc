@@ -22,9 +22,10 @@ Vec3<Real> gradient_albedo(const ShadeParams<Real>& p, Real h) {
 
 template <class Real>
 Vec3<Real> gouraud_light(const ShadeParams<Real>& p, const Vec3<Real>& albedo, Real lambert,
-                         Real ny, Real sun_share) {
+                         Real ny, Real sun_share, Real sky_share) {
   const Real sunlit = lambert * sun_share;
-  const Vec3<Real> hemisphere = mix(p.ground_light, p.sky_light, Real(0.5) + Real(0.5) * ny);
+  const Vec3<Real> hemisphere =
+      mix(p.ground_light, p.sky_light, (Real(0.5) + Real(0.5) * ny) * sky_share);
   const Real ambient = p.ambient;
   return albedo * (p.sun * sunlit + hemisphere + Vec3<Real>{ambient, ambient, ambient});
 }
@@ -32,8 +33,8 @@ Vec3<Real> gouraud_light(const ShadeParams<Real>& p, const Vec3<Real>& albedo, R
 template Vec3<float> gradient_albedo<float>(const ShadeParams<float>&, float);
 template Vec3<double> gradient_albedo<double>(const ShadeParams<double>&, double);
 template Vec3<float> gouraud_light<float>(const ShadeParams<float>&, const Vec3<float>&, float,
-                                          float, float);
+                                          float, float, float);
 template Vec3<double> gouraud_light<double>(const ShadeParams<double>&, const Vec3<double>&, double,
-                                            double, double);
+                                            double, double, double);
 
 }  // namespace relief

@@ -16,8 +16,9 @@
 // (core/vertex_transform.h) and stage 7 interpolates it (`lambert`); the hemispherical light
 // mix(ground, sky, 1/2 + n.y / 2) is affine in n.y, so interpolating n.y (the normal as
 // resolved, not renormalised) interpolates it exactly as well. Per pixel:
-//   albedo (sun lambert share + mix(ground, sky, 1/2 + ny / 2) + ambient)
-// with `share` the sun disc's visible share (1 without cast shadows). No specular term: the
+//   albedo (sun lambert share + mix(ground, sky, (1/2 + ny / 2) sky_share) + ambient)
+// with `share` the sun disc's visible share (1 without cast shadows) and `sky_share` the sky's
+// open share (1 without sky light: sky_horizons.h). No specular term: the
 // seed's lighting has none, and a per-vertex highlight only flickers across triangles.
 #pragma once
 
@@ -31,6 +32,6 @@ Vec3<Real> gradient_albedo(const ShadeParams<Real>& params, Real relative_height
 
 template <class Real>
 Vec3<Real> gouraud_light(const ShadeParams<Real>& params, const Vec3<Real>& albedo, Real lambert,
-                         Real ny, Real sun_share);
+                         Real ny, Real sun_share, Real sky_share);
 
 }  // namespace relief

@@ -78,15 +78,19 @@ Vec3<Real> layer_albedo(const ShadeParams<Real>& p, const LayerParams<Real>& l,
 
 // Sun (Lambert, Phong) times the share of its disc the terrain leaves visible (`sun_share`,
 // sun_visibility.h; 1 without cast shadows, which leaves every bit as it was), hemispherical
-// sky light and ambient.
+// sky light whose sky part is scaled by the sky the terrain leaves open (`sky_share`,
+// sky_horizons.h: the hidden part sees the terrain, lit like the ground colour; 1 without sky
+// light, every bit as it was), and ambient.
 template <class Real>
 Vec3<Real> light(const ShadeParams<Real>& p, const Vec3<Real>& albedo, const Vec3<Real>& n,
-                 const Vec3<Real>& view, Real specular, Real sun_share, ShadeWork& work) {
+                 const Vec3<Real>& view, Real specular, Real sun_share, Real sky_share,
+                 ShadeWork& work) {
   const Vec3<Real>& to_sun = p.sun_direction;
   const Vec3<Real>& sun = p.sun;
   const Real ndl = std::max(Real(0), dot(n, to_sun));
   const Real sunlit = ndl * sun_share;
-  const Vec3<Real> hemisphere = mix(p.ground_light, p.sky_light, Real(0.5) + Real(0.5) * n.y);
+  const Vec3<Real> hemisphere =
+      mix(p.ground_light, p.sky_light, (Real(0.5) + Real(0.5) * n.y) * sky_share);
   const Real ambient = p.ambient;
   Vec3<Real> radiance =
       albedo * (sun * sunlit + hemisphere + Vec3<Real>{ambient, ambient, ambient});
@@ -201,7 +205,7 @@ Vec3<Real> textured_radiance(const ShadeParams<Real>& p, const ShadeResources& r
   }
   // Domain: the largest weight is >= 1/8 > kMinLayerWeight, so used > 0.
   albedo = albedo * (Real(1) / used);
-  return light(p, albedo, facing_normal(n, view, work), view, specular / used, a.sun, work);
+  return light(p, albedo, facing_normal(n, view, work), view, specular / used, a.sun, a.sky, work);
 }
 
 }  // namespace
@@ -216,9 +220,9 @@ Vec3<Real> terrain_radiance(const ShadeParams<Real>& p, const ShadeResources& r,
   const Vec3<Real> position{a.dx, relative_y - a.drop, a.dz};
   const Real distance = std::sqrt(dot(position, position));
   const Vec3<Real> view = normalize_or(position, p.camera_forward);
-  Vec3<Real> radiance =
-      p.gradient_enabled ? gouraud_light(p, gradient_albedo(p, relative_y), a.lambert, a.ny, a.sun)
-                         : textured_radiance(p, r, a, distance, view, work);
+  Vec3<Real> radiance = p.gradient_enabled ? gouraud_light(p, gradient_albedo(p, relative_y),
+                                                           a.lambert, a.ny, a.sun, a.sky)
+                                           : textured_radiance(p, r, a, distance, view, work);
 
   Real fog_distance = distance;
   if (p.water_enabled && p.terrain_water && relative_y < p.water_level && view.y < Real(0)) {

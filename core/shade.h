@@ -41,6 +41,7 @@ struct PixelAttributes {
   Real water_depth;                                             // §4.3, interpolated
   Real drop;  // a planet's curvature drop below the height (planet_bend.h); 0 on the plane
   Real sun;   // the sun disc's visible share (sun_visibility.h); 1 without cast shadows
+  Real sky;   // the sky's open share (sky_horizons.h); 1 without sky light
   // shading.mode = gradient: the vertices' Lambert terms interpolated (gradient_shade.h);
   // not read otherwise.
   Real lambert;
@@ -101,6 +102,7 @@ struct ShadingInputs {
   std::span<const float> water_depth;   // interpolated per-vertex depth (§4.3)
   std::span<const float> drop = {};     // a planet's curvature drop; empty: 0 (the plane)
   std::span<const float> sun = {};      // the sun disc's visible share; empty: 1 (no shadows)
+  std::span<const float> sky = {};      // the sky's open share; empty: 1 (no sky light)
   std::span<const float> lambert = {};  // gradient mode's interpolated Lambert term; empty: 0
 
   template <class Real>
@@ -121,6 +123,7 @@ struct ShadingInputs {
             Real(water_depth[k]),
             drop.empty() ? Real(0) : Real(drop[k]),
             sun.empty() ? Real(1) : Real(sun[k]),
+            sky.empty() ? Real(1) : Real(sky[k]),
             lambert.empty() ? Real(0) : Real(lambert[k])};
   }
 };

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/horizon_lines.h"
 #include "core/limits.h"
 #include "core/lod_rule.h"
+#include "core/sky_horizons.h"
 #include "core/vertex_culling.h"
 
 namespace relief {
@@ -14,8 +16,6 @@ namespace {
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
 // tan of an angle at or past +-90 degrees: +-1e30, past any slope a cache holds.
 constexpr double kHugeTangent = 1e30;
-// The horizon of a sample with no terrain ahead of it within the sweep: far below any sun.
-constexpr double kNoHorizonTangent = -1e6;
 
 double clamped_tangent(double angle_deg) {
   if (angle_deg >= 90.0) {
@@ -65,8 +65,8 @@ ShadowGeometry shadow_geometry(const CameraFrame& camera, int viewport_height, i
 
 int shadow_cache_levels(const Scene& scene) {
   const bool planet = scene.terrain.planet && scene.terrain.planet->radius != 0.0;
-  if (!scene.lighting.shadows || planet ||
-      scene.lighting.sun_elevation_deg + scene.sky.sun_disc_deg <= 0.0) {
+  const bool sun_up = scene.lighting.sun_elevation_deg + scene.sky.sun_disc_deg > 0.0;
+  if (planet || !((scene.lighting.shadows && sun_up) || scene.lighting.sky_occlusion)) {
     return 0;
   }
   return shadow_geometry(make_camera_frame(scene.camera, scene.viewport), scene.viewport.height,
@@ -77,10 +77,11 @@ int shadow_cache_levels(const Scene& scene) {
 ShadowPlan make_shadow_plan(const Scene& scene, const FramePlan& frame) {
   ShadowPlan plan;
   const LightingSettings& light = scene.lighting;
-  if (!light.shadows || frame.planet.enabled) {
+  if ((!light.shadows && !light.sky_occlusion) || frame.planet.enabled) {
     return plan;
   }
-  plan.enabled = true;
+  plan.enabled = light.shadows;
+  plan.sky = light.sky_occlusion;
   const double elevation = light.sun_elevation_deg, radius = scene.sky.sun_disc_deg;
   const double azimuth = light.sun_azimuth_deg * kDegree;
   plan.axis_x = std::sin(azimuth);
@@ -90,8 +91,9 @@ ShadowPlan make_shadow_plan(const Scene& scene, const FramePlan& frame) {
   plan.sin_radius = std::sin(radius * kDegree);
   plan.lit_tangent = clamped_tangent(elevation - radius);
   plan.dark_tangent = clamped_tangent(elevation + radius);
-  if (elevation + radius <= 0.0) {
-    plan.sun_set = true;
+  // With the sun set no pixel reads the sun's horizons; sky light still reads the cache.
+  plan.sun_set = elevation + radius <= 0.0;
+  if (plan.sun_set && !plan.sky) {
     return plan;
   }
 
@@ -102,7 +104,11 @@ ShadowPlan make_shadow_plan(const Scene& scene, const FramePlan& frame) {
   // climbed at tan(elevation - radius) (> 0), or the pixels' own reach where the sun is that low.
   const double span = std::max(0.0, frame.bounds.world_max - frame.bounds.world_min);
   const double pixels = geometry.extent / 4.0;
-  plan.reach = plan.lit_tangent > 0.0 ? std::min(span / plan.lit_tangent, pixels) : pixels;
+  if (plan.enabled && !plan.sun_set) {
+    plan.reach = plan.lit_tangent > 0.0 ? std::min(span / plan.lit_tangent, pixels) : pixels;
+  }
+  // The sky's: where the height range rises kSkyReachTangent (sky_horizons.h).
+  plan.sky_reach = plan.sky ? std::min(span / kSkyReachTangent, pixels) : 0.0;
   const int n = light.shadow_resolution;
   plan.resolution = n;
   const int levels = geometry.levels;
@@ -157,7 +163,9 @@ ShadowParams<Real> make_shadow_params(const ShadowPlan& plan) {
     p.origin_v[level] = Real(plan.origin_v[level]);
     p.nu[level] = Real(plan.nu[level]);
   }
+  p.sky = plan.sky ? 1 : 0;
   p.reach = Real(plan.reach);
+  p.sky_reach = Real(plan.sky_reach);
   if (plan.levels > 0) {  // N >= 128: N / 32 >= 4
     p.blend_samples = Real(plan.resolution / 32);
     p.inv_blend_samples = Real(1.0 / double(plan.resolution / 32));
@@ -171,14 +179,15 @@ ShadowParams<Real> make_shadow_params(const ShadowPlan& plan) {
 }
 
 template <class Real>
-void SunHorizonCache<Real>::allocate(int n, int first, int end) {
+void SunHorizonCache<Real>::allocate(int n, int first, int end, bool sun, bool with_sky) {
   resolution = n;
   first_level = first;
   end_level = end;
   const std::size_t samples = std::size_t(n) * n * std::size_t(std::max(0, end - first));
   height.resize(samples);
-  tangent.resize(samples);
-  inv_distance.resize(samples);
+  tangent.resize(sun ? samples : 0);
+  inv_distance.resize(sun ? samples : 0);
+  sky.resize(with_sky ? samples : 0);
 }
 
 template <class Real>
@@ -249,8 +258,17 @@ LevelRange shadow_level_range(const ShadowPlan& plan, const DrawnExtent& drawn) 
   // margin of 1e-4 and a spacing); a finer level's rows end nearer, and need no more.
   const int read = std::min(widest + 1, plan.levels - 1);
   const double target = (last_u(read) + plan.reach) * (1.0 + 1e-4) + plan.spacing[read];
+  // Sky light's lines run toward all four sides: each reaches sky_reach past its level's far
+  // end on its side (sky_horizons.h).
+  const auto outer = [&](int level) {
+    return std::max({-plan.origin_u[level], last_u(level), -plan.origin_v[level], last_v(level)});
+  };
+  const auto inner = [&](int level) {
+    return std::min({-plan.origin_u[level], last_u(level), -plan.origin_v[level], last_v(level)});
+  };
+  const double sky_target = (outer(read) + plan.sky_reach) * (1.0 + 1e-4) + plan.spacing[read];
   int top = read;
-  while (top + 1 < plan.levels && last_u(top) < target) {
+  while (top + 1 < plan.levels && (last_u(top) < target || (plan.sky && inner(top) < sky_target))) {
     ++top;
   }
   range.end = top + 1;
@@ -270,94 +288,42 @@ void shadow_row_positions(const ShadowParams<Real>& p, int level, int row, std::
   }
 }
 
-namespace {
-
-template <class Real>
-struct HullPoint {
-  Real u, h;
-};
-
-// Drops the hull points that the new point (u, h) hides (each at most once over a sweep) and
-// returns the stack's top: the point that sets (u, h)'s horizon, or null when none lies ahead.
-// The hull is upper-convex from the sun's end; the point nearest the new one is on top. For
-// the new point, the leftmost point of the upper hull of itself and the stack, the largest
-// slope to any point ahead is the slope to its hull neighbour.
-template <class Real>
-const HullPoint<Real>* hull_neighbour(std::vector<HullPoint<Real>>& hull, Real u, Real h,
-                                      std::uint64_t& popped) {
-  while (hull.size() >= 2) {
-    const HullPoint<Real>& a = hull[hull.size() - 1];
-    const HullPoint<Real>& b = hull[hull.size() - 2];
-    // slope(p, a) <= slope(p, b), both runs positive (b lies beyond a, a beyond p).
-    if ((a.h - h) * (b.u - u) > (b.h - h) * (a.u - u)) {
-      break;
-    }
-    hull.pop_back();
-    ++popped;
-  }
-  return hull.empty() ? nullptr : &hull.back();
-}
-
-}  // namespace
-
 template <class Real>
 HorizonWork sweep_sun_horizons(const ShadowParams<Real>& p, int level, RowRange rows,
                                SunHorizonCache<Real>& cache) {
   HorizonWork work;
-  const int n = p.resolution;
   thread_local std::vector<HullPoint<Real>> hull;
-  const Real last_u = level_last_u(p, level);
-  const Real farthest = last_u + p.reach;
+  const bool sun = p.enabled != 0 && p.sun_set == 0;
+  const bool sky = p.sky != 0;
+  // One sweep toward the sun serves both: the sky's reach where it is the longer (a sample
+  // past the sun's reach rises less than the disc's lower edge, so no share changes).
+  const Real toward_sun_reach = sky ? std::max(p.reach, p.sky_reach) : p.reach;
   for (int row = rows.begin; row < rows.end; ++row) {
-    hull.clear();
-    const Real v = p.origin_v[level] + Real(row) * p.spacing[level];
-    // The coarser levels past this one's end, from the farthest needed back toward it: each
-    // level's samples beyond the previous level's last, its height interpolated between the
-    // two rows around v (levels nest: v lies inside every coarser level).
-    int top = level;
-    Real covered = last_u;
-    while (top + 1 < p.end_level && covered < farthest) {
-      ++top;
-      covered = level_last_u(p, top);
-    }
-    for (int m = top; m > level; --m) {
-      const Real s = p.spacing[m];
-      const Real end_before = level_last_u(p, m - 1);
-      const Real fj = (v - p.origin_v[m]) * p.inv_spacing[m];
-      const int j0 = std::clamp(int(std::floor(fj)), 0, n - 2);
-      const Real g = std::clamp(fj - Real(j0), Real(0), Real(1));
-      for (int i = n - 1; i >= 0; --i) {
-        const Real u = p.origin_u[m] + Real(i) * s;
-        if (u <= end_before) {
-          break;
-        }
-        if (m == top && u > farthest + s) {
-          continue;  // past the reach (one sample beyond it is kept)
-        }
-        const Real h0 = cache.height[cache.index(m, j0, i)];
-        const Real h1 = cache.height[cache.index(m, j0 + 1, i)];
-        const Real h = h0 + (h1 - h0) * g;
-        hull_neighbour(hull, u, h, work.popped);
-        hull.push_back({u, h});
-        ++work.continuation;
-      }
-    }
-    for (int i = n - 1; i >= 0; --i) {
-      const std::size_t k = cache.index(level, row, i);
-      const Real u = p.origin_u[level] + Real(i) * p.spacing[level];
-      const Real h = cache.height[k];
-      const HullPoint<Real>* ahead = hull_neighbour(hull, u, h, work.popped);
-      if (ahead != nullptr) {
-        // run > 0: every point ahead lies farther along u (at least about a spacing).
-        const Real inv_run = Real(1) / (ahead->u - u);
-        cache.inv_distance[k] = inv_run;
-        cache.tangent[k] = (ahead->h - h) * inv_run;
-      } else {
-        cache.inv_distance[k] = p.inv_spacing[level];
-        cache.tangent[k] = Real(kNoHorizonTangent);
-      }
-      hull.push_back({u, h});
-      ++work.samples;
+    sweep_horizon_line(
+        p, cache, level, row, SweepDirection{false, 1}, toward_sun_reach, hull, work,
+        [&](std::size_t k, Real along, Real h, const HullPoint<Real>* ahead, const auto& plane) {
+          Real tangent = Real(kNoHorizonTangent);
+          Real inv_run = p.inv_spacing[level];
+          if (ahead != nullptr) {
+            // run > 0: every point ahead lies farther along u (at least about a
+            // spacing).
+            inv_run = Real(1) / (ahead->along - along);
+            tangent = (ahead->h - h) * inv_run;
+          }
+          if (sun) {
+            cache.inv_distance[k] = inv_run;
+            cache.tangent[k] = tangent;
+          }
+          if (sky) {
+            cache.sky[k] = sky_openness(tangent, plane());
+          }
+        });
+    if (sky) {  // away from the sun: the second of the sky's four directions
+      sweep_horizon_line(
+          p, cache, level, row, SweepDirection{false, -1}, p.sky_reach, hull, work,
+          [&](std::size_t k, Real along, Real h, const HullPoint<Real>* ahead, const auto& plane) {
+            cache.sky[k] = cache.sky[k] + sky_openness(horizon_tangent(along, h, ahead), plane());
+          });
     }
   }
   return work;

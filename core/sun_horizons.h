@@ -53,13 +53,16 @@ struct ShadowGeometry {
 };
 ShadowGeometry shadow_geometry(const CameraFrame& camera, int viewport_height, int resolution);
 
-// The levels a frame of `scene` can build: 0 without shadows, on a planet or with the sun set
-// (the memory estimate's, pipeline/job_memory.h; a frame builds those its pixels reach).
+// The levels a frame of `scene` can build: 0 without shadows and sky light, on a planet, or
+// with the sun set and no sky light (the memory estimate's, pipeline/job_memory.h; a frame
+// builds those its pixels reach).
 int shadow_cache_levels(const Scene& scene);
 
-// Derived once per frame in double (docs/stages.md, "Cast shadows").
+// Derived once per frame in double (docs/stages.md, "Cast shadows", "Sky light"). The cache
+// serves cast shadows (`enabled`) and sky light (`sky`, core/sky_horizons.h) alike.
 struct ShadowPlan {
-  bool enabled = false;
+  bool enabled = false;  // cast shadows
+  bool sky = false;      // sky light
   // The sun is below the horizon by more than its radius: every pixel is in the shadow of the
   // ground ahead (no cache is built).
   bool sun_set = false;
@@ -71,6 +74,7 @@ struct ShadowPlan {
   double origin_u[kMaxShadowLevels]{}, origin_v[kMaxShadowLevels]{};
   double nu[kMaxShadowLevels]{};  // octaves summed at each level (stage 3's count)
   double reach = 0;               // the horizontal distance an occluder can lie from a pixel
+  double sky_reach = 0;           // the same for sky light (sky_horizons.h)
   double sin_elevation = 0, cos_elevation = 1;
   double sin_radius = 0;  // of the sun disc's angular radius (sky.sun_disc_deg)
   // tan(elevation - radius) and tan(elevation + radius): a horizon below the first lights the
@@ -89,7 +93,8 @@ auto level_last_u(const Params& p, int level) {
 
 // From the scene's lighting and the frame: the sun, the levels (shadow_geometry, anchored to
 // the world lattice of their spacings about the camera), their octave counts and the
-// occluders' reach. Disabled where lighting.shadows is off or on a planet.
+// occluders' reach. Disabled where lighting.shadows and lighting.sky_occlusion are off, or on
+// a planet.
 ShadowPlan make_shadow_plan(const Scene& scene, const FramePlan& frame);
 
 // How far from the camera the cache's samples that sum each octave lie (octave_coordinates.h):
@@ -100,8 +105,9 @@ OctaveReach shadow_octave_reach(const ShadowPlan& plan);
 // The plan rounded once to the precision the stages run in.
 template <class Real>
 struct ShadowParams {
-  std::int32_t enabled = 0, sun_set = 0;
-  std::int32_t skip_lit = 1;  // FrameSkips::lit_shadows (sun_visibility.h)
+  std::int32_t enabled = 0, sun_set = 0;  // cast shadows; the sun set (ShadowPlan)
+  std::int32_t sky = 0;                   // sky light (sky_horizons.h)
+  std::int32_t skip_lit = 1;              // FrameSkips::lit_shadows (sun_visibility.h)
   // The levels a frame builds and reads, [first_level, end_level) (shadow_level_range): the
   // finer ones lie nearer than any pixel, the coarser ones past every pixel and its occluders.
   std::int32_t first_level = 0, end_level = 0;
@@ -112,7 +118,7 @@ struct ShadowParams {
   Real blend_samples = 1, inv_blend_samples = 1;
   Real origin_u[kMaxShadowLevels]{}, origin_v[kMaxShadowLevels]{};
   Real nu[kMaxShadowLevels]{};
-  Real reach = 0;
+  Real reach = 0, sky_reach = 0;
   Real sin_elevation = 0, cos_elevation = 1, sin_radius = 0;
   Real lit_tangent = 0, dark_tangent = 0;
 };
@@ -120,16 +126,57 @@ struct ShadowParams {
 template <class Real>
 ShadowParams<Real> make_shadow_params(const ShadowPlan& plan);
 
+// The sample coordinates (fi, fj) of camera-relative (u, v) (the sun's frame) in level
+// `level`, and whether they lie inside the level's cells, [0, N - 1) both: a pixel's lookup
+// (sun_visibility.h, sky_horizons.h) reads the four samples around it there.
+template <class Real>
+bool level_coordinates(const ShadowParams<Real>& p, int level, Real u, Real v, Real& fi, Real& fj) {
+  const Real last = Real(p.resolution - 1);
+  fi = (u - p.origin_u[level]) * p.inv_spacing[level];
+  fj = (v - p.origin_v[level]) * p.inv_spacing[level];
+  return fi >= Real(0) && fi < last && fj >= Real(0) && fj < last;
+}
+
+// A pixel's value from the cache at camera-relative (u, v) (the sun's frame): `at(level, fi,
+// fj)` in the finest level from `first_level` whose square holds the point (the squares nest:
+// it holds the point in every coarser level too); within the band of `blend_samples` along
+// that square's edge faded linearly into the next coarser level's value, so that a pixel
+// passing from one level to the next sees no step, and the squares, which follow the camera a
+// spacing at a time, move no edge at once. False where no level holds the point (NaN
+// coordinates, or beyond the coarsest level).
+template <class Real, class At>
+bool blended_level_value(const ShadowParams<Real>& p, Real u, Real v, At&& at, Real& value) {
+  Real fi = 0, fj = 0;
+  int level = p.first_level;
+  while (level < p.end_level && !level_coordinates(p, level, u, v, fi, fj)) {
+    ++level;
+  }
+  if (level >= p.end_level) {
+    return false;
+  }
+  value = at(level, fi, fj);
+  const Real last = Real(p.resolution - 1);
+  const Real edge = std::min(std::min(fi, fj), std::min(last - fi, last - fj));
+  if (edge < p.blend_samples && level + 1 < p.end_level &&
+      level_coordinates(p, level + 1, u, v, fi, fj)) {
+    const Real coarse = at(level + 1, fi, fj);
+    value = coarse + (value - coarse) * (edge * p.inv_blend_samples);
+  }
+  return true;
+}
+
 // The cache: per level N rows of N samples, row-major, level after level, for the levels
 // [first_level, end_level) a frame builds.
 template <class Real>
 struct SunHorizonCache {
   int resolution = 0, first_level = 0, end_level = 0;
   AlignedVector<Real> height;        // camera-relative (stage 3's)
-  AlignedVector<Real> tangent;       // of the horizon toward the sun
+  AlignedVector<Real> tangent;       // of the horizon toward the sun (cast shadows)
   AlignedVector<Real> inv_distance;  // 1 / the horizontal run to the sample that sets it
+  AlignedVector<Real> sky;           // the sky left open (sky light; sky_horizons.h)
 
-  void allocate(int n, int first, int end);
+  // `sun`, `sky`: whether the frame reads the sun's horizons and the sky's openness.
+  void allocate(int n, int first, int end, bool sun, bool sky);
   std::size_t index(int level, int row, int column) const {
     return (std::size_t(level - first_level) * resolution + row) * resolution + column;
   }
@@ -180,7 +227,9 @@ struct HorizonWork {
 };
 
 // The horizons of rows [rows.begin, rows.end) of level `level`, from the heights of that level
-// and of the coarser ones (all written before).
+// and of the coarser ones (all written before): toward the sun for cast shadows (where the
+// sun is up), and toward both ends of the row for sky light (its first two of four
+// directions, sky_horizons.h).
 template <class Real>
 HorizonWork sweep_sun_horizons(const ShadowParams<Real>& params, int level, RowRange rows,
                                SunHorizonCache<Real>& cache);

@@ -75,35 +75,17 @@ Real sun_visibility(const ShadowParams<Real>& p, const SunHorizonCache<Real>& c,
   }
   const Real u = dx * p.axis_x + dz * p.axis_z;
   const Real v = dz * p.axis_x - dx * p.axis_z;
-  const Real last = Real(p.resolution - 1);
-  Real fi = 0, fj = 0;
-  const auto inside = [&](int level) {
-    fi = (u - p.origin_u[level]) * p.inv_spacing[level];
-    fj = (v - p.origin_v[level]) * p.inv_spacing[level];
-    return fi >= Real(0) && fi < last && fj >= Real(0) && fj < last;
+  bool proven_lit = true;
+  Real share = 0;
+  const auto at = [&](int level, Real fi, Real fj) {
+    bool lit = false;
+    const Real level_value = level_share(p, c, level, fi, fj, height, lit);
+    proven_lit = proven_lit && lit;
+    return level_value;
   };
-  // The finest level from `first_level` whose square holds the point (the squares nest: it
-  // holds the point in every coarser level too).
-  int level = p.first_level;
-  while (level < p.end_level && !inside(level)) {
-    ++level;
-  }
-  if (level >= p.end_level) {  // NaN coordinates, or beyond the coarsest level: lit
+  if (!blended_level_value(p, u, v, at, share)) {  // NaN coordinates, or beyond the cache: lit
     ++work.outside;
     return Real(1);
-  }
-  bool proven_lit = false;
-  Real share = level_share(p, c, level, fi, fj, height, proven_lit);
-  // Within the band of `blend_samples` along its square's edge a level's share fades into the
-  // next coarser level's, which holds the point too (the squares nest): continuous where a
-  // pixel passes from one level to the next, so that the squares' steps with the camera
-  // (a spacing at a time) move no shadow edge at once.
-  const Real edge = std::min(std::min(fi, fj), std::min(last - fi, last - fj));
-  if (edge < p.blend_samples && level + 1 < p.end_level && inside(level + 1)) {
-    bool coarse_lit = false;
-    const Real coarse = level_share(p, c, level + 1, fi, fj, height, coarse_lit);
-    share = lerp(coarse, share, edge * p.inv_blend_samples);
-    proven_lit = proven_lit && coarse_lit;
   }
   if (proven_lit) {
     ++work.lit;

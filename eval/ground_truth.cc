@@ -81,9 +81,9 @@ Scene supersampled_scene(const Scene& scene, const GroundTruthSettings& settings
   if (out.terrain.heightfield) {
     out.terrain.heightfield->geomipmap.reset();
   }
-  // Cast shadows' horizon cache as many times finer as the grid, at most its limit, rounded
-  // down to a power of two as the field must be (grid scale 3 takes 2x; docs/ground-truth.md,
-  // "Cast shadows").
+  // Cast shadows' and sky light's horizon cache as many times finer as the grid, at most its limit,
+  // rounded down to a power of two as the field must be (grid scale 3 takes 2x;
+  // docs/ground-truth.md, "Cast shadows").
   out.lighting.shadow_resolution = int(std::bit_floor(std::uint64_t(
       std::min<std::int64_t>(std::int64_t(scene.lighting.shadow_resolution) * settings.grid_scale,
                              limits::kMaxShadowResolution))));

@@ -145,8 +145,8 @@ std::vector<Variation> full_variations(const Scene& scene) {
        {Backend::kSimd, Backend::kReference, Backend::kReferenceDouble, Backend::kGl}) {
     out.push_back(backend_variation(backend));
   }
-  // Cast shadows' horizon cache (core/sun_horizons.h), where the scene has them.
-  if (scene.lighting.shadows) {
+  // Cast shadows' and sky light's horizon cache (core/sun_horizons.h), where the scene has one.
+  if (scene.lighting.shadows || scene.lighting.sky_occlusion) {
     for (int n : {128, 256, 512, 1024}) {
       out.push_back({"shadows " + std::to_string(n),
                      "shadow_resolution",
@@ -219,8 +219,10 @@ SweepPlan plan_sweep(const Scene& scene, bool quick,
       plan.skipped.push_back({c.name, *gl_unavailable});
       continue;
     }
-    if (c.backend == Backend::kGl && scene.lighting.shadows) {
-      plan.skipped.push_back({c.name, "the GL backend has no cast shadows yet (lighting.shadows)"});
+    if (c.backend == Backend::kGl && (scene.lighting.shadows || scene.lighting.sky_occlusion)) {
+      plan.skipped.push_back({c.name,
+                              "the GL backend has no cast shadows or sky light yet "
+                              "(lighting.shadows, lighting.sky_occlusion)"});
       continue;
     }
     try {

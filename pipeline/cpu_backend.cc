@@ -82,6 +82,8 @@ std::size_t CpuBackend<Real>::units(StageId id) const {
     case StageId::kShadowHeights:
     case StageId::kSunHorizons:
       return shadow_rows();
+    case StageId::kSkyHorizons:  // as many columns as rows
+      return shadow_.sky != 0 ? shadow_rows() : 0;
     case StageId::kTiles:
       return static_cast<std::size_t>(band_tile_rows()) * tiles_.columns;
   }
@@ -182,10 +184,9 @@ void CpuBackend<Real>::run(StageId id, std::size_t begin, std::size_t end) {
       return;
     }
     case StageId::kShadowHeights:
-      run_shadow_heights(begin, end);
-      return;
     case StageId::kSunHorizons:
-      run_sun_horizons(begin, end);
+    case StageId::kSkyHorizons:
+      run_horizon_cache(id, begin, end);
       return;
     case StageId::kVertexTransform: {
       const ClipSpans<Real> clip{clip_x_, clip_y_, clip_z_, clip_w_};
@@ -262,7 +263,8 @@ void CpuBackend<Real>::prepare(StageId id) {
       if (shadow_rows() > 0) {
         shadow_fbm_ = make_fbm_params<Real>(plan_.terrain);
         choose_coordinate_forms(plan_.terrain, shadow_octave_reach(shadow_plan_), shadow_fbm_);
-        horizons_.allocate(shadow_plan_.resolution, shadow_.first_level, shadow_.end_level);
+        horizons_.allocate(shadow_plan_.resolution, shadow_.first_level, shadow_.end_level,
+                           shadow_.enabled != 0 && shadow_.sun_set == 0, shadow_.sky != 0);
       }
       return;
     case StageId::kVertexTransform: {
@@ -338,7 +340,8 @@ void CpuBackend<Real>::prepare(StageId id) {
       tile_pass_ = std::make_unique<TilePass<Real>>(
           state_, frame_triangles(), streams, shade_, ShadeResources{&lattice_, textures_, skybox_},
           o, plan_.camera.position.y, image_, kernels_.tiles, band_rows_ < 0 ? 0 : band_first_row_,
-          shadow_.enabled != 0 ? TileShadows<Real>{&shadow_, &horizons_} : TileShadows<Real>{});
+          TileShadows<Real>{shadow_.enabled != 0 ? &shadow_ : nullptr, &horizons_,
+                            shadow_.sky != 0 ? &shadow_ : nullptr});
       return;
     }
     default:

@@ -23,6 +23,7 @@
 #include "core/heightfield/field_mesh.h"
 #include "core/octave_coordinates.h"
 #include "core/shading_plan.h"
+#include "core/sky_horizons.h"
 #include "core/stage_params.h"
 #include "core/sun_horizons.h"
 #include "core/vertex_culling.h"
@@ -93,10 +94,13 @@ class CpuBackend final : public FrameBackend {
   // beyond what the frame's estimate left of the budget.
   void tally_setup();
   bool water_in_view() const;
-  // Cast shadows: the cache's rows to build (levels x N), none without shadows or after sunset.
+  // Cast shadows and sky light: the cache's rows to build (levels x N), none without either
+  // or, without sky light, after sunset.
   std::size_t shadow_rows() const;
+  void run_horizon_cache(StageId id, std::size_t begin, std::size_t end);  // the three below
   void run_shadow_heights(std::size_t begin, std::size_t end);
   void run_sun_horizons(std::size_t begin, std::size_t end);
+  void run_sky_horizons(std::size_t begin, std::size_t end);  // sky light: the columns
 
   const Scene& scene_;
   const NoiseLattice& lattice_;         // the shading's noise (dithering, waves)
@@ -148,6 +152,7 @@ class CpuBackend final : public FrameBackend {
   FbmWork shadow_fbm_work_;
   DrawnExtent drawn_;  // where the drawn triangles lie in the sun's frame
   HorizonWork horizon_work_;
+  HorizonWork sky_work_;  // the columns' sweeps (sky light)
   ShadingPlan shading_plan_;
   ShadeParams<Real> shade_;
   FrameImage image_;

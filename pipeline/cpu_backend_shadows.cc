@@ -1,5 +1,6 @@
-// CpuBackend's cast shadows (cpu_backend.h, core/sun_horizons.h): the horizon cache's rows to
-// build, their heights through the frame's own stage-3 kernels, and their sweeps.
+// CpuBackend's cast shadows and sky light (cpu_backend.h, core/sun_horizons.h,
+// core/sky_horizons.h): the horizon cache's rows to build, their heights through the frame's
+// own stage-3 kernels, and their sweeps along the rows and the columns.
 #include <algorithm>
 #include <mutex>
 
@@ -9,12 +10,24 @@ namespace relief {
 
 template <class Real>
 std::size_t CpuBackend<Real>::shadow_rows() const {
-  if (shadow_.enabled == 0 || shadow_.sun_set != 0) {
+  // Cast shadows read the cache while the sun is up; sky light whenever it is on.
+  if ((shadow_.enabled == 0 || shadow_.sun_set != 0) && shadow_.sky == 0) {
     return 0;
   }
   // Levels [first_level, end_level): the others no pixel reads (shadow_level_range).
   return std::size_t(shadow_.end_level - shadow_.first_level) *
          std::size_t(shadow_plan_.resolution);
+}
+
+template <class Real>
+void CpuBackend<Real>::run_horizon_cache(StageId id, std::size_t begin, std::size_t end) {
+  if (id == StageId::kShadowHeights) {
+    run_shadow_heights(begin, end);
+  } else if (id == StageId::kSunHorizons) {
+    run_sun_horizons(begin, end);
+  } else {
+    run_sky_horizons(begin, end);
+  }
 }
 
 template <class Real>
@@ -70,12 +83,37 @@ void CpuBackend<Real>::run_sun_horizons(std::size_t begin, std::size_t end) {
   horizon_work_.popped += work.popped;
 }
 
+template <class Real>
+void CpuBackend<Real>::run_sky_horizons(std::size_t begin, std::size_t end) {
+  // Units are the cache's columns, level after level (as many as its rows).
+  HorizonWork work;
+  const int n = shadow_plan_.resolution;
+  const std::size_t first = std::size_t(shadow_.first_level) * std::size_t(n);
+  end += first;
+  for (std::size_t unit = first + begin; unit < end;) {
+    const int level = int(unit / n), column = int(unit % n);
+    const int columns_here = int(std::min<std::size_t>(end - unit, std::size_t(n - column)));
+    const HorizonWork part =
+        sweep_sky_columns<Real>(shadow_, level, RowRange{column, column + columns_here}, horizons_);
+    work.samples += part.samples;
+    work.continuation += part.continuation;
+    work.popped += part.popped;
+    unit += std::size_t(columns_here);
+  }
+  const std::lock_guard<std::mutex> lock(work_mutex_);
+  sky_work_.samples += work.samples;
+  sky_work_.continuation += work.continuation;
+  sky_work_.popped += work.popped;
+}
+
 // The members defined here, for both backends (the class itself is instantiated once, in
 // cpu_backend.cc).
-#define RELIEF_INSTANTIATE_SHADOWS(Real)                                        \
-  template std::size_t CpuBackend<Real>::shadow_rows() const;                   \
-  template void CpuBackend<Real>::run_shadow_heights(std::size_t, std::size_t); \
-  template void CpuBackend<Real>::run_sun_horizons(std::size_t, std::size_t);
+#define RELIEF_INSTANTIATE_SHADOWS(Real)                                                \
+  template std::size_t CpuBackend<Real>::shadow_rows() const;                           \
+  template void CpuBackend<Real>::run_horizon_cache(StageId, std::size_t, std::size_t); \
+  template void CpuBackend<Real>::run_shadow_heights(std::size_t, std::size_t);         \
+  template void CpuBackend<Real>::run_sun_horizons(std::size_t, std::size_t);           \
+  template void CpuBackend<Real>::run_sky_horizons(std::size_t, std::size_t);
 RELIEF_INSTANTIATE_SHADOWS(float)
 RELIEF_INSTANTIATE_SHADOWS(double)
 #undef RELIEF_INSTANTIATE_SHADOWS

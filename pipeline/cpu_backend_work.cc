@@ -157,6 +157,11 @@ void CpuBackend<Real>::describe(StageId id, StageTime& time) const {
       count("coarser samples read past a row's end", horizon_work_.continuation);
       count("hull points skipped for good", horizon_work_.popped);
       return;
+    case StageId::kSkyHorizons:
+      count("samples swept", sky_work_.samples);
+      count("coarser samples read past a column's end", sky_work_.continuation);
+      count("hull points skipped for good", sky_work_.popped);
+      return;
     case StageId::kVertexTransform:
       count("vertices transformed", transformed_);
       if (params_.transform.gouraud != 0) {  // gradient mode lit the same vertices
@@ -199,6 +204,11 @@ void CpuBackend<Real>::describe(StageId id, StageTime& time) const {
         count("pixels with the sun disc's share evaluated", shadow.evaluated);
         count("pixels in full shadow", shadow.dark);
         count("pixels beyond the shadow cache", shadow.outside);
+      }
+      if (shadow_.sky != 0) {
+        count("sky lookups", w.sky.pixels);
+        count("pixels under the whole sky", w.sky.open);
+        count("pixels beyond the sky's cache", w.sky.outside);
       }
       return;
     }

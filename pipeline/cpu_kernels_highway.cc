@@ -22,8 +22,8 @@ constexpr const char* kSetupReason =
 constexpr const char* kBinningReason =
     "integer bounding boxes appended to per-chunk bins: memory-bound, no Highway kernel";
 constexpr const char* kHullSweepReason =
-    "a stack per row whose pushes and pops depend on the heights "
-    "(core/sun_horizons.h)";
+    "a stack per line of the cache whose pushes and pops depend on the heights "
+    "(core/horizon_lines.h)";
 
 }  // namespace
 
@@ -45,7 +45,8 @@ CpuKernels<float> highway_kernels(bool planet) {
   k.tiles.encode = h;
   k.tiles.resolve = h;
   k.tiles.shade = h;
-  k.tiles.sun = h;  // no shadows on a planet (its table has no entry)
+  k.tiles.sun = h;  // no shadows or sky light on a planet (its table has no entry)
+  k.tiles.sky = h;
   for (KernelChoice& c : k.choices) {
     const std::string_view name = c.kernel;
     if (name == "clip and edge set-up") {
@@ -54,6 +55,7 @@ CpuKernels<float> highway_kernels(bool planet) {
       c.reason = kBinningReason;
     } else if (name == "hull sweep") {
       c.reason = kHullSweepReason;
+
     } else {
       c.kind = h;
     }

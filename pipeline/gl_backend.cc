@@ -73,6 +73,11 @@ class GlBackend final : public FrameBackend {
           "lighting.shadows = true: the GL backend has no cast shadows yet; allowed false with "
           "--backend gl (or render with --backend simd, reference or reference-double)");
     }
+    if (scene.lighting.sky_occlusion) {  // the same cache (stage_table.h, kGlHasNoShadows)
+      throw GlBackendError(
+          "lighting.sky_occlusion = true: the GL backend has no sky light yet; allowed false "
+          "with --backend gl (or render with --backend simd, reference or reference-double)");
+    }
     // GeoMipMapping's mesh has no GLSL twin yet (stage_table.h, kGlHasNoMesh).
     if (scene.terrain.heightfield && scene.terrain.heightfield->geomipmap) {
       throw GlBackendError(

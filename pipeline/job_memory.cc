@@ -141,9 +141,10 @@ std::uintmax_t grid_vertices(const Scene& scene) {
   return make_grid_layout(scene.grid.width, scene.grid.height).size();
 }
 
-// Cast shadows' horizon cache (core/sun_horizons.h): the levels the scene lays out, N^2
-// samples each with three values in the backend's precision; a frame builds those its pixels
-// read (the GL backend refuses shadows).
+// Cast shadows' and sky light's horizon cache (core/sun_horizons.h): the levels the scene lays
+// out, N^2 samples each with a height, the sun's two values (with the sun up) and the sky's
+// one in the backend's precision; a frame builds those its pixels read (the GL backend
+// refuses both).
 void add_shadow_cache(const Scene& scene, Backend backend, MemoryEstimate& estimate) {
   const int levels = shadow_cache_levels(scene);
   if (levels == 0 || backend == Backend::kGl) {
@@ -152,8 +153,11 @@ void add_shadow_cache(const Scene& scene, Backend backend, MemoryEstimate& estim
   const std::uintmax_t n = std::uintmax_t(scene.lighting.shadow_resolution);
   const std::uintmax_t value =
       backend != Backend::kReferenceDouble ? sizeof(float) : sizeof(double);
+  const bool sun =
+      scene.lighting.shadows && scene.lighting.sun_elevation_deg + scene.sky.sun_disc_deg > 0.0;
+  const std::uintmax_t values = 1 + (sun ? 2 : 0) + (scene.lighting.sky_occlusion ? 1 : 0);
   estimate.add("shadow cache " + size_text(int(n), int(n)) + " x " + std::to_string(levels),
-               n * n * std::uintmax_t(levels) * 3 * value);
+               n * n * std::uintmax_t(levels) * values * value);
 }
 
 }  // namespace

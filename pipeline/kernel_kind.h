@@ -16,6 +16,7 @@ struct TileKernels {
   KernelKind raster = KernelKind::kPortable;
   KernelKind resolve = KernelKind::kPortable;
   KernelKind sun = KernelKind::kPortable;  // cast shadows' share of the sun (sun_visibility.h)
+  KernelKind sky = KernelKind::kPortable;  // sky light's share of the sky (sky_horizons.h)
   KernelKind shade = KernelKind::kPortable;
   KernelKind encode = KernelKind::kPortable;
 };

@@ -21,7 +21,8 @@ enum class StageId {
   kDrawNeeds,        // which vertices a possibly visible triangle draws
   kSurface,          // stage 4
   kShadowHeights,    // cast shadows: stage 3's heights on the horizon cache's levels
-  kSunHorizons,      // cast shadows: each cache sample's horizon toward the sun
+  kSunHorizons,      // cast shadows, sky light: each cache sample's horizons along its row
+  kSkyHorizons,      // sky light: each cache sample's horizons along its column; the sky open
   kVertexTransform,  // stage 5
   kTriangleSetup,    // stage 6, first half: clip, snap, cull, edge functions
   kBinning,          // stage 6: triangles into screen tiles
@@ -33,7 +34,7 @@ enum class WorkUnit {
   kVertices,        // grid vertices, flat
   kTriangleChunks,  // fixed chunks of kSetupChunk triangles
   kScreenTiles,     // 64 x 64 tiles of the image
-  kCacheRows,       // rows of the shadows' horizon cache, level after level
+  kCacheRows,       // rows (or columns) of the shadows' horizon cache, level after level
 };
 
 // Where a stage is implemented, tested and documented. Each implementation is a repository
@@ -68,9 +69,11 @@ struct StageInfo {
 inline constexpr const char* kGlDrawsEveryTriangle =
     "none: the GL backend draws every valid triangle and the GPU's clipper drops the unseen";
 
-// Cast shadows are not built on the GL side yet: the GL backend refuses lighting.shadows.
+// Cast shadows and sky light are not built on the GL side yet: the GL backend refuses
+// lighting.shadows and lighting.sky_occlusion.
 inline constexpr const char* kGlHasNoShadows =
-    "none: not built yet; the GL backend refuses a scene with lighting.shadows";
+    "none: not built yet; the GL backend refuses a scene with lighting.shadows or "
+    "lighting.sky_occlusion";
 
 // A height field drawn by GeoMipMapping (terrain.heightfield.geomipmap) runs the same table on
 // the CPU backends: stage 2's entry selects the tiles and lays the stitched mesh's vertices out
@@ -163,6 +166,16 @@ inline constexpr StageInfo kFrameStages[] = {
      8,
      {"core/sun_horizons.cc", "none: a stack per row whose pushes and pops depend on the heights",
       kGlHasNoShadows, "tests/core/sun_horizons_test.cc", "docs/stages.md#Cast shadows"}},
+    {StageId::kSkyHorizons,
+     "sky horizons",
+     "4 (sky light)",
+     "cache heights; the rows' openness",
+     "cache sky openness",
+     WorkUnit::kCacheRows,
+     8,
+     {"core/sky_horizons.cc",
+      "none: a stack per column whose pushes and pops depend on the heights", kGlHasNoShadows,
+      "tests/core/sky_horizons_test.cc", "docs/stages.md#Sky light"}},
     {StageId::kVertexTransform,
      "vertex transform",
      "5",

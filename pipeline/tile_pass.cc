@@ -270,11 +270,13 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
   }
   const Clock::time_point resolved = Clock::now();
 
-  // Cast shadows: each covered pixel's share of the sun disc (tile_shadows.h).
+  // Cast shadows and sky light: each covered pixel's share of the sun disc and of the sky
+  // (tile_shadows.h).
   if (drawn) {
-    tile_sun_shares(shadows_, kernels_.sun,
-                    std::is_same_v<Real, float> && kernels_.shade == KernelKind::kHighway, vis,
-                    scratch->attributes, work.shadow);
+    const bool highway_shade =
+        std::is_same_v<Real, float> && kernels_.shade == KernelKind::kHighway;
+    tile_sun_shares(shadows_, kernels_.sun, highway_shade, vis, scratch->attributes, work.shadow);
+    tile_sky_shares(shadows_, kernels_.sky, highway_shade, vis, scratch->attributes, work.sky);
   }
   const Clock::time_point shadowed = Clock::now();
 
@@ -303,6 +305,7 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
           {a.water_depth, n},
           streams_.drop.empty() ? std::span<const float>{} : std::span<const float>(a.drop, n),
           shadows_.params != nullptr ? std::span<const float>(a.sun, n) : std::span<const float>{},
+          shadows_.sky != nullptr ? std::span<const float>(a.sky, n) : std::span<const float>{},
           streams_.lambert.empty() ? std::span<const float>{}
                                    : std::span<const float>(a.lambert, n)};
       simd::shade_rect(shade_, resources_, in, vis.x0, vis.y0, vis.width, vis.height,

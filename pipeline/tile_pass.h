@@ -17,6 +17,7 @@
 #include <span>
 
 #include "core/shade.h"
+#include "core/sky_horizons.h"
 #include "core/stage_params.h"
 #include "core/sun_visibility.h"
 #include "pipeline/frame.h"
@@ -52,12 +53,13 @@ struct TileAttributes {
   Real slope[kPixels], water_depth[kPixels], nu[kPixels];
   Real drop[kPixels];     // a planet's; 0 on the plane (unwritten by the simd resolve there)
   Real sun[kPixels];      // the sun disc's visible share (sun_visibility.h); 1 without shadows
+  Real sky[kPixels];      // the sky's open share (sky_horizons.h); 1 without sky light
   Real lambert[kPixels];  // gradient mode's interpolated Lambert term (gradient_shade.h)
 
   PixelAttributes<Real> at(std::size_t k) const {
     return {dx[k],     dz[k],          height[k],     dx_ddx[k], dx_ddy[k], dz_ddx[k],
             dz_ddy[k], height_ddx[k],  height_ddy[k], nx[k],     ny[k],     nz[k],
-            slope[k],  water_depth[k], drop[k],       sun[k],    lambert[k]};
+            slope[k],  water_depth[k], drop[k],       sun[k],    sky[k],    lambert[k]};
   }
 };
 
@@ -68,6 +70,7 @@ struct TileWork {
   std::uint64_t covered_pixels = 0;  // pixels a triangle covers: attributes resolved
   ShadeWork shade;
   ShadowWork shadow;  // cast shadows' lookups (sun_visibility.h)
+  SkyWork sky;        // sky light's lookups (sky_horizons.h)
 
   TileWork& operator+=(const TileWork& o) {
     tiles_drawn += o.tiles_drawn;
@@ -75,6 +78,7 @@ struct TileWork {
     covered_pixels += o.covered_pixels;
     shade += o.shade;
     shadow += o.shadow;
+    sky += o.sky;
     return *this;
   }
 };
@@ -97,12 +101,14 @@ struct TileTimes {
 void rasterize_tile_simd(std::span<const raster::SetupChunk> chunks, const raster::TileGrid& tiles,
                          int tile, const raster::RasterState& state, raster::TileVisibility& out);
 
-// Cast shadows for the tiles: the frame's parameters and its swept horizon cache
-// (sun_horizons.h); null params: no shadows, every pixel sees the whole sun.
+// Cast shadows and sky light for the tiles: the frame's parameters and its swept horizon
+// cache (sun_horizons.h, sky_horizons.h); null params: no shadows, every pixel sees the whole
+// sun; null sky: no sky light, every pixel sees the whole sky.
 template <class Real>
 struct TileShadows {
   const ShadowParams<Real>* params = nullptr;
   const SunHorizonCache<Real>* cache = nullptr;
+  const ShadowParams<Real>* sky = nullptr;
 };
 
 template <class Real>

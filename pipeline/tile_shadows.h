@@ -1,6 +1,7 @@
-// Cast shadows in a tile (tile_pass.h): after the resolve, each covered pixel's share of the
-// sun disc (core/sun_visibility.h), through the Highway kernel (simd/sun_share.h) or the
-// portable step, the same bits either way.
+// Cast shadows and sky light in a tile (tile_pass.h): after the resolve, each covered pixel's
+// share of the sun disc (core/sun_visibility.h), through the Highway kernel (simd/sun_share.h)
+// or the portable step, the same bits either way, and its share of the sky
+// (core/sky_horizons.h).
 #pragma once
 
 #include "core/sun_visibility.h"
@@ -18,5 +19,13 @@ template <class Real>
 void tile_sun_shares(const TileShadows<Real>& shadows, KernelKind kind, bool highway_shade,
                      const raster::TileVisibility& visibility, TileAttributes<Real>& attributes,
                      ShadowWork& work);
+
+// Writes `attributes.sky` at every covered pixel of `visibility`: the sky's open share with
+// sky light (`shadows.sky` non-null), else 1 (nothing written with a Highway shade, as above).
+// `kind`: the sky's kernel (TileKernels::sky, simd/sky_share.h), Highway in float only.
+template <class Real>
+void tile_sky_shares(const TileShadows<Real>& shadows, KernelKind kind, bool highway_shade,
+                     const raster::TileVisibility& visibility, TileAttributes<Real>& attributes,
+                     SkyWork& work);
 
 }  // namespace relief

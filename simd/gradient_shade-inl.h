@@ -41,14 +41,15 @@ HWY_INLINE V3<V> GradientAlbedo(D d, const ShadeParams<float>& p, V h) {
   return color;
 }
 
-// gouraud_light: albedo (sun lambert share + mix(ground, sky, 1/2 + ny / 2) + ambient).
+// gouraud_light: albedo (sun lambert share + mix(ground, sky, (1/2 + ny / 2) sky share) +
+// ambient).
 template <class D, class V = hn::Vec<D>>
 HWY_INLINE V3<V> GouraudLight(D d, const ShadeParams<float>& p, const V3<V>& albedo, V lambert,
-                              V ny, V sun_share) {
+                              V ny, V sun_share, V sky_share) {
   const V sunlit = hn::Mul(lambert, sun_share);
   const V half = hn::Set(d, 0.5f);
-  const V3<V> hemisphere =
-      Mix3(Set3(d, p.ground_light), Set3(d, p.sky_light), hn::Add(half, hn::Mul(half, ny)));
+  const V3<V> hemisphere = Mix3(Set3(d, p.ground_light), Set3(d, p.sky_light),
+                                hn::Mul(hn::Add(half, hn::Mul(half, ny)), sky_share));
   const V ambient = hn::Set(d, p.ambient);
   return Mul3(albedo, Add3(Add3(Scale3(Set3(d, p.sun), sunlit), hemisphere),
                            V3<V>{ambient, ambient, ambient}));

@@ -52,7 +52,7 @@ HWY_INLINE V3<V> TerrainRadiance(D d, const ShadeContext& ctx, const AttributeVe
   const V distance = hn::Sqrt(length_sq);
   const V3<V> view = NormalizeOrWith(d, position, length_sq, Set3(d, p.camera_forward));
   V3<V> radiance = p.gradient_enabled ? GouraudLight(d, p, GradientAlbedo(d, p, relative_y),
-                                                     a.lambert, a.ny, a.sun)
+                                                     a.lambert, a.ny, a.sun, a.sky)
                                       : TexturedRadiance(d, ctx, a, distance, view, covered, work);
 
   V fog_distance = distance;
@@ -134,7 +134,7 @@ HWY_INLINE V3<V> ShadeVector(D d, const ShadeContext& ctx, const std::uint32_t* 
     };
     const AttributeVectors<V> a{load(0),  load(1),  load(2),  load(3),  load(4),  load(5),
                                 load(6),  load(7),  load(8),  load(9),  load(10), load(11),
-                                load(12), load(13), load(14), load(15), load(16)};
+                                load(12), load(13), load(14), load(15), load(16), load(17)};
     radiance = TerrainRadiance(d, ctx, a, covered, work);
   }
   if (!hn::AllFalse(d, background)) {
@@ -162,7 +162,7 @@ void ShadeRect(const ShadeParams<float>& p, const ShadeResources& r, const Shadi
   const std::span<const float> spans[kShadeFields] = {
       in.dx,     in.dz,          in.height,     in.dx_ddx,  in.dx_ddy, in.dz_ddx,
       in.dz_ddy, in.height_ddx,  in.height_ddy, in.nx,      in.ny,     in.nz,
-      in.slope,  in.water_depth, in.sun,        in.lambert, in.drop};
+      in.slope,  in.water_depth, in.sun,        in.lambert, in.drop,   in.sky};
   // The water depth is not resolved (and may be absent) where no terrain lies under water.
   const bool reads_depth = p.water_enabled && p.terrain_water;
   // Fields read from the constant tail (0, the plane's drop among them; the sun's share 1, the
@@ -171,6 +171,7 @@ void ShadeRect(const ShadeParams<float>& p, const ShadeResources& r, const Shadi
   constexpr int kMaxLanes = HWY_MAX_BYTES / sizeof(float);
   HWY_ALIGN float tail[kShadeFields][kMaxLanes] = {};
   std::fill(std::begin(tail[kSunField]), std::end(tail[kSunField]), 1.0f);
+  std::fill(std::begin(tail[kSkyField]), std::end(tail[kSkyField]), 1.0f);
   HWY_ALIGN std::uint32_t tail_primitive[kMaxLanes] = {};
   HWY_ALIGN float out[3 * kMaxLanes];
   ShadeWork work;

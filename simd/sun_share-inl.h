@@ -18,6 +18,7 @@
 
 #include "core/sun_horizons.h"
 #include "core/sun_visibility.h"
+#include "simd/cache_level-inl.h"
 #include "simd/shade_vec3-inl.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -57,14 +58,9 @@ template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>,
 HWY_INLINE V LevelShare(D d, const ShadowParams<float>& p, const SunHorizonCache<float>& c,
                         VI level, V fi, V fj, V height, M active, M& proven) {
   const hn::RebindToSigned<D> di;
-  const VI i = hn::ConvertTo(di, fi);  // truncation: both >= 0
-  const VI j = hn::ConvertTo(di, fj);
-  const V f = hn::Sub(fi, hn::ConvertTo(d, i));
-  const V g = hn::Sub(fj, hn::ConvertTo(d, j));
+  V f, g;
+  const VI at = CacheSampleIndex(d, c, level, fi, fj, active, f, g);
   const VI n = hn::Set(di, c.resolution);
-  VI at =
-      hn::Add(hn::Mul(hn::Add(hn::Mul(hn::Sub(level, hn::Set(di, c.first_level)), n), j), n), i);
-  at = hn::IfThenElseZero(hn::RebindMask(di, active), at);  // inactive lanes read sample 0
   const VI at10 = hn::Add(at, hn::Set(di, 1));
   const VI at01 = hn::Add(at, n);
   const VI at11 = hn::Add(at01, hn::Set(di, 1));
@@ -97,8 +93,7 @@ HWY_INLINE V LevelShare(D d, const ShadowParams<float>& p, const SunHorizonCache
 template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
 HWY_INLINE V SunShareVector(D d, const ShadowParams<float>& p, const SunHorizonCache<float>& c,
                             V dx, V height, V dz, M covered, ShadowWork& work) {
-  const hn::RebindToSigned<D> di;
-  using VI = hn::Vec<decltype(di)>;
+  using VI = hn::Vec<hn::RebindToSigned<D>>;
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
   const std::size_t pixels = hn::CountTrue(d, covered);
   work.pixels += pixels;
@@ -112,25 +107,10 @@ HWY_INLINE V SunShareVector(D d, const ShadowParams<float>& p, const SunHorizonC
   const V ax = hn::Set(d, p.axis_x), az = hn::Set(d, p.axis_z);
   const V u = hn::Add(hn::Mul(dx, ax), hn::Mul(dz, az));
   const V v = hn::Sub(hn::Mul(dz, ax), hn::Mul(dx, az));
-  const V last = hn::Set(d, float(p.resolution - 1));
   // The finest level from first_level whose square holds the point, per lane.
-  M found = hn::FirstN(d, 0);
-  V fi = zero, fj = zero;
-  VI level = hn::Set(di, p.end_level);
-  for (int l = p.first_level; l < p.end_level; ++l) {
-    if (hn::AllTrue(d, hn::Or(found, hn::Not(covered)))) {
-      break;
-    }
-    const V a = hn::Mul(hn::Sub(u, hn::Set(d, p.origin_u[l])), hn::Set(d, p.inv_spacing[l]));
-    const V b = hn::Mul(hn::Sub(v, hn::Set(d, p.origin_v[l])), hn::Set(d, p.inv_spacing[l]));
-    const M in = hn::And(hn::And(hn::Ge(a, zero), hn::Lt(a, last)),
-                         hn::And(hn::Ge(b, zero), hn::Lt(b, last)));
-    const M fresh = hn::AndNot(found, in);
-    fi = hn::IfThenElse(fresh, a, fi);
-    fj = hn::IfThenElse(fresh, b, fj);
-    level = hn::IfThenElse(hn::RebindMask(di, fresh), hn::Set(di, l), level);
-    found = hn::Or(found, in);
-  }
+  V fi, fj;
+  VI level;
+  const M found = FindCacheLevel(d, p, u, v, covered, level, fi, fj);
   const M active = hn::And(found, covered);
   work.outside += hn::CountTrue(d, hn::AndNot(found, covered));
   if (hn::AllFalse(d, active)) {
@@ -139,26 +119,15 @@ HWY_INLINE V SunShareVector(D d, const ShadowParams<float>& p, const SunHorizonC
   M proven;
   V share = LevelShare(d, p, c, level, fi, fj, height, active, proven);
   // The blend band along the level's edge, into the next coarser level.
-  const V edge = StdMin(StdMin(fi, fj), StdMin(hn::Sub(last, fi), hn::Sub(last, fj)));
-  const VI next = hn::Add(level, hn::Set(di, 1));
-  M band = hn::And(active, hn::And(hn::Lt(edge, hn::Set(d, p.blend_samples)),
-                                   hn::RebindMask(d, hn::Lt(next, hn::Set(di, p.end_level)))));
+  VI entry;
+  V a, b, edge;
+  const M band = CoarserBand(d, p, u, v, level, fi, fj, active, entry, a, b, edge);
   if (!hn::AllFalse(d, band)) {
-    // Levels past the last one built read entry end_level - 1 (their lanes are not in band).
-    const VI entry =
-        hn::IfThenElse(hn::Lt(next, hn::Set(di, p.end_level)), next, hn::Set(di, p.end_level - 1));
-    const V inv = hn::GatherIndex(d, p.inv_spacing, entry);
-    const V a = hn::Mul(hn::Sub(u, hn::GatherIndex(d, p.origin_u, entry)), inv);
-    const V b = hn::Mul(hn::Sub(v, hn::GatherIndex(d, p.origin_v, entry)), inv);
-    band = hn::And(band, hn::And(hn::And(hn::Ge(a, zero), hn::Lt(a, last)),
-                                 hn::And(hn::Ge(b, zero), hn::Lt(b, last))));
-    if (!hn::AllFalse(d, band)) {
-      M coarse_proven;
-      const V coarse = LevelShare(d, p, c, entry, a, b, height, band, coarse_proven);
-      share = hn::IfThenElse(
-          band, Mix(coarse, share, hn::Mul(edge, hn::Set(d, p.inv_blend_samples))), share);
-      proven = hn::Or(hn::AndNot(band, proven), hn::And(band, hn::And(proven, coarse_proven)));
-    }
+    M coarse_proven;
+    const V coarse = LevelShare(d, p, c, entry, a, b, height, band, coarse_proven);
+    share = hn::IfThenElse(band, Mix(coarse, share, hn::Mul(edge, hn::Set(d, p.inv_blend_samples))),
+                           share);
+    proven = hn::Or(hn::AndNot(band, proven), hn::And(band, hn::And(proven, coarse_proven)));
   }
   const M lit = hn::And(active, proven);
   work.lit += hn::CountTrue(d, lit);
@@ -172,50 +141,13 @@ void SunShares(const ShadowParams<float>& p, const SunHorizonCache<float>& c,
                const float* HWY_RESTRICT height, const float* HWY_RESTRICT dz, int width,
                int height_px, int stride, float* HWY_RESTRICT share, ShadowWork& total) {
   const hn::ScalableTag<float> d;
-  const hn::RebindToUnsigned<decltype(d)> du;
-  const int lanes = static_cast<int>(hn::Lanes(d));
-  constexpr int kMaxLanes = HWY_MAX_BYTES / sizeof(float);
-  HWY_ALIGN float tail[4][kMaxLanes] = {};
-  HWY_ALIGN std::uint32_t tail_covered[kMaxLanes] = {};
   ShadowWork work;
-  for (int j = 0; j < height_px; ++j) {
-    for (int i = 0; i < width; i += lanes) {
-      const std::size_t k = static_cast<std::size_t>(j) * stride + i;
-      const int count = width - i < lanes ? width - i : lanes;
-      const float *x = dx + k, *y = height + k, *z = dz + k;
-      const std::uint32_t* primitive = covered + k;
-      if (count < lanes) {  // the last pixels of the row: copies, the other lanes uncovered
-        for (int t = 0; t < lanes; ++t) {
-          const bool in = t < count;
-          tail_covered[t] = in ? covered[k + t] : 0xffffffffu;
-          tail[0][t] = in ? dx[k + t] : 0.0f;
-          tail[1][t] = in ? height[k + t] : 0.0f;
-          tail[2][t] = in ? dz[k + t] : 0.0f;
-        }
-        x = tail[0];
-        y = tail[1];
-        z = tail[2];
-        primitive = tail_covered;
-      }
-      const auto m =
-          hn::Not(hn::RebindMask(d, hn::Eq(hn::LoadU(du, primitive), hn::Set(du, 0xffffffffu))));
-      if (hn::AllFalse(d, m)) {
-        continue;
-      }
-      const auto result =
-          SunShareVector(d, p, c, hn::LoadU(d, x), hn::LoadU(d, y), hn::LoadU(d, z), m, work);
-      if (count == lanes) {
-        hn::BlendedStore(result, m, d, share + k);
-      } else {
-        hn::StoreU(result, d, tail[3]);
-        for (int t = 0; t < count; ++t) {
-          if (covered[k + t] != 0xffffffffu) {
-            share[k + t] = tail[3][t];
-          }
-        }
-      }
-    }
-  }
+  const float* const streams[3] = {dx, height, dz};
+  ForEachCoveredVector(d, covered, streams, width, height_px, stride, share,
+                       [&](auto m, const float* const* in) {
+                         return SunShareVector(d, p, c, hn::LoadU(d, in[0]), hn::LoadU(d, in[1]),
+                                               hn::LoadU(d, in[2]), m, work);
+                       });
   total += work;
 }
 

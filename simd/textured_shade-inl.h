@@ -33,9 +33,9 @@ namespace hn = hwy::HWY_NAMESPACE;
 constexpr double kShadeMinProjectionWeight = 0.01;
 constexpr double kShadeMinLayerWeight = 1e-3;
 
-// The per-pixel fields ShadeRect reads, in AttributeVectors' order; four may be absent.
-constexpr int kShadeFields = 17, kDepthField = 13, kSunField = 14, kLambertField = 15,
-              kDropField = 16;
+// The per-pixel fields ShadeRect reads, in AttributeVectors' order; five may be absent.
+constexpr int kShadeFields = 18, kDepthField = 13, kSunField = 14, kLambertField = 15,
+              kDropField = 16, kSkyField = 17;
 
 // What the kernel reads besides the pixels: the parameters and the resources' views.
 struct ShadeContext {
@@ -55,6 +55,7 @@ struct AttributeVectors {
   V sun;      // the sun disc's visible share (1 without cast shadows)
   V lambert;  // gradient mode's interpolated per-vertex Lambert term (0 otherwise)
   V drop;     // a planet's curvature drop (0 on the plane)
+  V sky;      // the sky's open share (1 without sky light)
 };
 
 // sample (shade.cc): texture_lod at level 0's size (nearest_mip_lod's level where the frame
@@ -134,15 +135,16 @@ HWY_INLINE V3<V> FacingNormal(D d, const V3<V>& n, const V3<V>& view, M covered,
 // light (shade.cc) for the lanes of `covered`.
 template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
 HWY_INLINE V3<V> Light(D d, const ShadeParams<float>& p, const V3<V>& albedo, const V3<V>& n,
-                       const V3<V>& view, V specular, V sun_share, M covered, ShadeWork& work) {
+                       const V3<V>& view, V specular, V sun_share, V sky_share, M covered,
+                       ShadeWork& work) {
   const V zero = hn::Zero(d);
   const V3<V> to_sun = Set3(d, p.sun_direction);
   const V3<V> sun = Set3(d, p.sun);
   const V ndl = StdMax(zero, Dot3(n, to_sun));
   const V sunlit = hn::Mul(ndl, sun_share);
   const V half = hn::Set(d, 0.5f);
-  const V3<V> hemisphere =
-      Mix3(Set3(d, p.ground_light), Set3(d, p.sky_light), hn::Add(half, hn::Mul(half, n.y)));
+  const V3<V> hemisphere = Mix3(Set3(d, p.ground_light), Set3(d, p.sky_light),
+                                hn::Mul(hn::Add(half, hn::Mul(half, n.y)), sky_share));
   const V ambient = hn::Set(d, p.ambient);
   V3<V> radiance =
       Mul3(albedo, Add3(Add3(Scale3(sun, sunlit), hemisphere), V3<V>{ambient, ambient, ambient}));
@@ -215,7 +217,7 @@ HWY_INLINE V3<V> TexturedRadiance(D d, const ShadeContext& ctx, const AttributeV
   }
   albedo = Scale3(albedo, hn::Div(one, used));
   return Light(d, p, albedo, FacingNormal(d, n, view, covered, work), view, hn::Div(specular, used),
-               a.sun, covered, work);
+               a.sun, a.sky, covered, work);
 }
 
 }  // namespace HWY_NAMESPACE

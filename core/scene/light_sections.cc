@@ -99,6 +99,10 @@ const Schema<LightingSettings>& lighting_schema() {
       power_of_two_field("shadow_resolution", &S::shadow_resolution, limits::kMinShadowResolution,
                          limits::kMaxShadowResolution,
                          {"samples", "per side of each level of the shadows' horizon cache"}),
+      boolean_field("sky_occlusion", &S::sky_occlusion,
+                    {"",
+                     "sky light: the hemispherical light's sky share scaled by the sky the "
+                     "terrain leaves open above each point (not on planets)"}),
   });
   return schema;
 }

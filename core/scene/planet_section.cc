@@ -106,6 +106,13 @@ void validate_planet(const Scene& scene) {
                          format_number(radius) +
                          "): cast shadows are built for the plane only; allowed false here");
   }
+  // Sky light reads the same cache (docs/stages.md, "Sky light").
+  if (scene.lighting.sky_occlusion) {
+    throw SceneError("lighting.sky_occlusion",
+                     "scene: lighting.sky_occlusion = true on a planet (terrain.planet.radius = " +
+                         format_number(radius) +
+                         "): sky light is built for the plane only; allowed false here");
+  }
   // The atmosphere's closed form integrates over flat ground (core/atmosphere.h); a sphere's
   // shell has none.
   if (scene.sky.atmosphere) {

@@ -265,6 +265,10 @@ struct LightingSettings {
   // image, no shadow pass at all.
   bool shadows = false;
   int shadow_resolution = 256;  // samples per side of each level of the horizon cache
+  // Sky light: the hemispherical light's sky share scaled by the sky the terrain leaves open
+  // above each point, from horizons in four directions on the same cache
+  // (core/sky_horizons.h); off: the paper's image, no sky pass at all.
+  bool sky_occlusion = false;
 };
 
 // §4.3 water; the level is terrain.water_level.

@@ -123,7 +123,7 @@ const Schema<HeightFieldSettings>& heightfield_schema() {
            "draw the field by GeoMipMapping (tiles at levels of detail, stitched, culled by a "
            "quadtree and by occlusion) instead of the projected grid; null: the projected grid",
            "needs fractal and level_of_detail false, the plane, no "
-           "lighting.shadows, a CPU backend"}),
+           "lighting.shadows or lighting.sky_occlusion, a CPU backend"}),
   });
   return schema;
 }
@@ -152,6 +152,12 @@ void validate_geomipmap(const Scene& scene) {
                      "lighting.shadows = true" + why +
                          "the shadows' horizon cache is planned over the projected grid and is "
                          "not built for the mesh yet; allowed false");
+  }
+  if (scene.lighting.sky_occlusion) {  // the same cache (core/sky_horizons.h)
+    throw SceneError("lighting.sky_occlusion",
+                     "lighting.sky_occlusion = true" + why +
+                         "sky light reads the shadows' horizon cache, which is not built for the "
+                         "mesh yet; allowed false");
   }
 }
 

@@ -111,8 +111,9 @@ TEST_CASE("theGouraudLightIsTheSceneLightOfTheInterpolatedTerms", "[gradient]") 
     const Vec3<double> albedo{random.uniform(0, 1), random.uniform(0, 1), random.uniform(0, 1)};
     const double lambert = random.uniform(0, 1), ny = random.uniform(-1, 1);
     const double share = random.uniform(0, 1);
-    const Vec3<double> got = gouraud_light(p, albedo, lambert, ny, share);
-    const double up = 0.5 + 0.5 * ny;  // the hemisphere's weight of the sky
+    const double sky = k % 2 == 0 ? 1.0 : random.uniform(0, 1);  // sky light's open share
+    const Vec3<double> got = gouraud_light(p, albedo, lambert, ny, share, sky);
+    const double up = (0.5 + 0.5 * ny) * sky;  // the hemisphere's weight of the open sky
     const double want[3] = {albedo.x * (1.8 * lambert * share + (0.05 + (0.1 - 0.05) * up) + 0.03),
                             albedo.y * (1.6 * lambert * share + (0.04 + (0.15 - 0.04) * up) + 0.03),
                             albedo.z * (1.4 * lambert * share + (0.03 + (0.2 - 0.03) * up) + 0.03)};

@@ -56,7 +56,7 @@ TEST_CASE("theSweepFindsEverySamplesHorizonAsABruteForceSearchDoes", "[shadows]"
   for (const double reach : {1e9, 5.0}) {
     const ShadowParams<double> p = two_levels(reach);
     SunHorizonCache<double> cache;
-    cache.allocate(32, 0, 2);
+    cache.allocate(32, 0, 2, true, false);
     test::HashedDraws draws(7);
     for (double& h : cache.height) {
       h = draws.uniform(-50.0, 50.0);
@@ -338,11 +338,15 @@ TEST_CASE("theMemoryEstimateCountsTheShadowCacheOnlyWhereOneIsBuilt", "[shadows]
   const Scene sunset = resolve_scene("sunset", {"lighting.shadow_resolution=1024"});
   const std::uintmax_t levels = std::uintmax_t(shadow_cache_levels(sunset));
   CHECK(levels >= 9);
-  CHECK(cache_bytes(sunset, Backend::kSimd) == levels * 1024 * 1024 * 3 * 4);
-  CHECK(cache_bytes(sunset, Backend::kReferenceDouble) == levels * 1024 * 1024 * 3 * 8);
+  // A height, the sun's two values and the sky's one a sample (sunset has sky light).
+  REQUIRE(sunset.lighting.sky_occlusion);
+  CHECK(cache_bytes(sunset, Backend::kSimd) == levels * 1024 * 1024 * 4 * 4);
+  CHECK(cache_bytes(sunset, Backend::kReferenceDouble) == levels * 1024 * 1024 * 4 * 8);
   CHECK(cache_bytes(sunset, Backend::kGl) == 0);  // refused there
   Scene set = sunset;
-  set.lighting.sun_elevation_deg = -30;  // no cache at all
+  set.lighting.sun_elevation_deg = -30;  // sky light alone: a height and the sky's value
+  CHECK(cache_bytes(set, Backend::kSimd) == levels * 1024 * 1024 * 2 * 4);
+  set.lighting.sky_occlusion = false;  // no cache at all
   CHECK(cache_bytes(set, Backend::kSimd) == 0);
   CHECK(cache_bytes(resolve_scene("default", {}), Backend::kSimd) == 0);
   CHECK_THAT(render_memory_advice(sunset), Catch::Contains("lighting.shadow_resolution"));
@@ -363,7 +367,7 @@ TEST_CASE("theStressSuiteSkipsTheGlBackendOnAShadowedScene", "[shadows]") {
   INFO(r.out << r.err);
   CHECK(r.code == 0);
   if (gl_backend_built() && r.out.find("no GL context") == std::string::npos) {
-    CHECK_THAT(r.out, Catch::Contains("the GL backend has no cast shadows yet"));
+    CHECK_THAT(r.out, Catch::Contains("the GL backend has no cast shadows or sky light yet"));
   }
 }
 

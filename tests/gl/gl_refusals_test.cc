@@ -122,4 +122,16 @@ TEST_CASE("theGlBackendRefusesCastShadowsItCannotDraw", "[gl]") {
   CHECK(run({"render", "sunset", "--backend", "simd", "-o", out}).code == 0);
 }
 
+TEST_CASE("theGlBackendRefusesSkyLightItCannotDraw", "[gl]") {
+  // Sky light alone reads the same cache: refused the same way, the field named.
+  test::TempDir dir("gl-sky");
+  const std::string out = (dir.path() / "sunset.png").string();
+  const CliResult r =
+      run({"render", "sunset", "--set", "lighting.shadows=false", "--backend", "gl", "-o", out});
+  INFO(r.err << r.out);
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Contains("lighting.sky_occlusion"));
+  CHECK_FALSE(std::filesystem::exists(out));
+}
+
 }  // namespace relief

@@ -55,7 +55,8 @@ TEST_CASE("glSkyboxBackgroundsHaveTheCpusBitsOrStayWithinTheDivisionsBound", "[g
     for (const std::string extra : {"", ", \"sun_disc\": false"}) {
       const Scene scene = resolve_scene(
           preset, {"viewport.width=160", "viewport.height=120", "grid.width=96", "grid.height=96",
-                   "lighting.shadows=false", test::skybox_override(faces, extra)});
+                   "lighting.shadows=false", "lighting.sky_occlusion=false",
+                   test::skybox_override(faces, extra)});
       const SceneResources resources = load_scene_resources(scene);
       FrameRequest request;
       request.outputs.linear = true;

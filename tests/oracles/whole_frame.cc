@@ -8,6 +8,7 @@
 #include "core/input_file.h"
 #include "core/octave_coordinates.h"
 #include "core/shading_plan.h"
+#include "core/sky_horizons.h"
 #include "core/srgb.h"
 #include "core/stage_params.h"
 #include "core/sun_horizons.h"
@@ -107,14 +108,15 @@ template <class Real>
 SunHorizonCache<Real> build_horizon_cache(const ShadowPlan& plan, const FramePlan& frame,
                                           const SceneResources& resources, int first, int end) {
   SunHorizonCache<Real> cache;
-  if (!plan.enabled || plan.sun_set) {
+  const bool sun = plan.enabled && !plan.sun_set;
+  if (!sun && !plan.sky) {
     return cache;
   }
   end = end < 0 ? plan.levels : end;
   ShadowParams<Real> params = make_shadow_params<Real>(plan);
   params.first_level = first;
   params.end_level = end;
-  cache.allocate(plan.resolution, first, end);
+  cache.allocate(plan.resolution, first, end, sun, plan.sky);
   FbmParams<Real> fbm = make_fbm_params<Real>(frame.terrain);
   choose_coordinate_forms(frame.terrain, shadow_octave_reach(plan), fbm);
   const SketchParams<Real> sketch =
@@ -136,6 +138,9 @@ SunHorizonCache<Real> build_horizon_cache(const ShadowPlan& plan, const FramePla
   }
   for (int level = first; level < end; ++level) {
     sweep_sun_horizons<Real>(params, level, RowRange{0, n}, cache);
+  }
+  for (int level = first; plan.sky && level < end; ++level) {  // after every row's sweep
+    sweep_sky_columns<Real>(params, level, RowRange{0, n}, cache);
   }
   return cache;
 }
@@ -168,6 +173,25 @@ std::vector<float> sun_shares(const Scene& scene, const SceneResources& resource
   return shares;
 }
 
+// Each covered pixel's share of the sky from the same cache; empty without sky light.
+std::vector<float> sky_shares(const Scene& scene, const SceneResources& resources,
+                              const TerrainFrame& frame, const ShadingInputs& inputs) {
+  const ShadowPlan plan = make_shadow_plan(scene, frame.plan);
+  if (!plan.sky) {
+    return {};
+  }
+  const ShadowParams<float> params = make_shadow_params<float>(plan);
+  const SunHorizonCache<float> cache = build_horizon_cache<float>(plan, frame.plan, resources);
+  std::vector<float> shares(inputs.primitive.size(), 1.0f);
+  SkyWork work;
+  for (std::size_t k = 0; k < shares.size(); ++k) {
+    if (inputs.primitive[k] != raster::kNoPrimitive) {
+      shares[k] = sky_visibility<float>(params, cache, inputs.dx[k], inputs.dz[k], work);
+    }
+  }
+  return shares;
+}
+
 }  // namespace
 
 FrameImage render_whole_frame(const Scene& scene, const SceneResources& resources) {
@@ -180,6 +204,8 @@ FrameImage render_whole_frame(const Scene& scene, const SceneResources& resource
   ShadingInputs inputs = shading_inputs(frame, resolved);
   const std::vector<float> shares = sun_shares(scene, resources, frame, inputs);
   inputs.sun = shares;
+  const std::vector<float> sky = sky_shares(scene, resources, frame, inputs);
+  inputs.sky = sky;
   // Gradient mode: every vertex lit (core/vertex_transform.h), its Lambert term resolved.
   raster::ResolvedFrame lambert_resolved;
   if (plan.gradient.enabled) {

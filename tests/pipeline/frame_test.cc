@@ -121,7 +121,7 @@ TEST_CASE("theDoubleBackendRendersTheSameFrameToFloatPrecision", "[frame]") {
 }
 
 TEST_CASE("theStageTableListsEveryStageOnceInFrameOrder", "[frame]") {
-  static_assert(kFrameStageCount == 13);
+  static_assert(kFrameStageCount == 14);
   for (std::size_t k = 0; k < kFrameStageCount; ++k) {
     CHECK(static_cast<std::size_t>(kFrameStages[k].id) == k);
     CHECK(kFrameStages[k].grain > 0);

@@ -151,6 +151,12 @@ TEST_CASE("everySkipLowersTheCountersOfTheWorkItSaves", "[skip]") {
        "sunset",
        {},
        {"cache samples evaluated", "samples swept"}},
+      // Sky light alone reads the cache too, toward all four sides.
+      {"unread_shadow_levels",
+       &FrameSkips::unread_shadow_levels,
+       "sunset",
+       {"lighting.shadows=false"},
+       {"cache samples evaluated", "samples swept"}},
   };
   for (const SkipCase& c : cases) {
     const Scene scene = resolve_scene(c.preset, small(c.overrides));
@@ -205,13 +211,17 @@ TEST_CASE("theCountersOfAFrameAddUp", "[skip]") {
           test::frame_counter(frame, "triangles in the grid"));
     CHECK(test::frame_counter(frame, "tiles rasterised") <= test::frame_counter(frame, "tiles"));
     // The stages that ran, by name, in the order of the table (a planet frame evaluates every
-    // valid vertex: no outcodes of the height bounds, docs/planet.md; cast shadows' stages run
-    // where the scene has them).
+    // valid vertex: no outcodes of the height bounds, docs/planet.md; cast shadows' and sky
+    // light's stages run where the scene has them).
     for (const StageTime& stage : frame.stats.stages) {
       INFO(stage.name);
       const bool shadow_stage = stage.name == "shadow heights" || stage.name == "sun horizons";
       if (shadow_stage) {
-        CHECK(stage.ran == scene.lighting.shadows);
+        CHECK(stage.ran == (scene.lighting.shadows || scene.lighting.sky_occlusion));
+        continue;
+      }
+      if (stage.name == "sky horizons") {
+        CHECK(stage.ran == scene.lighting.sky_occlusion);
         continue;
       }
       CHECK(
@@ -230,13 +240,15 @@ TEST_CASE("aStageWithNothingToDoIsReportedSkipped", "[skip]") {
   int skipped = 0;
   for (const StageTime& stage : frame.stats.stages) {
     INFO(stage.name);
-    // The default scene has no cast shadows: their two stages have nothing to do either.
+    // The default scene has no cast shadows and no sky light: their three stages have
+    // nothing to do either.
     const bool idle = stage.name.rfind("vertex outcodes", 0) == 0 ||
-                      stage.name == "shadow heights" || stage.name == "sun horizons";
+                      stage.name == "shadow heights" || stage.name == "sun horizons" ||
+                      stage.name == "sky horizons";
     CHECK(stage.ran != idle);
     skipped += idle;
   }
-  CHECK(skipped == 4);
+  CHECK(skipped == 5);
 }
 
 TEST_CASE("theCountersAreTheSameForEveryThreadCount", "[skip]") {

@@ -106,6 +106,8 @@ void check_pointers_match_kinds(const CpuKernels<Real>& table, const CpuKernels<
       CHECK((table.tiles.resolve == KernelKind::kHighway) == highway);
     } else if (name == "sun's share") {
       CHECK((table.tiles.sun == KernelKind::kHighway) == highway);
+    } else if (name == "sky's share") {
+      CHECK((table.tiles.sky == KernelKind::kHighway) == highway);
     } else if (name == "tile shade") {
       CHECK((table.tiles.shade == KernelKind::kHighway) == highway);
     } else if (name == "tile encode") {
