@@ -224,6 +224,13 @@ struct HorizonWork {
   std::uint64_t samples = 0;       // samples of the levels swept
   std::uint64_t continuation = 0;  // samples of coarser levels read past a row's end
   std::uint64_t popped = 0;        // hull points dropped: never looked at again
+
+  HorizonWork& operator+=(const HorizonWork& o) {
+    samples += o.samples;
+    continuation += o.continuation;
+    popped += o.popped;
+    return *this;
+  }
 };
 
 // The horizons of rows [rows.begin, rows.end) of level `level`, from the heights of that level

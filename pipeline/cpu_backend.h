@@ -97,10 +97,9 @@ class CpuBackend final : public FrameBackend {
   // Cast shadows and sky light: the cache's rows to build (levels x N), none without either
   // or, without sky light, after sunset.
   std::size_t shadow_rows() const;
-  void run_horizon_cache(StageId id, std::size_t begin, std::size_t end);  // the three below
+  // The cache's three stages: its heights, the rows' sweeps, the columns' (sky light).
+  void run_horizon_cache(StageId id, std::size_t begin, std::size_t end);
   void run_shadow_heights(std::size_t begin, std::size_t end);
-  void run_sun_horizons(std::size_t begin, std::size_t end);
-  void run_sky_horizons(std::size_t begin, std::size_t end);  // sky light: the columns
 
   const Scene& scene_;
   const NoiseLattice& lattice_;         // the shading's noise (dithering, waves)

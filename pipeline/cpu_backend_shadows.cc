@@ -23,11 +23,24 @@ template <class Real>
 void CpuBackend<Real>::run_horizon_cache(StageId id, std::size_t begin, std::size_t end) {
   if (id == StageId::kShadowHeights) {
     run_shadow_heights(begin, end);
-  } else if (id == StageId::kSunHorizons) {
-    run_sun_horizons(begin, end);
-  } else {
-    run_sky_horizons(begin, end);
+    return;
   }
+  // The sweeps: the units are the cache's rows (sun horizons) or columns (sky horizons, as
+  // many), level after level; one call of a sweep never spans two levels.
+  const bool rows = id == StageId::kSunHorizons;
+  const auto sweep = rows ? &sweep_sun_horizons<Real> : &sweep_sky_columns<Real>;
+  HorizonWork work;
+  const int n = shadow_plan_.resolution;
+  const std::size_t first = std::size_t(shadow_.first_level) * std::size_t(n);
+  end += first;
+  for (std::size_t unit = first + begin; unit < end;) {
+    const int level = int(unit / n), line = int(unit % n);
+    const int lines_here = int(std::min<std::size_t>(end - unit, std::size_t(n - line)));
+    work += sweep(shadow_, level, RowRange{line, line + lines_here}, horizons_);
+    unit += std::size_t(lines_here);
+  }
+  const std::lock_guard<std::mutex> lock(work_mutex_);
+  (rows ? horizon_work_ : sky_work_) += work;
 }
 
 template <class Real>
@@ -60,60 +73,12 @@ void CpuBackend<Real>::run_shadow_heights(std::size_t begin, std::size_t end) {
   shadow_fbm_work_.octaves += work.octaves;
 }
 
-template <class Real>
-void CpuBackend<Real>::run_sun_horizons(std::size_t begin, std::size_t end) {
-  // Units never span two levels' rows in one call of the sweep.
-  HorizonWork work;
-  const int n = shadow_plan_.resolution;
-  const std::size_t first = std::size_t(shadow_.first_level) * std::size_t(n);
-  end += first;
-  for (std::size_t unit = first + begin; unit < end;) {
-    const int level = int(unit / n), row = int(unit % n);
-    const int rows_here = int(std::min<std::size_t>(end - unit, std::size_t(n - row)));
-    const HorizonWork part =
-        sweep_sun_horizons<Real>(shadow_, level, RowRange{row, row + rows_here}, horizons_);
-    work.samples += part.samples;
-    work.continuation += part.continuation;
-    work.popped += part.popped;
-    unit += std::size_t(rows_here);
-  }
-  const std::lock_guard<std::mutex> lock(work_mutex_);
-  horizon_work_.samples += work.samples;
-  horizon_work_.continuation += work.continuation;
-  horizon_work_.popped += work.popped;
-}
-
-template <class Real>
-void CpuBackend<Real>::run_sky_horizons(std::size_t begin, std::size_t end) {
-  // Units are the cache's columns, level after level (as many as its rows).
-  HorizonWork work;
-  const int n = shadow_plan_.resolution;
-  const std::size_t first = std::size_t(shadow_.first_level) * std::size_t(n);
-  end += first;
-  for (std::size_t unit = first + begin; unit < end;) {
-    const int level = int(unit / n), column = int(unit % n);
-    const int columns_here = int(std::min<std::size_t>(end - unit, std::size_t(n - column)));
-    const HorizonWork part =
-        sweep_sky_columns<Real>(shadow_, level, RowRange{column, column + columns_here}, horizons_);
-    work.samples += part.samples;
-    work.continuation += part.continuation;
-    work.popped += part.popped;
-    unit += std::size_t(columns_here);
-  }
-  const std::lock_guard<std::mutex> lock(work_mutex_);
-  sky_work_.samples += work.samples;
-  sky_work_.continuation += work.continuation;
-  sky_work_.popped += work.popped;
-}
-
 // The members defined here, for both backends (the class itself is instantiated once, in
 // cpu_backend.cc).
 #define RELIEF_INSTANTIATE_SHADOWS(Real)                                                \
   template std::size_t CpuBackend<Real>::shadow_rows() const;                           \
   template void CpuBackend<Real>::run_horizon_cache(StageId, std::size_t, std::size_t); \
-  template void CpuBackend<Real>::run_shadow_heights(std::size_t, std::size_t);         \
-  template void CpuBackend<Real>::run_sun_horizons(std::size_t, std::size_t);           \
-  template void CpuBackend<Real>::run_sky_horizons(std::size_t, std::size_t);
+  template void CpuBackend<Real>::run_shadow_heights(std::size_t, std::size_t);
 RELIEF_INSTANTIATE_SHADOWS(float)
 RELIEF_INSTANTIATE_SHADOWS(double)
 #undef RELIEF_INSTANTIATE_SHADOWS

@@ -53,6 +53,23 @@ HWY_INLINE M FindCacheLevel(D d, const ShadowParams<float>& p, V u, V v, M cover
   return found;
 }
 
+// The lanes of `covered` located in the cache: their (dx, dz) (zeroed in the other lanes) in
+// the sun's frame, (u, v), and the finest level holding each (FindCacheLevel). Returns the
+// covered lanes found; adds the covered lanes beyond the cache to `outside`.
+template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>,
+          class VI = hn::Vec<hn::RebindToSigned<D>>>
+HWY_INLINE M LocateInCache(D d, const ShadowParams<float>& p, V dx, V dz, M covered, V& u, V& v,
+                           VI& level, V& fi, V& fj, std::uint64_t& outside) {
+  dx = hn::IfThenElseZero(covered, dx);
+  dz = hn::IfThenElseZero(covered, dz);
+  const V ax = hn::Set(d, p.axis_x), az = hn::Set(d, p.axis_z);
+  u = hn::Add(hn::Mul(dx, ax), hn::Mul(dz, az));
+  v = hn::Sub(hn::Mul(dz, ax), hn::Mul(dx, az));
+  const M found = FindCacheLevel(d, p, u, v, covered, level, fi, fj);
+  outside += hn::CountTrue(d, hn::AndNot(found, covered));
+  return hn::And(found, covered);
+}
+
 // The blend band: the lanes of `active` within blend_samples of their level's edge whose next
 // coarser level is built and holds the point, with that level (`entry`), the point's sample
 // coordinates there (a, b) and the edge distance (`edge`, for the fade). None: no lane.

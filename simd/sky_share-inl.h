@@ -51,16 +51,9 @@ HWY_INLINE V SkyShareVector(D d, const ShadowParams<float>& p, const SunHorizonC
   using VI = hn::Vec<hn::RebindToSigned<D>>;
   const V one = hn::Set(d, 1.0f);
   work.pixels += hn::CountTrue(d, covered);
-  dx = hn::IfThenElseZero(covered, dx);
-  dz = hn::IfThenElseZero(covered, dz);
-  const V ax = hn::Set(d, p.axis_x), az = hn::Set(d, p.axis_z);
-  const V u = hn::Add(hn::Mul(dx, ax), hn::Mul(dz, az));
-  const V v = hn::Sub(hn::Mul(dz, ax), hn::Mul(dx, az));
-  V fi, fj;
+  V u, v, fi, fj;
   VI level;
-  const M found = FindCacheLevel(d, p, u, v, covered, level, fi, fj);
-  const M active = hn::And(found, covered);
-  work.outside += hn::CountTrue(d, hn::AndNot(found, covered));
+  const M active = LocateInCache(d, p, dx, dz, covered, u, v, level, fi, fj, work.outside);
   if (hn::AllFalse(d, active)) {
     return one;
   }

@@ -101,18 +101,11 @@ HWY_INLINE V SunShareVector(D d, const ShadowParams<float>& p, const SunHorizonC
     work.dark += pixels;
     return zero;
   }
-  dx = hn::IfThenElseZero(covered, dx);
-  dz = hn::IfThenElseZero(covered, dz);
   height = hn::IfThenElseZero(covered, height);
-  const V ax = hn::Set(d, p.axis_x), az = hn::Set(d, p.axis_z);
-  const V u = hn::Add(hn::Mul(dx, ax), hn::Mul(dz, az));
-  const V v = hn::Sub(hn::Mul(dz, ax), hn::Mul(dx, az));
   // The finest level from first_level whose square holds the point, per lane.
-  V fi, fj;
+  V u, v, fi, fj;
   VI level;
-  const M found = FindCacheLevel(d, p, u, v, covered, level, fi, fj);
-  const M active = hn::And(found, covered);
-  work.outside += hn::CountTrue(d, hn::AndNot(found, covered));
+  const M active = LocateInCache(d, p, dx, dz, covered, u, v, level, fi, fj, work.outside);
   if (hn::AllFalse(d, active)) {
     return one;
   }
