@@ -13,16 +13,17 @@
 // horizon lies no higher than the plane: an even slope is wholly open, a valley floor between
 // walls is not. The tangent plane is the level's surface (the central difference along the
 // line); the octaves finer than a level's are left to the normal. The share is the mean over
-// four azimuths, the cache's rows and columns toward both
-// of their ends (horizon-based ambient occlusion, as Timonen & Westermann's horizon maps give
-// it, on the grid the sweeps already run on): the rows' two in the sun's sweep
-// (sweep_sun_horizons), the columns' two here. Each sweep is the same linear-time hull sweep
+// four azimuths, the cache's rows and columns toward both of their ends (horizon-based ambient
+// occlusion, as Timonen & Westermann's horizon maps give it, on the grid the sweeps already
+// run on): the rows' two in the sun's sweep (sweep_sun_horizons), the columns' two here. The
+// four follow the sun's azimuth, as the cache's rows do: turning the sun turns where the
+// azimuth is sampled, not what is sampled. Each sweep is the same linear-time hull sweep
 // (horizon_lines.h), whose pops are the max-height skip of every ray of a line at once.
 //
 // Per sample, not per pixel: the openness varies over the scale of valleys and ridges, which
-// the cache resolves (a sample spans about 7 pixels at N = 256). A pixel
-// reads its level's four samples around it, bilinearly, blended into the next level near a
-// level's edge as the sun's share is (sun_horizons.h, blended_level_value).
+// the cache resolves (a sample spans about 7 pixels at N = 256). A pixel reads its level's four
+// samples around it, bilinearly, blended into the next level near a level's edge as the sun's
+// share is (sun_horizons.h, blended_level_value).
 #pragma once
 
 #include <algorithm>
