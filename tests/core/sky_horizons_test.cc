@@ -18,6 +18,7 @@
 #include "tests/oracles/whole_frame.h"
 #include "tests/support/frame_counters.h"
 #include "tests/support/hashed_draws.h"
+#include "tests/support/shadow_frames.h"
 
 namespace relief {
 namespace {
@@ -231,29 +232,16 @@ TEST_CASE("theCachedSkyShareIsCloseToExactRayCastingInDouble", "[sky]") {
   CHECK(work.outside == 0);
 }
 
-std::vector<std::string> sky_small(std::vector<std::string> more) {
-  more.insert(more.end(), {"viewport.width=200", "viewport.height=150", "grid.width=128",
-                           "grid.height=128", "lighting.shadow_resolution=128"});
-  return more;
-}
-
-Frame render_sky_linear(const Scene& scene) {
-  FrameRequest request;
-  request.backend = Backend::kReference;
-  request.outputs.linear = true;
-  request.outputs.primitive = true;
-  return render_frame(scene, load_scene_resources(scene), request);
-}
-
 TEST_CASE("skyLightOnlyDarkensAndHidesSkyInTheValleys", "[sky]") {
   // The sky's colour is brighter than the ground's in every channel in these scenes: hiding
   // sky can only darken (water, fog and the atmosphere are monotone in the terrain's light,
   // up to rounding).
   for (const char* preset : {"default", "lake", "sunset"}) {
-    const Scene off = resolve_scene(preset, sky_small({"lighting.sky_occlusion=false"}));
+    const Scene off =
+        resolve_scene(preset, test::small_shadow_frame({"lighting.sky_occlusion=false"}));
     Scene on = off;
     on.lighting.sky_occlusion = true;
-    const Frame a = render_sky_linear(off), b = render_sky_linear(on);
+    const Frame a = test::render_reference_linear(off), b = test::render_reference_linear(on);
     REQUIRE(a.image.linear.size() == b.image.linear.size());
     INFO(preset);
     std::size_t darker = 0;
@@ -271,11 +259,11 @@ TEST_CASE("skyLightOnlyDarkensAndHidesSkyInTheValleys", "[sky]") {
 }
 
 TEST_CASE("aFlatTerrainLeavesTheWholeSkyOpen", "[sky]") {
-  const Scene off =
-      resolve_scene("default", sky_small({"terrain.amplitude=1e-3", "terrain.water_level=null"}));
+  const Scene off = resolve_scene(
+      "default", test::small_shadow_frame({"terrain.amplitude=1e-3", "terrain.water_level=null"}));
   Scene on = off;
   on.lighting.sky_occlusion = true;
-  const Frame a = render_sky_linear(off), b = render_sky_linear(on);
+  const Frame a = test::render_reference_linear(off), b = test::render_reference_linear(on);
   CHECK(a.image.linear == b.image.linear);
   CHECK(a.image.srgb == b.image.srgb);
 }
@@ -283,10 +271,11 @@ TEST_CASE("aFlatTerrainLeavesTheWholeSkyOpen", "[sky]") {
 TEST_CASE("skyLightStaysOnAfterSunsetAndIsRefusedOnAPlanet", "[sky]") {
   // The sun set: no sun's horizons, but the sky's cache is built and read.
   const Scene night = resolve_scene(
-      "sunset", sky_small({"lighting.sun_elevation_deg=-20", "lighting.shadows=true"}));
+      "sunset",
+      test::small_shadow_frame({"lighting.sun_elevation_deg=-20", "lighting.shadows=true"}));
   Scene open = night;
   open.lighting.sky_occlusion = false;
-  const Frame a = render_sky_linear(night), b = render_sky_linear(open);
+  const Frame a = test::render_reference_linear(night), b = test::render_reference_linear(open);
   CHECK(test::frame_counter(a, "cache levels built") > 0);
   CHECK(test::frame_counter(a, "pixels in full shadow") ==
         test::frame_counter(a, "shadow lookups"));
@@ -306,7 +295,7 @@ TEST_CASE("skyLightStaysOnAfterSunsetAndIsRefusedOnAPlanet", "[sky]") {
 TEST_CASE("theWholeFrameOracleDrawsTheSkyLitFrameTheBackendDraws", "[sky]") {
   // The oracle calls the stage functions on whole buffers, the backend in tiles and tasks.
   for (const char* shadows : {"lighting.shadows=true", "lighting.shadows=false"}) {
-    const Scene scene = resolve_scene("sunset", sky_small({shadows}));
+    const Scene scene = resolve_scene("sunset", test::small_shadow_frame({shadows}));
     REQUIRE(scene.lighting.sky_occlusion);
     const SceneResources resources = load_scene_resources(scene);
     FrameRequest request;

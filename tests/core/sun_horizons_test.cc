@@ -21,6 +21,7 @@
 #include "tests/support/cli_support.h"
 #include "tests/support/frame_counters.h"
 #include "tests/support/hashed_draws.h"
+#include "tests/support/shadow_frames.h"
 
 namespace relief {
 namespace {
@@ -209,25 +210,12 @@ TEST_CASE("theCachedShareOfTheSunIsCloseToExactRayCastingInDouble", "[shadows]")
   CHECK(whole_sum / 30 > mean);
 }
 
-std::vector<std::string> small(std::vector<std::string> more) {
-  more.insert(more.end(), {"viewport.width=200", "viewport.height=150", "grid.width=128",
-                           "grid.height=128", "lighting.shadow_resolution=128"});
-  return more;
-}
-
-Frame render_linear(const Scene& scene) {
-  FrameRequest request;
-  request.backend = Backend::kReference;
-  request.outputs.linear = true;
-  request.outputs.primitive = true;
-  return render_frame(scene, load_scene_resources(scene), request);
-}
-
 TEST_CASE("castShadowsOnlyDarkenAndALowSunCastsMany", "[shadows]") {
-  const Scene off = resolve_scene("default", small({"lighting.sun_elevation_deg=8"}));
+  const Scene off =
+      resolve_scene("default", test::small_shadow_frame({"lighting.sun_elevation_deg=8"}));
   Scene on = off;
   on.lighting.shadows = true;
-  const Frame a = render_linear(off), b = render_linear(on);
+  const Frame a = test::render_reference_linear(off), b = test::render_reference_linear(on);
   REQUIRE(a.image.linear.size() == b.image.linear.size());
   std::size_t darker = 0;
   for (std::size_t k = 0; k < a.image.linear.size(); ++k) {
@@ -239,13 +227,13 @@ TEST_CASE("castShadowsOnlyDarkenAndALowSunCastsMany", "[shadows]") {
 
 TEST_CASE("aFlatTerrainAndASunAtTheZenithCastNoShadow", "[shadows]") {
   for (const std::vector<std::string>& overrides :
-       {small({"terrain.amplitude=1e-3", "terrain.water_level=null"}),
-        small({"lighting.sun_elevation_deg=90"})}) {
+       {test::small_shadow_frame({"terrain.amplitude=1e-3", "terrain.water_level=null"}),
+        test::small_shadow_frame({"lighting.sun_elevation_deg=90"})}) {
     const Scene off = resolve_scene("default", overrides);
     Scene on = off;
     on.lighting.shadows = true;
     INFO(overrides[0]);
-    const Frame a = render_linear(off), b = render_linear(on);
+    const Frame a = test::render_reference_linear(off), b = test::render_reference_linear(on);
     CHECK(a.image.linear == b.image.linear);
     CHECK(a.image.srgb == b.image.srgb);
   }
@@ -254,13 +242,13 @@ TEST_CASE("aFlatTerrainAndASunAtTheZenithCastNoShadow", "[shadows]") {
 TEST_CASE("aSetSunLightsNoTerrainPixel", "[shadows]") {
   // Below the horizon by more than its radius the sun lights nothing: every terrain pixel as
   // with no sun at all (no water: its glint is not shadowed; no fog: its colour has the sun's).
-  const Scene set =
-      resolve_scene("default", small({"lighting.shadows=true", "lighting.sun_elevation_deg=-2",
-                                      "terrain.water_level=null", "sky.fog_density=0"}));
+  const Scene set = resolve_scene(
+      "default", test::small_shadow_frame({"lighting.shadows=true", "lighting.sun_elevation_deg=-2",
+                                           "terrain.water_level=null", "sky.fog_density=0"}));
   Scene dark = set;
   dark.lighting.shadows = false;
   dark.lighting.sun_intensity = 0.0;
-  const Frame a = render_linear(set), b = render_linear(dark);
+  const Frame a = test::render_reference_linear(set), b = test::render_reference_linear(dark);
   std::size_t terrain = 0;
   for (std::size_t k = 0; k < a.image.primitive.size(); ++k) {
     if (a.image.primitive[k] == 0xffffffffu) {
@@ -293,14 +281,17 @@ TEST_CASE("aFarPlaneFarAwayKeepsTheShadowsAndEveryPixelInTheCache", "[shadows]")
   // twelve levels until no shadow was left): the pixels in full shadow stay, none falls beyond
   // the cache, also with the sun to one side and a flatter terrain (which found the levels
   // short of the pixels past the far plane's corner).
-  const Frame near = render_linear(resolve_scene("sunset", small({})));
-  const Frame far = render_linear(resolve_scene("sunset", small({"camera.far=1e9"})));
+  const Frame near =
+      test::render_reference_linear(resolve_scene("sunset", test::small_shadow_frame({})));
+  const Frame far = test::render_reference_linear(
+      resolve_scene("sunset", test::small_shadow_frame({"camera.far=1e9"})));
   const std::uint64_t dark = test::frame_counter(near, "pixels in full shadow");
   CHECK(dark > 1000);
   CHECK(test::frame_counter(far, "pixels in full shadow") > dark * 9 / 10);
   CHECK(test::frame_counter(far, "pixels beyond the shadow cache") == 0);
-  const Frame side = render_linear(
-      resolve_scene("sunset", small({"terrain.amplitude=50", "lighting.sun_azimuth_deg=260"})));
+  const Frame side = test::render_reference_linear(resolve_scene(
+      "sunset",
+      test::small_shadow_frame({"terrain.amplitude=50", "lighting.sun_azimuth_deg=260"})));
   CHECK(test::frame_counter(side, "pixels beyond the shadow cache") == 0);
 }
 
@@ -311,7 +302,7 @@ TEST_CASE("leavingOutUnreadLevelsChangesNoBitWhereTheOccludersReachFar", "[shado
   for (const char* elevation : {"lighting.sun_elevation_deg=0.3", "lighting.sun_elevation_deg=2",
                                 "lighting.sun_elevation_deg=40"}) {
     for (const char* far : {"camera.far=60000", "camera.far=3000"}) {
-      const Scene scene = resolve_scene("sunset", small({elevation, far}));
+      const Scene scene = resolve_scene("sunset", test::small_shadow_frame({elevation, far}));
       const SceneResources resources = load_scene_resources(scene);
       FrameRequest request;
       request.backend = Backend::kReference;
@@ -352,11 +343,12 @@ TEST_CASE("theMemoryEstimateCountsTheShadowCacheOnlyWhereOneIsBuilt", "[shadows]
   CHECK_THAT(render_memory_advice(sunset), Catch::Contains("lighting.shadow_resolution"));
   CHECK_THAT(render_memory_advice(set), !Catch::Contains("shadow"));
   // A frame builds no more levels than the estimate counts.
-  const Frame frame = render_linear(resolve_scene("sunset", small({})));
+  const Frame frame =
+      test::render_reference_linear(resolve_scene("sunset", test::small_shadow_frame({})));
   CHECK(test::frame_counter(frame, "cache levels built") <=
         test::frame_counter(frame, "cache levels"));
   CHECK(test::frame_counter(frame, "cache levels") ==
-        std::uint64_t(shadow_cache_levels(resolve_scene("sunset", small({})))));
+        std::uint64_t(shadow_cache_levels(resolve_scene("sunset", test::small_shadow_frame({})))));
 }
 
 TEST_CASE("theStressSuiteSkipsTheGlBackendOnAShadowedScene", "[shadows]") {

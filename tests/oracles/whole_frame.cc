@@ -152,41 +152,35 @@ template SunHorizonCache<double> build_horizon_cache<double>(const ShadowPlan&, 
 
 namespace {
 
-// Each covered pixel's share of the sun disc from the cache of build_horizon_cache; empty
-// where the scene has no shadows.
-std::vector<float> sun_shares(const Scene& scene, const SceneResources& resources,
-                              const TerrainFrame& frame, const ShadingInputs& inputs) {
+// Each covered pixel's share of the sun disc and of the sky from one cache of
+// build_horizon_cache; each empty where the scene has no shadows, or no sky light.
+struct CacheShares {
+  std::vector<float> sun, sky;
+};
+CacheShares cache_shares(const Scene& scene, const SceneResources& resources,
+                         const TerrainFrame& frame, const ShadingInputs& inputs) {
   const ShadowPlan plan = make_shadow_plan(scene, frame.plan);
-  if (!plan.enabled) {
-    return {};
+  CacheShares shares;
+  if (!plan.enabled && !plan.sky) {
+    return shares;
   }
   const ShadowParams<float> params = make_shadow_params<float>(plan);
   const SunHorizonCache<float> cache = build_horizon_cache<float>(plan, frame.plan, resources);
-  std::vector<float> shares(inputs.primitive.size(), 1.0f);
-  ShadowWork work;
-  for (std::size_t k = 0; k < shares.size(); ++k) {
-    if (inputs.primitive[k] != raster::kNoPrimitive) {
-      shares[k] =
-          sun_visibility<float>(params, cache, inputs.dx[k], inputs.height[k], inputs.dz[k], work);
+  const std::size_t pixels = inputs.primitive.size();
+  shares.sun.assign(plan.enabled ? pixels : 0, 1.0f);
+  shares.sky.assign(plan.sky ? pixels : 0, 1.0f);
+  ShadowWork sun_work;
+  SkyWork sky_work;
+  for (std::size_t k = 0; k < pixels; ++k) {
+    if (inputs.primitive[k] == raster::kNoPrimitive) {
+      continue;
     }
-  }
-  return shares;
-}
-
-// Each covered pixel's share of the sky from the same cache; empty without sky light.
-std::vector<float> sky_shares(const Scene& scene, const SceneResources& resources,
-                              const TerrainFrame& frame, const ShadingInputs& inputs) {
-  const ShadowPlan plan = make_shadow_plan(scene, frame.plan);
-  if (!plan.sky) {
-    return {};
-  }
-  const ShadowParams<float> params = make_shadow_params<float>(plan);
-  const SunHorizonCache<float> cache = build_horizon_cache<float>(plan, frame.plan, resources);
-  std::vector<float> shares(inputs.primitive.size(), 1.0f);
-  SkyWork work;
-  for (std::size_t k = 0; k < shares.size(); ++k) {
-    if (inputs.primitive[k] != raster::kNoPrimitive) {
-      shares[k] = sky_visibility<float>(params, cache, inputs.dx[k], inputs.dz[k], work);
+    if (plan.enabled) {
+      shares.sun[k] = sun_visibility<float>(params, cache, inputs.dx[k], inputs.height[k],
+                                            inputs.dz[k], sun_work);
+    }
+    if (plan.sky) {
+      shares.sky[k] = sky_visibility<float>(params, cache, inputs.dx[k], inputs.dz[k], sky_work);
     }
   }
   return shares;
@@ -202,10 +196,9 @@ FrameImage render_whole_frame(const Scene& scene, const SceneResources& resource
   add_planet_shading(frame.plan, scene.terrain.base_height, params);
   const ShadeResources shade_resources{&resources.lattice, resources.textures};
   ShadingInputs inputs = shading_inputs(frame, resolved);
-  const std::vector<float> shares = sun_shares(scene, resources, frame, inputs);
-  inputs.sun = shares;
-  const std::vector<float> sky = sky_shares(scene, resources, frame, inputs);
-  inputs.sky = sky;
+  const CacheShares shares = cache_shares(scene, resources, frame, inputs);
+  inputs.sun = shares.sun;
+  inputs.sky = shares.sky;
   // Gradient mode: every vertex lit (core/vertex_transform.h), its Lambert term resolved.
   raster::ResolvedFrame lambert_resolved;
   if (plan.gradient.enabled) {

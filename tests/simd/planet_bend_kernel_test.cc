@@ -2,6 +2,7 @@
 // (tests/simd/kernel_ranges.h) on every target this CPU runs: every value inside the range is
 // core/planet_bend.h's bit for bit (the vertices' bent positions and drops, the normals
 // rotated in place), and no element outside the range is written.
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -55,6 +56,13 @@ struct BendInputs {
   }
 };
 
+// The bend's four outputs, every element a sentinel that a write would change.
+std::array<std::vector<float>, 4> sentinel_outputs() {
+  std::array<std::vector<float>, 4> out;
+  out.fill(std::vector<float>(kBendCapacity, test::sentinel<float>()));
+  return out;
+}
+
 TEST_CASE("simdPlanetBendAtAwkwardLengthsIsTheScalarBendAndWritesOnlyItsRange", "[simd]") {
   const EachTarget targets;
   const PlanetParams<float> p = bend_params();
@@ -62,20 +70,14 @@ TEST_CASE("simdPlanetBendAtAwkwardLengthsIsTheScalarBendAndWritesOnlyItsRange", 
   for (const std::size_t start : test::kRangeStarts) {
     for (const std::size_t length : test::awkward_lengths()) {
       const IndexRange range{start, start + length};
-      std::vector<float> expected[4];
-      for (std::vector<float>& e : expected) {
-        e.assign(kBendCapacity, test::sentinel<float>());
-      }
+      std::array<std::vector<float>, 4> expected = sentinel_outputs();
       bend_vertices<float>(p, range, in.dx, in.dz, in.height, in.valid,
                            {expected[0], expected[1], expected[2], expected[3]});
       INFO("start " << start << ", length " << length);
       REQUIRE(test::untouched_outside(expected[3], range.begin, range.end));
       for (const std::string& target : targets.runnable()) {
         simd::force_target(target);
-        std::vector<float> got[4];
-        for (std::vector<float>& g : got) {
-          g.assign(kBendCapacity, test::sentinel<float>());
-        }
+        std::array<std::vector<float>, 4> got = sentinel_outputs();
         simd::bend_vertices(p, range, in.dx, in.dz, in.height, in.valid,
                             {got[0], got[1], got[2], got[3]});
         INFO(target);
