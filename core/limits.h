@@ -298,6 +298,18 @@ inline constexpr double kMaxScattering = 1e-2;
 inline constexpr double kMinScaleHeight = 10.0;
 inline constexpr double kMaxScaleHeight = 1e6;
 inline constexpr double kMaxMieG = 0.95;
+// sky.clouds (core/clouds.h). Octaves up to 8: the finest is 128 times the largest, and a cell
+// of the largest spans at least one world unit, so a lattice coordinate stays below
+// 128 x kMaxCameraRelativeDistance = 1.3e13, finite in float (its cell is then lost to
+// rounding, but such a point lies far beyond any pixel's footprint, where the octaves fade:
+// core/clouds.h). The layer at least 0.01 units thick: thinner, it is no band to hold cloud.
+// The warp up to 16 cells of the largest octave.
+inline constexpr int kMaxCloudOctaves = 8;
+inline constexpr double kMinCloudScale = 1.0;
+inline constexpr double kMinCloudThickness = 0.01;
+inline constexpr double kMaxCloudWarp = 16.0;
+// The ground truth's points per cloud path (pipeline/frame.h, FrameRequest::cloud_steps).
+inline constexpr int kMaxCloudSteps = 256;
 
 // time, seconds: the wave offsets (camera + speed x time) / wave_length are reduced in double.
 inline constexpr double kMaxTime = 1e9;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/clouds.h"
 #include "core/det_math.h"
 #include "core/gradient_shade.h"
 #include "core/interpolant.h"
@@ -220,9 +221,15 @@ Vec3<Real> terrain_radiance(const ShadeParams<Real>& p, const ShadeResources& r,
   const Vec3<Real> position{a.dx, relative_y - a.drop, a.dz};
   const Real distance = std::sqrt(dot(position, position));
   const Vec3<Real> view = normalize_or(position, p.camera_forward);
+  // The cloud layer's shadow (clouds.h): the sun's share passed through it, at the pixel's
+  // footprint.
+  PixelAttributes<Real> lit = a;
+  if (p.clouds) {
+    lit.sun = a.sun * cloud_sun_share(p, *r.lattice, position, distance * p.pixel_angle, work);
+  }
   Vec3<Real> radiance = p.gradient_enabled ? gouraud_light(p, gradient_albedo(p, relative_y),
-                                                           a.lambert, a.ny, a.sun, a.sky)
-                                           : textured_radiance(p, r, a, distance, view, work);
+                                                           lit.lambert, lit.ny, lit.sun, lit.sky)
+                                           : textured_radiance(p, r, lit, distance, view, work);
 
   Real fog_distance = distance;
   if (p.water_enabled && p.terrain_water && relative_y < p.water_level && view.y < Real(0)) {
@@ -243,11 +250,11 @@ Vec3<Real> terrain_radiance(const ShadeParams<Real>& p, const ShadeResources& r,
     fog_distance = surface;
     ++work.water_pixels;
   }
-  if (!p.fog_enabled) {
-    return radiance;
+  if (p.fog_enabled) {
+    ++work.fogged_pixels;
+    radiance = apply_fog(p, radiance, view, fog_distance);
   }
-  ++work.fogged_pixels;
-  return apply_fog(p, radiance, view, fog_distance);
+  return p.clouds ? clouds_over(p, *r.lattice, radiance, view, fog_distance, work) : radiance;
 }
 
 // No terrain at this pixel: the sky above the horizon; below it, open water if the camera is
@@ -269,13 +276,17 @@ Vec3<Real> background_radiance(const ShadeParams<Real>& p, const ShadeResources&
   if (p.planet_center_distance > 0.0) {
     return planet_background(p, r, ray, d, work);
   }
-  if (d.y < Real(0)) {
-    if (p.water_enabled) {
-      return open_water(p, r, d, d, p.water_level / d.y, work);
-    }
-    return fog_color(p, d);
+  // The sky and the fog lie beyond every distance (kMaxCameraRelativeDistance); open water at
+  // its surface.
+  Real end = Real(limits::kMaxCameraRelativeDistance);
+  Vec3<Real> radiance;
+  if (d.y < Real(0) && p.water_enabled) {
+    end = p.water_level / d.y;
+    radiance = open_water(p, r, d, d, end, work);
+  } else {
+    radiance = d.y < Real(0) ? fog_color(p, d) : sky_radiance(p, r.skybox, d);
   }
-  return sky_radiance(p, r.skybox, d);
+  return p.clouds ? clouds_over(p, *r.lattice, radiance, d, end, work) : radiance;
 }
 
 template <class Real>

@@ -57,6 +57,9 @@ struct ShadeWork {
   std::uint64_t dither_samples = 0;     // dithering noise lookups
   std::uint64_t specular_pixels = 0;    // pixels whose specular term was computed
   std::uint64_t facing_normals = 0;     // normals facing away from the eye, turned (shade.cc)
+  std::uint64_t cloud_view_paths = 0;   // view rays through the cloud layer (clouds.h)
+  std::uint64_t cloud_sun_paths = 0;    // points whose ray toward the sun crosses the layer
+  std::uint64_t cloud_lookups = 0;      // the layer's lattice samples (octaves and warp)
 
   ShadeWork& operator+=(const ShadeWork& o) {
     terrain_pixels += o.terrain_pixels;
@@ -67,6 +70,9 @@ struct ShadeWork {
     dither_samples += o.dither_samples;
     specular_pixels += o.specular_pixels;
     facing_normals += o.facing_normals;
+    cloud_view_paths += o.cloud_view_paths;
+    cloud_sun_paths += o.cloud_sun_paths;
+    cloud_lookups += o.cloud_lookups;
     return *this;
   }
 };

@@ -104,6 +104,11 @@ ShadingPlan make_shading_plan(const Scene& scene, const FramePlan& frame, int la
     plan.light.sun = plan.sky.atmosphere.ground_sun;
   }
 
+  if (scene.sky.clouds) {  // lit by the sun that reaches the ground (the atmosphere's, above)
+    plan.clouds = make_cloud_plan(*scene.sky.clouds, camera, plan.light.sun_direction,
+                                  plan.light.sun, plan.light.sky, plan.light.ambient, lattice_size);
+  }
+
   const WaterSettings& w = scene.water;
   WaterPlan& water = plan.water;
   water.enabled = frame.water_enabled;  // one decision for every stage (frame_plan.h)

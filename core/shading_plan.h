@@ -8,6 +8,7 @@
 
 #include "core/atmosphere_plan.h"
 #include "core/camera.h"
+#include "core/cloud_plan.h"
 #include "core/frame_plan.h"
 #include "core/limits.h"
 #include "core/scene/scene.h"
@@ -88,6 +89,7 @@ struct ShadingPlan {
   SkyPlan sky;
   WaterPlan water;
   DitherPlan dither;
+  CloudPlan clouds;  // sky.clouds (core/clouds.h); disabled without them
   CameraFrame camera;
   int width = 0, height = 0;  // the image
   double pixel_angle = 0;     // radians subtended by one pixel (vertical field / height)

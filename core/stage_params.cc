@@ -193,6 +193,30 @@ ShadeParams<Real> make_shade_params(const ShadingPlan& plan) {
   p.atmosphere_camera_sun_depth_log2 = rounded<Real>(a.camera_sun_depth_log2);
   p.atmosphere_rayleigh_sun = rounded<Real>(a.rayleigh_sun);
   p.atmosphere_mie_sun = rounded<Real>(a.mie_sun);
+  const CloudPlan& cloud = plan.clouds;
+  p.clouds = cloud.enabled ? 1 : 0;
+  p.cloud_octaves = cloud.octaves;
+  p.cloud_warped = cloud.warped ? 1 : 0;
+  p.cloud_steps = cloud.steps;
+  p.cloud_bottom = Real(cloud.bottom);
+  p.cloud_top = Real(cloud.top);
+  p.cloud_extinction_log2 = Real(cloud.extinction_log2);
+  p.cloud_sun_depth_log2 = Real(cloud.sun_depth_log2);
+  p.cloud_threshold = Real(cloud.threshold);
+  p.cloud_sharpness = Real(cloud.sharpness);
+  p.cloud_mean_density = Real(cloud.mean_density);
+  for (int o = 0; o < limits::kMaxCloudOctaves; ++o) {
+    p.cloud_inv_scale[o] = Real(cloud.inv_scale[o]);
+    p.cloud_offset_x[o] = Real(cloud.offset_x[o]);
+    p.cloud_offset_z[o] = Real(cloud.offset_z[o]);
+    p.cloud_amplitude[o] = Real(cloud.amplitude[o]);
+    p.cloud_warp_gain[o] = Real(cloud.warp_gain[o]);
+  }
+  for (int k = 0; k < 4; ++k) {
+    p.cloud_warp_offset[k] = Real(cloud.warp_offset[k]);
+  }
+  p.cloud_sun_light = rounded<Real>(cloud.sun_light);
+  p.cloud_sky_light = rounded<Real>(cloud.sky_light);
   const WaterPlan& w = plan.water;
   p.water_enabled = w.enabled ? 1 : 0;
   p.terrain_water = p.water_enabled;  // until the frame knows the heights it draws

@@ -197,6 +197,9 @@ GroundTruthImage render_ground_truth(const Scene& scene, const SceneResources& r
   request.outputs.linear = true;
   request.outputs.depth = settings.distances;
   request.octave_count_rule = distance_lod_rule(out.lod.lod);
+  // The cloud layer's density integrated along each path rather than read at its middle
+  // (core/clouds.h; docs/ground-truth.md, "Clouds").
+  request.cloud_steps = kGroundTruthCloudSteps;
   request.max_bin_bytes = max_bin_bytes;
   const int band_rows = ground_truth_band_rows(scene, settings);
   // Supersampled rows [first, end): whole granules (a multiple of the tile size and of N).

@@ -36,6 +36,9 @@ inline constexpr double kMaxOctaveEpsilon = 1.0;
 // The supersampled pixels of one band hold 15 bytes each (sRGB 3, linear radiance 12): bands
 // of at most 64 MiB of them keep the default reference (5120 x 4096 samples) in 5 bands.
 inline constexpr std::uintmax_t kGroundTruthBandBytes = std::uintmax_t{64} << 20;
+// Points per cloud path in the truth (core/clouds.h): the midpoint rule over the layer, whose
+// density varies over the scale of its finest octave along a path.
+inline constexpr int kGroundTruthCloudSteps = 16;
 
 struct GroundTruthSettings {
   int supersample = 4;            // N: N x N samples per pixel

@@ -181,12 +181,9 @@ std::vector<StressRow> run_stress_case(const Scene& base, const StressCase& stre
     if (backend == Backend::kGl && !settings.gl_unavailable.empty()) {
       row.status = StressStatus::kSkipped;
       row.message = settings.gl_unavailable;
-    } else if (backend == Backend::kGl &&
-               (scene.lighting.shadows || scene.lighting.sky_occlusion)) {
+    } else if (backend == Backend::kGl && !gl_missing_feature(scene).empty()) {
       row.status = StressStatus::kSkipped;
-      row.message =
-          "the GL backend has no cast shadows or sky light yet (lighting.shadows, "
-          "lighting.sky_occlusion)";
+      row.message = gl_missing_feature(scene);
     } else {
       try {
         if (backend == Backend::kReferenceDouble) {

@@ -219,10 +219,9 @@ SweepPlan plan_sweep(const Scene& scene, bool quick,
       plan.skipped.push_back({c.name, *gl_unavailable});
       continue;
     }
-    if (c.backend == Backend::kGl && (scene.lighting.shadows || scene.lighting.sky_occlusion)) {
-      plan.skipped.push_back({c.name,
-                              "the GL backend has no cast shadows or sky light yet "
-                              "(lighting.shadows, lighting.sky_occlusion)"});
+    if (const std::string missing = gl_missing_feature(scene);
+        c.backend == Backend::kGl && !missing.empty()) {
+      plan.skipped.push_back({c.name, missing});
       continue;
     }
     try {

@@ -106,6 +106,7 @@ std::string glsl_prelude() {
   out += "#define RELIEF_SKYBOX_UNIT " + std::to_string(limits::kMaxMaterialLayers) + "\n";
   out += "const int kWaveOctaves = " + std::to_string(kWaveOctaves) + ";\n";
   out += "const int kMaxGradientStops = " + std::to_string(limits::kMaxGradientStops) + ";\n";
+  out += "const int kMaxCloudOctaves = " + std::to_string(limits::kMaxCloudOctaves) + ";\n";
   // det_math.h, exp2_det<float>.
   const int exp2_terms = det_math_detail::Exp2Terms<float>::kTerms;
   out += "const int kExp2Terms = " + std::to_string(exp2_terms) + ";\n";

@@ -114,6 +114,7 @@ std::string glsl_dims(const std::string& dims) {
       {"limits::kMaxMaterialLayers", "kMaxLayers"},            // glsl_prelude.cc
       {"kWaveOctaves", "kWaveOctaves"},                        // glsl_prelude.cc
       {"limits::kMaxGradientStops", "kMaxGradientStops"},      // glsl_prelude.cc
+      {"limits::kMaxCloudOctaves", "kMaxCloudOctaves"},        // glsl_prelude.cc
   };
   std::string out;
   // Each "[ extent ]" of the C++ declaration, its extent trimmed of white space.

@@ -197,6 +197,11 @@ void CpuBackend<Real>::describe(StageId id, StageTime& time) const {
       count("normals turned to face the eye", shade.facing_normals);
       count("water pixels", shade.water_pixels);
       count("fogged pixels", shade.fogged_pixels);
+      if (shade_.clouds != 0) {
+        count("view rays through the cloud layer", shade.cloud_view_paths);
+        count("sun rays through the cloud layer", shade.cloud_sun_paths);
+        count("cloud lattice samples", shade.cloud_lookups);
+      }
       if (shadow_.enabled != 0) {
         const ShadowWork& shadow = w.shadow;
         count("shadow lookups", shadow.pixels);

@@ -66,24 +66,8 @@ class GlBackend final : public FrameBackend {
         plan_(make_frame_plan(scene, resources.terrain_values(), resources.sketch_or_null(),
                               thread_pool_rows())),
         params_(make_terrain_params<float>(plan_)) {
-    // Cast shadows have no GLSL twin yet (stage_table.h, kGlHasNoShadows): refused rather than
-    // drawn without them, which a cross-check would report as the GL side's error.
-    if (scene.lighting.shadows) {
-      throw GlBackendError(
-          "lighting.shadows = true: the GL backend has no cast shadows yet; allowed false with "
-          "--backend gl (or render with --backend simd, reference or reference-double)");
-    }
-    if (scene.lighting.sky_occlusion) {  // the same cache (stage_table.h, kGlHasNoShadows)
-      throw GlBackendError(
-          "lighting.sky_occlusion = true: the GL backend has no sky light yet; allowed false "
-          "with --backend gl (or render with --backend simd, reference or reference-double)");
-    }
-    // GeoMipMapping's mesh has no GLSL twin yet (stage_table.h, kGlHasNoMesh).
-    if (scene.terrain.heightfield && scene.terrain.heightfield->geomipmap) {
-      throw GlBackendError(
-          "terrain.heightfield.geomipmap is set: the GL backend draws the projected grid alone "
-          "yet; allowed null with --backend gl (or render with --backend simd, reference or "
-          "reference-double)");
+    if (const std::string missing = gl_missing_feature(scene); !missing.empty()) {
+      throw GlBackendError(missing);
     }
     GlSession& s = gl_session();
     current_.emplace(s);
@@ -332,5 +316,27 @@ GridBuffers<float> gl_terrain_stages(const Scene&, const NoiseLattice&, const He
 void forget_gl_scene() {}
 
 #endif
+
+std::string gl_missing_feature(const Scene& scene) {
+  const std::string other =
+      " with --backend gl (or render with --backend simd, reference or reference-double)";
+  // Refused rather than drawn without, which a cross-check would report as the GL side's error.
+  if (scene.lighting.shadows) {  // stage_table.h, kGlHasNoShadows
+    return "lighting.shadows = true: the GL backend has no cast shadows yet; allowed false" + other;
+  }
+  if (scene.lighting.sky_occlusion) {  // the same cache
+    return "lighting.sky_occlusion = true: the GL backend has no sky light yet; allowed false" +
+           other;
+  }
+  if (scene.sky.clouds) {  // docs/stages.md, "Clouds"
+    return "sky.clouds is set: the GL backend has no cloud layer yet; allowed null" + other;
+  }
+  if (scene.terrain.heightfield && scene.terrain.heightfield->geomipmap) {  // kGlHasNoMesh
+    return "terrain.heightfield.geomipmap is set: the GL backend draws the projected grid alone "
+           "yet; allowed null" +
+           other;
+  }
+  return {};
+}
 
 }  // namespace relief

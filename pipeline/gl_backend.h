@@ -37,6 +37,12 @@ class GlBackendError : public std::runtime_error {
 // Whether this build has the GL side (RELIEF_WITH_GL).
 bool gl_backend_built();
 
+// What of `scene` the GL backend has no twin of yet, as the refusal's message ("lighting.shadows
+// = true: the GL backend has no cast shadows yet; allowed false ..."), or empty where it draws
+// the whole scene. The GL backend refuses such a scene; relief stress and sweep skip its GL
+// rows with this reason.
+std::string gl_missing_feature(const Scene& scene);
+
 // The GL context's description, "NVIDIA H100 80GB HBM3/PCIe/SSE2 (OpenGL 4.6.0 NVIDIA 580.x,
 // EGL device)", opening the shared context if needed; throws GlBackendError when there is none.
 std::string gl_renderer();

@@ -23,6 +23,7 @@
 #include "core/shade.h"
 #include "core/stage_params.h"
 #include "simd/background_rays-inl.h"
+#include "simd/clouds-inl.h"
 #include "simd/gradient_shade-inl.h"
 #include "simd/planet_shade-inl.h"
 #include "simd/shade_vec3-inl.h"
@@ -51,9 +52,17 @@ HWY_INLINE V3<V> TerrainRadiance(D d, const ShadeContext& ctx, const AttributeVe
   const V length_sq = Dot3(position, position);
   const V distance = hn::Sqrt(length_sq);
   const V3<V> view = NormalizeOrWith(d, position, length_sq, Set3(d, p.camera_forward));
-  V3<V> radiance = p.gradient_enabled ? GouraudLight(d, p, GradientAlbedo(d, p, relative_y),
-                                                     a.lambert, a.ny, a.sun, a.sky)
-                                      : TexturedRadiance(d, ctx, a, distance, view, covered, work);
+  // The cloud layer's shadow (clouds.cc), at the pixel's footprint.
+  AttributeVectors<V> lit = a;
+  if (p.clouds) {
+    lit.sun =
+        hn::Mul(a.sun, CloudSunShare(d, p, ctx.lattice, position,
+                                     hn::Mul(distance, hn::Set(d, p.pixel_angle)), covered, work));
+  }
+  V3<V> radiance = p.gradient_enabled
+                       ? GouraudLight(d, p, GradientAlbedo(d, p, relative_y), lit.lambert, lit.ny,
+                                      lit.sun, lit.sky)
+                       : TexturedRadiance(d, ctx, lit, distance, view, covered, work);
 
   V fog_distance = distance;
   if (p.water_enabled && p.terrain_water) {
@@ -80,11 +89,12 @@ HWY_INLINE V3<V> TerrainRadiance(D d, const ShadeContext& ctx, const AttributeVe
       work.water_pixels += count;
     }
   }
-  if (!p.fog_enabled) {
-    return radiance;
+  if (p.fog_enabled) {
+    work.fogged_pixels += hn::CountTrue(d, covered);
+    radiance = ApplyFog(d, p, radiance, view, fog_distance);
   }
-  work.fogged_pixels += hn::CountTrue(d, covered);
-  return ApplyFog(d, p, radiance, view, fog_distance);
+  return p.clouds ? CloudsOver(d, p, ctx.lattice, radiance, view, fog_distance, covered, work)
+                  : radiance;
 }
 
 // background_radiance (shade.cc) for the lanes of `background`, pixels (px0 + lane, py).
@@ -104,15 +114,20 @@ HWY_INLINE V3<V> BackgroundRadiance(D d, const ShadeContext& ctx, int px0, int p
   if (!hn::AllFalse(d, hn::AndNot(below, background))) {
     result = SkyRadiance(d, p, ctx.skybox, dir);
   }
+  // The sky and the fog lie beyond every distance; open water at its surface (shade.cc).
+  V end = hn::Set(d, float(limits::kMaxCameraRelativeDistance));
   const std::size_t count = hn::CountTrue(d, below_lanes);
-  if (count == 0) {
-    return result;
+  if (count != 0) {
+    const V surface = hn::Div(hn::Set(d, p.water_level), dir.y);
+    const V3<V> ground = p.water_enabled ? OpenWater(d, p, ctx.lattice, ctx.skybox, dir, dir,
+                                                     surface, below_lanes, count, work)
+                                         : FogColor(d, p, dir);
+    result = Select3(below, ground, result);
+    if (p.water_enabled) {
+      end = hn::IfThenElse(below, surface, end);
+    }
   }
-  const V3<V> ground = p.water_enabled ? OpenWater(d, p, ctx.lattice, ctx.skybox, dir, dir,
-                                                   hn::Div(hn::Set(d, p.water_level), dir.y),
-                                                   below_lanes, count, work)
-                                       : FogColor(d, p, dir);
-  return Select3(below, ground, result);
+  return p.clouds ? CloudsOver(d, p, ctx.lattice, result, dir, end, background, work) : result;
 }
 
 // One vector of pixels k .. k + lanes - 1 of a row, `valid` the lanes inside the rectangle;

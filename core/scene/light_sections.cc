@@ -70,6 +70,31 @@ const Schema<AtmosphereSettings>& atmosphere_schema() {
   return schema;
 }
 
+const Schema<CloudSettings>& clouds_schema() {
+  using S = CloudSettings;
+  const Range heights{-limits::kMaxBaseHeight, limits::kMaxBaseHeight};
+  static const Schema<S> schema({
+      number_field("altitude", &S::altitude, heights,
+                   {"world units", "height of the cloud layer's bottom"}),
+      number_field("thickness", &S::thickness,
+                   Range{limits::kMinCloudThickness, limits::kMaxShadingLength},
+                   {"world units", "the layer's depth: cloud fills its heights"}),
+      number_field("coverage", &S::coverage, Range{0.0, 1.0},
+                   {"", "share of the layer's area holding cloud (0: none, 1: overcast)"}),
+      number_field("density", &S::density, Range{0.0, limits::kMaxExtinction},
+                   {"per world unit", "extinction where the cloud is full"}),
+      number_field("scale", &S::scale, Range{limits::kMinCloudScale, limits::kMaxShadingLength},
+                   {"world units", "per lattice cell of the largest octave"}),
+      integer_field("octaves", &S::octaves, 1, limits::kMaxCloudOctaves,
+                    {"", "each of twice the frequency and half the amplitude of the last"}),
+      number_field("warp", &S::warp, Range{0.0, limits::kMaxCloudWarp},
+                   {"lattice cells", "domain warp of the largest octave's cells (0: none)"}),
+      vector_field("color", &S::color, Range{0.0, 1.0},
+                   {"", "albedo: the share of the sun's and the sky's light it returns"}),
+  });
+  return schema;
+}
+
 }  // namespace
 
 const Schema<LightingSettings>& lighting_schema() {
@@ -150,6 +175,11 @@ const Schema<SkySettings>& sky_schema() {
                               "sky and aerial perspective from the sun's light scattered once "
                               "(docs/stages.md, \"Atmosphere\"), in place of the gradient and "
                               "the fog; `null`: the gradient and the fog"}),
+      optional_section_field("clouds", &S::clouds, clouds_schema(), "", "",
+                             {"",
+                              "a fractal cloud layer over the sky and the terrain, shadowing the "
+                              "ground (docs/stages.md, \"Clouds\"; not on planets, not on the GL "
+                              "backend); `null`: a clear sky"}),
   });
   return schema;
 }

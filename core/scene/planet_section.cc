@@ -121,6 +121,14 @@ void validate_planet(const Scene& scene) {
                          format_number(radius) +
                          "): the atmosphere is built for the plane only; allowed null here");
   }
+  // The cloud layer is a band of heights over the plane (core/clouds.h); a planet's clouds
+  // would follow its sphere.
+  if (scene.sky.clouds) {
+    throw SceneError(
+        "sky.clouds",
+        "scene: sky.clouds is set on a planet (terrain.planet.radius = " + format_number(radius) +
+            "): the cloud layer is built for the plane only; allowed null here");
+  }
   // The water sphere's radius R + (water level - base height) must be positive: at or below
   // the centre there is no sphere (its equation would draw one of radius |R + w| instead).
   if (t.water_level && !(radius + (*t.water_level - t.base_height) > 0.0)) {

@@ -305,6 +305,21 @@ struct AtmosphereSettings {
   double intensity = 20.0;                           // the sun in the sky's light, x lighting's sun
 };
 
+// A fractal cloud layer (castledragmire's and Miller's cloud layers): the heights
+// [altitude, altitude + thickness] hold cloud whose density over (x, z) is domain-warped fBm
+// of the terrain's own noise lattice (core/clouds.h). It covers the sky and the terrain behind
+// it, seen from above, below or inside, and shadows the ground.
+struct CloudSettings {
+  double altitude = 2400.0;  // world height of the layer's bottom
+  double thickness = 300.0;  // world units
+  double coverage = 0.45;    // the share of the layer's area holding cloud: 0 none, 1 overcast
+  double density = 0.006;    // extinction per world unit where the cloud is full
+  double scale = 2500.0;     // world units per lattice cell of the largest octave
+  int octaves = 5;           // each twice the frequency and half the amplitude of the last
+  double warp = 0.5;         // lattice cells of the domain warp (0: none)
+  Vec3d color = {0.9, 0.9, 0.92};  // albedo: the sun's and the sky's light it returns
+};
+
 struct SkySettings {
   Vec3d zenith_color = {0.17, 0.33, 0.70};
   Vec3d horizon_color = {0.66, 0.75, 0.86};
@@ -312,6 +327,7 @@ struct SkySettings {
   double fog_density = 2.2e-5;                   // per world unit: fog = 1 - exp(-density distance)
   std::optional<SkyboxSettings> skybox;          // nullopt: the gradient
   std::optional<AtmosphereSettings> atmosphere;  // nullopt: the gradient and the fog
+  std::optional<CloudSettings> clouds;           // nullopt: a clear sky
 };
 
 struct OutputSettings {

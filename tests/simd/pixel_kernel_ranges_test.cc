@@ -94,7 +94,9 @@ bool same_work(const ShadeWork& a, const ShadeWork& b) {
   return a.terrain_pixels == b.terrain_pixels && a.background_pixels == b.background_pixels &&
          a.texture_fetches == b.texture_fetches && a.water_pixels == b.water_pixels &&
          a.fogged_pixels == b.fogged_pixels && a.dither_samples == b.dither_samples &&
-         a.specular_pixels == b.specular_pixels && a.facing_normals == b.facing_normals;
+         a.specular_pixels == b.specular_pixels && a.facing_normals == b.facing_normals &&
+         a.cloud_view_paths == b.cloud_view_paths && a.cloud_sun_paths == b.cloud_sun_paths &&
+         a.cloud_lookups == b.cloud_lookups;
 }
 
 TEST_CASE("simdShadingOfAwkwardRectanglesIsTheScalarShadingAndWritesOnlyTheRectangle", "[simd]") {
