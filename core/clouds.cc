@@ -97,24 +97,32 @@ Real cloud_sun_share(const ShadeParams<Real>& p, const NoiseLattice& lattice,
 }
 
 template <class Real>
-Vec3<Real> clouds_over(const ShadeParams<Real>& p, const NoiseLattice& lattice,
-                       const Vec3<Real>& radiance, const Vec3<Real>& d, Real end, ShadeWork& work) {
-  const CloudPath<Real> path = cloud_path(p, Real(0), d.y, end);
+Vec3<Real> clouds_over_from(const ShadeParams<Real>& p, const NoiseLattice& lattice,
+                            const Vec3<Real>& radiance, const Vec3<Real>& origin,
+                            Real origin_distance, const Vec3<Real>& d, Real end, ShadeWork& work) {
+  const CloudPath<Real> path = cloud_path(p, origin.y, d.y, end);
   if (!(path.length > Real(0))) {
     return radiance;
   }
   ++work.cloud_view_paths;
-  // The footprint on the layer: the water's rule (shade.cc, surface_footprint).
+  // The footprint on the layer: the water's rule (shade.cc, surface_footprint), at the
+  // distance from the camera.
   const Real stretch = p.pixel_angle / std::max(std::abs(d.y), Real(0.05));
   const Real density = path_density(
-      p, lattice, Vec3<Real>{0, 0, 0}, d, path, [&](Real t) { return t * stretch; }, work);
+      p, lattice, origin, d, path, [&](Real t) { return (origin_distance + t) * stretch; }, work);
   const Real transmittance = exp2_det(-(p.cloud_extinction_log2 * density * path.length));
   // The layer's light: the sky's, and the sun's dimmed by the cloud above the point.
   const Vec3<Real> light =
       p.cloud_sky_light + p.cloud_sun_light * exp2_det(-(density * p.cloud_sun_depth_log2));
-  const Real middle = path.start + path.length * Real(0.5);
+  const Real middle = origin_distance + (path.start + path.length * Real(0.5));
   const Vec3<Real> seen = p.fog_enabled ? apply_fog(p, light, d, middle) : light;
   return radiance * transmittance + seen * (Real(1) - transmittance);
+}
+
+template <class Real>
+Vec3<Real> clouds_over(const ShadeParams<Real>& p, const NoiseLattice& lattice,
+                       const Vec3<Real>& radiance, const Vec3<Real>& d, Real end, ShadeWork& work) {
+  return clouds_over_from(p, lattice, radiance, Vec3<Real>{0, 0, 0}, Real(0), d, end, work);
 }
 
 template CloudPath<float> cloud_path<float>(const ShadeParams<float>&, float, float, float);
@@ -129,6 +137,12 @@ template double cloud_sun_share<double>(const ShadeParams<double>&, const NoiseL
                                         const Vec3<double>&, double, ShadeWork&);
 template Vec3<float> clouds_over<float>(const ShadeParams<float>&, const NoiseLattice&,
                                         const Vec3<float>&, const Vec3<float>&, float, ShadeWork&);
+template Vec3<float> clouds_over_from<float>(const ShadeParams<float>&, const NoiseLattice&,
+                                             const Vec3<float>&, const Vec3<float>&, float,
+                                             const Vec3<float>&, float, ShadeWork&);
+template Vec3<double> clouds_over_from<double>(const ShadeParams<double>&, const NoiseLattice&,
+                                               const Vec3<double>&, const Vec3<double>&, double,
+                                               const Vec3<double>&, double, ShadeWork&);
 template Vec3<double> clouds_over<double>(const ShadeParams<double>&, const NoiseLattice&,
                                           const Vec3<double>&, const Vec3<double>&, double,
                                           ShadeWork&);

@@ -62,4 +62,13 @@ template <class Real>
 Vec3<Real> clouds_over(const ShadeParams<Real>& params, const NoiseLattice& lattice,
                        const Vec3<Real>& radiance, const Vec3<Real>& d, Real end, ShadeWork& work);
 
+// The same along unit `d` from the camera-relative point `origin`, which the camera sees
+// `origin_distance` away (the water's reflected ray from its surface: water.h): the footprint
+// and the fog's distance count from the camera. clouds_over is this from the camera (origin
+// 0, distance 0), to the bit.
+template <class Real>
+Vec3<Real> clouds_over_from(const ShadeParams<Real>& params, const NoiseLattice& lattice,
+                            const Vec3<Real>& radiance, const Vec3<Real>& origin,
+                            Real origin_distance, const Vec3<Real>& d, Real end, ShadeWork& work);
+
 }  // namespace relief

@@ -122,7 +122,7 @@ Vec3<Real> open_water(const ShadeParams<Real>& p, const ShadeResources& r, const
                       const Vec3<Real>& d, Real surface, ShadeWork& work) {
   const Real footprint = surface_footprint(p, surface, view);
   const Vec3<Real> open = shade_water(p, *r.lattice, r.skybox, view, surface, Real(1e6),
-                                      Vec3<Real>{0, 0, 0}, footprint);
+                                      Vec3<Real>{0, 0, 0}, footprint, work);
   ++work.water_pixels;
   if (!p.fog_enabled) {
     return open;
@@ -246,7 +246,7 @@ Vec3<Real> terrain_radiance(const ShadeParams<Real>& p, const ShadeResources& r,
     }
     const Real footprint = surface_footprint(p, surface, water_view);
     radiance = shade_water(p, *r.lattice, r.skybox, water_view, surface,
-                           std::max(Real(0), a.water_depth), radiance, footprint);
+                           std::max(Real(0), a.water_depth), radiance, footprint, work);
     fog_distance = surface;
     ++work.water_pixels;
   }

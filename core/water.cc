@@ -2,8 +2,10 @@
 
 #include <cmath>
 
+#include "core/clouds.h"
 #include "core/det_math.h"
 #include "core/interpolant.h"
+#include "core/limits.h"
 #include "core/sky.h"
 
 namespace relief {
@@ -40,7 +42,7 @@ Vec3<Real> wave_normal(const ShadeParams<Real>& p, const NoiseLattice& lattice, 
 template <class Real>
 Vec3<Real> shade_water(const ShadeParams<Real>& p, const NoiseLattice& lattice,
                        const Skybox* skybox, const Vec3<Real>& view, Real surface_distance,
-                       Real depth, const Vec3<Real>& ground, Real footprint) {
+                       Real depth, const Vec3<Real>& ground, Real footprint, ShadeWork& work) {
   const Real f = smooth01(depth * p.inv_full_depth);
   const Vec3<Real> s = view * surface_distance;
   const Vec3<Real> n = wave_normal(p, lattice, s.x, s.z, p.wave_strength * f, footprint);
@@ -50,7 +52,11 @@ Vec3<Real> shade_water(const ShadeParams<Real>& p, const NoiseLattice& lattice,
   const Real fresnel = Real(kFresnelF0) + Real(1 - kFresnelF0) * (m * m * m * m * m);
   Vec3<Real> reflected = view - n * (Real(2) * dot(view, n));
   reflected.y = std::abs(reflected.y);  // a steep wave must not reflect below the horizon
-  const Vec3<Real> sky = sky_radiance(p, skybox, reflected);
+  Vec3<Real> sky = sky_radiance(p, skybox, reflected);
+  if (p.clouds) {  // from the surface point, to the sky
+    sky = clouds_over_from(p, lattice, sky, s, surface_distance, reflected,
+                           Real(limits::kMaxCameraRelativeDistance), work);
+  }
 
   // Snell: t = eta v + (eta cos_i - sqrt(k)) n, k = 1 - eta^2 (1 - cos_i^2) > 0 from air.
   const Real eta = Real(kRelativeIndex);
@@ -75,9 +81,9 @@ template Vec3<double> wave_normal<double>(const ShadeParams<double>&, const Nois
                                           double, double, double);
 template Vec3<float> shade_water<float>(const ShadeParams<float>&, const NoiseLattice&,
                                         const Skybox*, const Vec3<float>&, float, float,
-                                        const Vec3<float>&, float);
+                                        const Vec3<float>&, float, ShadeWork&);
 template Vec3<double> shade_water<double>(const ShadeParams<double>&, const NoiseLattice&,
                                           const Skybox*, const Vec3<double>&, double, double,
-                                          const Vec3<double>&, double);
+                                          const Vec3<double>&, double, ShadeWork&);
 
 }  // namespace relief

@@ -15,6 +15,7 @@
 #pragma once
 
 #include "core/lattice.h"
+#include "core/shade.h"
 #include "core/skybox.h"
 #include "core/stage_params.h"
 #include "core/vec3.h"
@@ -25,11 +26,13 @@ namespace relief {
 // surface (> 0); `depth`: water depth below that point (>= 0; a large value for open water
 // with no ground in view); `ground`: radiance of the lit ground; `footprint`: the pixel's
 // size on the surface, world units.
-// `lattice`: the terrain's noise lattice, which the waves reuse.
+// `lattice`: the terrain's noise lattice, which the waves reuse. The reflected sky is seen
+// through the cloud layer where the scene has one (clouds.h; its sun glint so shadowed by the
+// clouds), its work counted into `work`.
 template <class Real>
 Vec3<Real> shade_water(const ShadeParams<Real>& params, const NoiseLattice& lattice,
                        const Skybox* skybox, const Vec3<Real>& view, Real surface_distance,
-                       Real depth, const Vec3<Real>& ground, Real footprint);
+                       Real depth, const Vec3<Real>& ground, Real footprint, ShadeWork& work);
 
 // The wave normal at camera-relative surface position (x, z), for bump strength `strength`.
 template <class Real>

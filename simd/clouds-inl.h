@@ -137,15 +137,16 @@ HWY_INLINE V CloudSunShare(D d, const ShadeParams<float>& p, const LatticeView& 
   return hn::IfThenElse(crossing, Exp2Det(d, hn::Neg(depth)), one);
 }
 
-// clouds_over (clouds.cc) for the lanes of `active`: `radiance` seen along unit `dir` up to
-// `end` through the layer; the radiance itself elsewhere.
+// clouds_over_from (clouds.cc) for the lanes of `active`: `radiance` seen along unit `dir` from
+// the camera-relative `origin` (`origin_distance` from the camera) up to `end` through the
+// layer; the radiance itself elsewhere.
 template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
-HWY_INLINE V3<V> CloudsOver(D d, const ShadeParams<float>& p, const LatticeView& lattice,
-                            const V3<V>& radiance, const V3<V>& dir, V end, M active,
-                            ShadeWork& work) {
+HWY_INLINE V3<V> CloudsOverFrom(D d, const ShadeParams<float>& p, const LatticeView& lattice,
+                                const V3<V>& radiance, const V3<V>& origin, V origin_distance,
+                                const V3<V>& dir, V end, M active, ShadeWork& work) {
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
   V start, length;
-  CloudPathLanes(d, p, zero, dir.y, end, start, length);
+  CloudPathLanes(d, p, origin.y, dir.y, end, start, length);
   const M crossing = hn::And(active, hn::Gt(length, zero));
   const std::size_t count = hn::CountTrue(d, crossing);
   if (count == 0) {
@@ -155,18 +156,30 @@ HWY_INLINE V3<V> CloudsOver(D d, const ShadeParams<float>& p, const LatticeView&
   const V stretch =
       hn::Div(hn::Set(d, p.pixel_angle), StdMax(hn::Abs(dir.y), hn::Set(d, float(0.05))));
   const V t = hn::Add(start, hn::Mul(length, hn::Set(d, 0.5f)));
-  const V density = CloudMiddleDensity(d, p, lattice, V3<V>{zero, zero, zero}, dir, start, length,
-                                       hn::Mul(t, stretch), crossing, work);
+  const V density =
+      CloudMiddleDensity(d, p, lattice, origin, dir, start, length,
+                         hn::Mul(hn::Add(origin_distance, t), stretch), crossing, work);
   const V transmittance =
       Exp2Det(d, hn::Neg(hn::Mul(hn::Mul(hn::Set(d, p.cloud_extinction_log2), density), length)));
   const V3<V> light =
       Add3(Set3(d, p.cloud_sky_light),
            Scale3(Set3(d, p.cloud_sun_light),
                   Exp2Det(d, hn::Neg(hn::Mul(density, hn::Set(d, p.cloud_sun_depth_log2))))));
-  const V3<V> seen = p.fog_enabled ? ApplyFog(d, p, light, dir, t) : light;
+  const V middle = hn::Add(origin_distance, t);
+  const V3<V> seen = p.fog_enabled ? ApplyFog(d, p, light, dir, middle) : light;
   const V3<V> over =
       Add3(Scale3(radiance, transmittance), Scale3(seen, hn::Sub(one, transmittance)));
   return Select3(crossing, over, radiance);
+}
+
+// clouds_over (clouds.cc): the same from the camera.
+template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
+HWY_INLINE V3<V> CloudsOver(D d, const ShadeParams<float>& p, const LatticeView& lattice,
+                            const V3<V>& radiance, const V3<V>& dir, V end, M active,
+                            ShadeWork& work) {
+  const V zero = hn::Zero(d);
+  return CloudsOverFrom(d, p, lattice, radiance, V3<V>{zero, zero, zero}, zero, dir, end, active,
+                        work);
 }
 
 }  // namespace HWY_NAMESPACE

@@ -82,8 +82,9 @@ HWY_INLINE V3<V> TerrainRadiance(D d, const ShadeContext& ctx, const AttributeVe
         water_view = ToLocalFrame(d, view, up);
       }
       const V footprint = SurfaceFootprint(d, p, surface, water_view.y);
-      const V3<V> water = ShadeWater(d, p, ctx.lattice, ctx.skybox, water_view, surface,
-                                     StdMax(zero, a.water_depth), radiance, footprint, under_water);
+      const V3<V> water =
+          ShadeWater(d, p, ctx.lattice, ctx.skybox, water_view, surface,
+                     StdMax(zero, a.water_depth), radiance, footprint, under_water, work);
       radiance = Select3(under_water, water, radiance);
       fog_distance = hn::IfThenElse(under_water, surface, distance);
       work.water_pixels += count;

@@ -13,8 +13,10 @@
 
 #include <hwy/highway.h>
 
+#include "core/limits.h"
 #include "core/shade.h"
 #include "core/stage_params.h"
+#include "simd/clouds-inl.h"
 #include "simd/det_math-inl.h"
 #include "simd/lattice-inl.h"
 #include "simd/shade_vec3-inl.h"
@@ -94,7 +96,7 @@ HWY_INLINE V3<V> WaveNormal(D d, const ShadeParams<float>& p, const LatticeView&
 template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
 HWY_INLINE V3<V> ShadeWater(D d, const ShadeParams<float>& p, const LatticeView& lattice,
                             const SkyboxView& skybox, const V3<V>& view, V surface_distance,
-                            V depth, const V3<V>& ground, V footprint, M active) {
+                            V depth, const V3<V>& ground, V footprint, M active, ShadeWork& work) {
   constexpr double kFresnelF0 = 0.02;             // water.cc
   constexpr double kRelativeIndex = 1.0 / 1.333;  // water.cc
   constexpr double kMinTransmittedCosine = 0.1;   // water.cc
@@ -112,7 +114,11 @@ HWY_INLINE V3<V> ShadeWater(D d, const ShadeParams<float>& p, const LatticeView&
                                     hn::Mul(hn::Mul(hn::Mul(hn::Mul(m, m), m), m), m)));
   V3<V> reflected = Sub3(view, Scale3(n, hn::Mul(hn::Set(d, 2.0f), view_n)));
   reflected.y = hn::Abs(reflected.y);
-  const V3<V> sky = SkyRadiance(d, p, skybox, reflected);
+  V3<V> sky = SkyRadiance(d, p, skybox, reflected);
+  if (p.clouds) {  // from the surface point, to the sky
+    sky = CloudsOverFrom(d, p, lattice, sky, s, surface_distance, reflected,
+                         hn::Set(d, float(limits::kMaxCameraRelativeDistance)), active, work);
+  }
 
   const float eta = float(kRelativeIndex);
   const V eta_v = hn::Set(d, eta);
@@ -151,7 +157,7 @@ HWY_INLINE V3<V> OpenWater(D d, const ShadeParams<float>& p, const LatticeView& 
   const V zero = hn::Zero(d);
   const V footprint = SurfaceFootprint(d, p, surface, view.y);
   const V3<V> open = ShadeWater(d, p, lattice, skybox, view, surface, hn::Set(d, 1e6f),
-                                V3<V>{zero, zero, zero}, footprint, active);
+                                V3<V>{zero, zero, zero}, footprint, active, work);
   work.water_pixels += count;
   if (!p.fog_enabled) {
     return open;

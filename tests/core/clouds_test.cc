@@ -3,7 +3,9 @@
 // lattices, the path inside the band against a fine march along the ray, the far field's mean
 // against the layer's average; every output finite over hostile inputs.
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <random>
 
@@ -199,6 +201,33 @@ TEST_CASE("theLayerOverTheSkyIsOpaqueOnlyWhereItsDepthIs", "[clouds]") {
   CHECK(clouds_over(p, cloud_lattice(), sky, down, 1e11, work).x == sky.x);
   CHECK(clouds_over(p, cloud_lattice(), sky, up, 999.0, work).x == sky.x);
   CHECK(work.cloud_view_paths == 1);
+}
+
+TEST_CASE("aPathFromAPointSeesTheLayerAboveIt", "[clouds]") {
+  // The water's reflected ray: from a point under an even overcast straight up, the layer's
+  // whole thickness, wherever the point lies; from the camera, clouds_over to the bit.
+  CloudSettings s;
+  s.altitude = 1000.0;
+  s.coverage = 1.0;
+  s.density = 0.002;
+  ShadeParams<float> p = cloud_params<float>(s);
+  p.fog_enabled = 0;
+  ShadeWork work;
+  const Vec3<float> black{0, 0, 0}, up{0, 1, 0};
+  const float light =
+      p.cloud_sky_light.x + p.cloud_sun_light.x * std::exp2(-p.cloud_sun_depth_log2);
+  for (const Vec3<float> origin : {Vec3<float>{0, -50, 0}, Vec3<float>{5000, 300, -7000}}) {
+    const Vec3<float> c =
+        clouds_over_from(p, cloud_lattice(), black, origin, 800.0f, up, 1e11f, work);
+    CHECK(c.x == Approx(light * (1.0 - std::exp(-0.002 * 300.0))).epsilon(1e-5));
+  }
+  const Vec3<float> d = normalize_or(Vec3<float>{0.3f, 0.2f, -0.9f}, up);
+  const Vec3<float> sky{0.2f, 0.3f, 0.6f};
+  const Vec3<float> a = clouds_over(p, cloud_lattice(), sky, d, 1e11f, work);
+  const Vec3<float> b =
+      clouds_over_from(p, cloud_lattice(), sky, Vec3<float>{0, 0, 0}, 0.0f, d, 1e11f, work);
+  CHECK(std::bit_cast<std::uint32_t>(a.x) == std::bit_cast<std::uint32_t>(b.x));
+  CHECK(std::bit_cast<std::uint32_t>(a.z) == std::bit_cast<std::uint32_t>(b.z));
 }
 
 TEST_CASE("theLayerStaysFiniteOverHostileInputs", "[clouds]") {

@@ -117,6 +117,30 @@ TEST_CASE("anOpaqueOvercastLightsTheGroundAsIfTheSunWereOff", "[clouds]") {
   CHECK(test::frame_counter(a, "sun rays through the cloud layer") == ground);
 }
 
+TEST_CASE("theWaterReflectsTheLayer", "[clouds]") {
+  // lake with the sun off: the camera, under the layer, looks down at the water below the
+  // horizon, so its view rays there never reach the layer, and the ground's sun (the layer's
+  // shadow scales it) is 0: what changes there is the reflected sky, seen through the clouds.
+  const std::vector<std::string> dark = {"lighting.sun_intensity=0"};
+  auto cloudy = dark;
+  cloudy.push_back("sky.clouds={\"coverage\": 0.7}");
+  const Scene with = resolve_scene("lake", small_cloud_frame(cloudy));
+  const Scene without = resolve_scene("lake", small_cloud_frame(dark));
+  const Frame a = render_clouds(with, Backend::kReference);
+  const Frame b = render_clouds(without, Backend::kReference);
+  REQUIRE(a.image.primitive == b.image.primitive);
+  const int width = with.viewport.width, height = with.viewport.height;
+  std::size_t changed = 0;
+  for (int py = 0; py < height / 3; ++py) {  // the bottom third: water below the horizon
+    for (int px = 0; px < width; ++px) {
+      const std::size_t k = std::size_t(py) * width + px;
+      changed += a.image.linear[3 * k] != b.image.linear[3 * k];
+    }
+  }
+  CHECK(changed > std::size_t(width) * (height / 3) / 4);
+  CHECK(test::frame_counter(a, "sun rays through the cloud layer") > 0);
+}
+
 TEST_CASE("theTruthReadsTheLayerAlongEachPath", "[clouds]") {
   // An overcast of constant density: every point of a path reads the same, so the truth's
   // midpoint rule is the one point; a broken layer's paths read differently.
