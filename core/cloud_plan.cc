@@ -78,7 +78,7 @@ double normal_quantile(double p) {
          (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1.0);
 }
 
-CloudPlan make_cloud_plan(const CloudSettings& s, const glm::dvec3& camera,
+CloudPlan make_cloud_plan(const CloudSettings& s, const glm::dvec3& camera, double ground_height,
                           const glm::dvec3& sun_direction, const glm::dvec3& sun,
                           const glm::dvec3& sky, double ambient, int lattice_size) {
   CloudPlan plan;
@@ -86,9 +86,12 @@ CloudPlan make_cloud_plan(const CloudSettings& s, const glm::dvec3& camera,
   plan.octaves = s.octaves;
   plan.bottom = s.altitude - camera.y;
   plan.top = (s.altitude + s.thickness) - camera.y;
+  plan.ground = ground_height - camera.y;
   plan.extinction_log2 = s.density / kLn2;
   const double sigma = cloud_fbm_sigma(s.octaves);
-  if (s.coverage <= 0.0) {
+  // A coverage under 1.1e-16 leaves 1 - coverage = 1, whose upper quantile is beyond any
+  // value (and log's argument 1 - p would be 0): no cloud, as at 0.
+  if (s.coverage <= 0.0 || 1.0 - s.coverage == 1.0) {
     plan.threshold = kCloudThresholdBeyond;
   } else if (s.coverage >= 1.0) {
     plan.threshold = -kCloudThresholdBeyond;

@@ -21,6 +21,10 @@ struct CloudPlan {
   bool enabled = false;
   int octaves = 0;
   double bottom = 0, top = 0;  // the layer's heights relative to the camera
+  // The lowest height the terrain reaches (the frame's height bounds), relative to the
+  // camera: a background ray below the horizon without water stands for terrain beyond the
+  // far distance, which it meets by this height at the latest.
+  double ground = 0;
   double extinction_log2 = 0;  // sky.clouds.density / ln 2
   // Density D = clamp((n - threshold) sharpness, 0, 1) of the fBm n: threshold the n that a
   // share `coverage` of the layer's area exceeds, sharpness 1 / sigma_n (full one standard
@@ -51,10 +55,12 @@ double cloud_fbm_sigma(int octaves);
 // approximation, relative error 1.15e-9), with det_math's log.
 double normal_quantile(double p);
 
-// `camera` in world units, `sun_direction` unit toward the sun, `sun`, `sky` and `ambient`
-// the light's (shading_plan.h's LightPlan), `lattice_size` P.
+// `camera` in world units, `ground_height` the terrain's lowest (world units), `sun_direction`
+// unit toward the sun, `sun`, `sky` and `ambient` the light's (shading_plan.h's LightPlan),
+// `lattice_size` P.
 CloudPlan make_cloud_plan(const CloudSettings& settings, const glm::dvec3& camera,
-                          const glm::dvec3& sun_direction, const glm::dvec3& sun,
-                          const glm::dvec3& sky, double ambient, int lattice_size);
+                          double ground_height, const glm::dvec3& sun_direction,
+                          const glm::dvec3& sun, const glm::dvec3& sky, double ambient,
+                          int lattice_size);
 
 }  // namespace relief

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/cloud_plan.h"
 #include "core/det_math.h"
 #include "core/interpolant.h"
 #include "core/limits.h"
@@ -19,20 +20,30 @@ Real octave_fade(Real footprint, Real inv_cell) {
 }
 
 // The mean density over p.cloud_steps points of `path` from `origin` along unit `dir`
-// (camera-relative; the view ray's origin is the camera). The footprint at distance t along
-// the path is footprint_at(t).
+// (camera-relative; the view ray's origin is the camera), `horizontal` the length of dir's
+// (x, z). The footprint at distance t along the path is footprint_at(t), widened to the
+// horizontal span each point stands for: an octave whose cells the path crosses by the dozen
+// averages out along it (to its mean, 0), so it fades as it would under a wide pixel, and a
+// long slanted path tends to the layer's mean instead of reading one cell's all-or-nothing.
 template <class Real, class Footprint>
 Real path_density(const ShadeParams<Real>& p, const NoiseLattice& lattice, const Vec3<Real>& origin,
-                  const Vec3<Real>& dir, const CloudPath<Real>& path, const Footprint& footprint_at,
-                  ShadeWork& work) {
+                  const Vec3<Real>& dir, Real horizontal, const CloudPath<Real>& path,
+                  const Footprint& footprint_at, ShadeWork& work) {
   const Real inv_steps = Real(1) / Real(p.cloud_steps);  // cloud_steps >= 1
+  const Real span = path.length * horizontal * inv_steps;
   Real sum = Real(0);
   for (int k = 0; k < p.cloud_steps; ++k) {
     const Real t = path.start + path.length * ((Real(k) + Real(0.5)) * inv_steps);
     sum = sum + cloud_density(p, lattice, origin.x + t * dir.x, origin.z + t * dir.z,
-                              footprint_at(t), work);
+                              std::max(footprint_at(t), span), work);
   }
   return sum * inv_steps;
+}
+
+// The length of unit d's horizontal part (domain: a sum of squares, >= 0).
+template <class Real>
+Real horizontal_length(const Vec3<Real>& d) {
+  return std::sqrt(d.x * d.x + d.z * d.z);
 }
 
 }  // namespace
@@ -85,14 +96,19 @@ template <class Real>
 Real cloud_sun_share(const ShadeParams<Real>& p, const NoiseLattice& lattice,
                      const Vec3<Real>& position, Real footprint, ShadeWork& work) {
   const Vec3<Real>& s = p.sun_direction;
-  const CloudPath<Real> path =
-      cloud_path(p, position.y, s.y, Real(limits::kMaxCameraRelativeDistance));
+  if (!(s.y > Real(0))) {
+    return Real(1);  // the sun's ray goes down: it meets no layer above (and lights nothing)
+  }
+  // A grazing sun's path is taken at kCloudMinSunSine (the layer's light floors it too):
+  // 1 / sin e would carry the point past float's resolution of its own position.
+  const CloudPath<Real> path = cloud_path(p, position.y, std::max(s.y, Real(kCloudMinSunSine)),
+                                          Real(limits::kMaxCameraRelativeDistance));
   if (!(path.length > Real(0))) {
     return Real(1);
   }
   ++work.cloud_sun_paths;
   const Real density = path_density(
-      p, lattice, position, s, path, [&](Real) { return footprint; }, work);
+      p, lattice, position, s, horizontal_length(s), path, [&](Real) { return footprint; }, work);
   return exp2_det(-(p.cloud_extinction_log2 * density * path.length));
 }
 
@@ -109,7 +125,8 @@ Vec3<Real> clouds_over_from(const ShadeParams<Real>& p, const NoiseLattice& latt
   // distance from the camera.
   const Real stretch = p.pixel_angle / std::max(std::abs(d.y), Real(0.05));
   const Real density = path_density(
-      p, lattice, origin, d, path, [&](Real t) { return (origin_distance + t) * stretch; }, work);
+      p, lattice, origin, d, horizontal_length(d), path,
+      [&](Real t) { return (origin_distance + t) * stretch; }, work);
   const Real transmittance = exp2_det(-(p.cloud_extinction_log2 * density * path.length));
   // The layer's light: the sky's, and the sun's dimmed by the cloud above the point.
   const Vec3<Real> light =

@@ -283,8 +283,13 @@ Vec3<Real> background_radiance(const ShadeParams<Real>& p, const ShadeResources&
   if (d.y < Real(0) && p.water_enabled) {
     end = p.water_level / d.y;
     radiance = open_water(p, r, d, d, end, work);
+  } else if (d.y < Real(0)) {
+    radiance = fog_color(p, d);
+    if (p.clouds) {  // terrain past the far distance, no lower than the frame's lowest
+      end = std::min(end, p.cloud_ground / d.y);  // d.y < 0
+    }
   } else {
-    radiance = d.y < Real(0) ? fog_color(p, d) : sky_radiance(p, r.skybox, d);
+    radiance = sky_radiance(p, r.skybox, d);
   }
   return p.clouds ? clouds_over(p, *r.lattice, radiance, d, end, work) : radiance;
 }

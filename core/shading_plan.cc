@@ -105,8 +105,9 @@ ShadingPlan make_shading_plan(const Scene& scene, const FramePlan& frame, int la
   }
 
   if (scene.sky.clouds) {  // lit by the sun that reaches the ground (the atmosphere's, above)
-    plan.clouds = make_cloud_plan(*scene.sky.clouds, camera, plan.light.sun_direction,
-                                  plan.light.sun, plan.light.sky, plan.light.ambient, lattice_size);
+    plan.clouds =
+        make_cloud_plan(*scene.sky.clouds, camera, frame.bounds.world_min, plan.light.sun_direction,
+                        plan.light.sun, plan.light.sky, plan.light.ambient, lattice_size);
   }
 
   const WaterSettings& w = scene.water;

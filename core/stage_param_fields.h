@@ -208,7 +208,7 @@
      cloud_steps points per path (1 in the frame, more in the ground truth). */               \
   F(std::int32_t, clouds, 0) F(std::int32_t, cloud_octaves, 0) E                                \
   F(std::int32_t, cloud_warped, 0) F(std::int32_t, cloud_steps, 1) E                            \
-  F(Real, cloud_bottom, 0) F(Real, cloud_top, 0) E /* camera-relative */                      \
+  F(Real, cloud_bottom, 0) F(Real, cloud_top, 0) F(Real, cloud_ground, 0) E /* relative */    \
   F(Real, cloud_extinction_log2, 0) F(Real, cloud_sun_depth_log2, 0) E                          \
   F(Real, cloud_threshold, 0) F(Real, cloud_sharpness, 1) F(Real, cloud_mean_density, 0) E      \
   A(Real, cloud_inv_scale, [limits::kMaxCloudOctaves], {}) E                                    \
@@ -220,7 +220,7 @@
   F(Vec3<Real>, cloud_sun_light, {}) F(Vec3<Real>, cloud_sky_light, {}) E                       \
   /* Unused: keeps the float struct's size a multiple of 16 bytes, the size GL gives the     \
      std430 block that mirrors it (gpu/shaders/shade_params.glsl.in). */                        \
-  A(std::int32_t, reserved, [1], {}) E                                                          \
+  A(std::int32_t, reserved, [4], {}) E                                                          \
   F(Vec3<Real>, camera_forward, {}) E                                                           \
   /* The background's view ray per pixel is formed in double (it is the sky's direction to   \
      a thousandth of a pixel at any field of view) and rounded once: these stay double. */     \

@@ -200,6 +200,7 @@ ShadeParams<Real> make_shade_params(const ShadingPlan& plan) {
   p.cloud_steps = cloud.steps;
   p.cloud_bottom = Real(cloud.bottom);
   p.cloud_top = Real(cloud.top);
+  p.cloud_ground = Real(cloud.ground);
   p.cloud_extinction_log2 = Real(cloud.extinction_log2);
   p.cloud_sun_depth_log2 = Real(cloud.sun_depth_log2);
   p.cloud_threshold = Real(cloud.threshold);

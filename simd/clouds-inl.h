@@ -13,8 +13,12 @@
 #define RELIEF_SIMD_CLOUDS_INL_H_
 #endif
 
+#include <algorithm>
+#include <cmath>
+
 #include <hwy/highway.h>
 
+#include "core/cloud_plan.h"
 #include "core/clouds.h"
 #include "core/limits.h"
 #include "core/shade.h"
@@ -105,15 +109,19 @@ HWY_INLINE V CloudDensity(D d, const ShadeParams<float>& p, const LatticeView& l
   return hn::IfThenElse(sampled, hn::Add(mean, hn::Mul(hn::Sub(density, mean), fade0)), mean);
 }
 
-// path_density (clouds.cc) at one point, the path's middle: 0 + D, times 1 / 1.
+// path_density (clouds.cc) at one point, the path's middle, its footprint widened to the
+// path's horizontal span (`horizontal`: the length of dir's (x, z)): 0 + D, times 1 / 1.
 template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
 HWY_INLINE V CloudMiddleDensity(D d, const ShadeParams<float>& p, const LatticeView& lattice,
-                                const V3<V>& origin, const V3<V>& dir, V start, V length,
-                                V footprint, M active, ShadeWork& work) {
+                                const V3<V>& origin, const V3<V>& dir, V horizontal, V start,
+                                V length, V footprint, M active, ShadeWork& work) {
+  const V one = hn::Set(d, 1.0f);
+  const V span = hn::Mul(hn::Mul(length, horizontal), one);
   const V t = hn::Add(start, hn::Mul(length, hn::Set(d, 0.5f)));
   const V x = hn::Add(origin.x, hn::Mul(t, dir.x));
   const V z = hn::Add(origin.z, hn::Mul(t, dir.z));
-  return hn::Add(hn::Zero(d), CloudDensity(d, p, lattice, x, z, footprint, active, work));
+  return hn::Add(hn::Zero(d),
+                 CloudDensity(d, p, lattice, x, z, StdMax(footprint, span), active, work));
 }
 
 // cloud_sun_share (clouds.cc) of the points `position` of the lanes of `active`; 1 elsewhere.
@@ -121,18 +129,23 @@ template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
 HWY_INLINE V CloudSunShare(D d, const ShadeParams<float>& p, const LatticeView& lattice,
                            const V3<V>& position, V footprint, M active, ShadeWork& work) {
   const V one = hn::Set(d, 1.0f);
-  const V3<V> sun = Set3(d, p.sun_direction);
+  const Vec3<float>& s = p.sun_direction;
+  if (!(s.y > 0.0f)) {
+    return one;
+  }
+  const V3<V> sun = Set3(d, s);
   V start, length;
-  CloudPathLanes(d, p, position.y, sun.y, hn::Set(d, float(limits::kMaxCameraRelativeDistance)),
-                 start, length);
+  CloudPathLanes(d, p, position.y, hn::Set(d, std::max(s.y, float(kCloudMinSunSine))),
+                 hn::Set(d, float(limits::kMaxCameraRelativeDistance)), start, length);
   const M crossing = hn::And(active, hn::Gt(length, hn::Zero(d)));
   const std::size_t count = hn::CountTrue(d, crossing);
   if (count == 0) {
     return one;
   }
   work.cloud_sun_paths += count;
-  const V density =
-      CloudMiddleDensity(d, p, lattice, position, sun, start, length, footprint, crossing, work);
+  const V horizontal = hn::Set(d, std::sqrt(s.x * s.x + s.z * s.z));
+  const V density = CloudMiddleDensity(d, p, lattice, position, sun, horizontal, start, length,
+                                       footprint, crossing, work);
   const V depth = hn::Mul(hn::Mul(hn::Set(d, p.cloud_extinction_log2), density), length);
   return hn::IfThenElse(crossing, Exp2Det(d, hn::Neg(depth)), one);
 }
@@ -156,9 +169,9 @@ HWY_INLINE V3<V> CloudsOverFrom(D d, const ShadeParams<float>& p, const LatticeV
   const V stretch =
       hn::Div(hn::Set(d, p.pixel_angle), StdMax(hn::Abs(dir.y), hn::Set(d, float(0.05))));
   const V t = hn::Add(start, hn::Mul(length, hn::Set(d, 0.5f)));
-  const V density =
-      CloudMiddleDensity(d, p, lattice, origin, dir, start, length,
-                         hn::Mul(hn::Add(origin_distance, t), stretch), crossing, work);
+  const V density = CloudMiddleDensity(
+      d, p, lattice, origin, dir, hn::Sqrt(hn::Add(hn::Mul(dir.x, dir.x), hn::Mul(dir.z, dir.z))),
+      start, length, hn::Mul(hn::Add(origin_distance, t), stretch), crossing, work);
   const V transmittance =
       Exp2Det(d, hn::Neg(hn::Mul(hn::Mul(hn::Set(d, p.cloud_extinction_log2), density), length)));
   const V3<V> light =

@@ -126,6 +126,8 @@ HWY_INLINE V3<V> BackgroundRadiance(D d, const ShadeContext& ctx, int px0, int p
     result = Select3(below, ground, result);
     if (p.water_enabled) {
       end = hn::IfThenElse(below, surface, end);
+    } else if (p.clouds) {  // terrain past the far distance, no lower than the frame's lowest
+      end = hn::IfThenElse(below, StdMin(end, hn::Div(hn::Set(d, p.cloud_ground), dir.y)), end);
     }
   }
   return p.clouds ? CloudsOver(d, p, ctx.lattice, result, dir, end, background, work) : result;

@@ -131,9 +131,15 @@ HWY_INLINE V3<V> ShadeWater(D d, const ShadeParams<float>& p, const LatticeView&
                           Exp2Det(d, hn::Mul(hn::Set(d, -e.z), path))};
 
   // Per frame, in float as the scalar code forms it per pixel.
-  const Vec3<float> body_light =
-      p.sky_light + p.sun * (0.5f * (0.0f < p.sun_direction.y ? p.sun_direction.y : 0.0f));
-  const V3<V> body = Mul3(Mix3(Set3(d, p.shallow), Set3(d, p.deep), f), Set3(d, body_light));
+  const Vec3<float> sun_part =
+      p.sun * (0.5f * (0.0f < p.sun_direction.y ? p.sun_direction.y : 0.0f));
+  V3<V> body_light = Set3(d, p.sky_light + sun_part);
+  if (p.clouds) {  // the sun's part through the cloud layer above the surface point
+    body_light =
+        Add3(Set3(d, p.sky_light),
+             Scale3(Set3(d, sun_part), CloudSunShare(d, p, lattice, s, footprint, active, work)));
+  }
+  const V3<V> body = Mul3(Mix3(Set3(d, p.shallow), Set3(d, p.deep), f), body_light);
   const V3<V> under =
       Add3(Mul3(ground, transmitted), Mul3(body, Sub3(Set3(d, 1.0f, 1.0f, 1.0f), transmitted)));
   const V reflectivity = hn::Add(hn::Set(d, float(0.3)), hn::Mul(hn::Set(d, float(0.7)), f));

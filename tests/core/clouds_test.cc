@@ -38,8 +38,8 @@ ShadeParams<Real> cloud_params(const CloudSettings& s, glm::dvec3 camera = {0, 0
   plan.light.sun = glm::dvec3(1.8);
   plan.light.sky = glm::dvec3(0.1, 0.15, 0.2);
   plan.pixel_angle = 1e-3;
-  plan.clouds = make_cloud_plan(s, camera, plan.light.sun_direction, plan.light.sun, plan.light.sky,
-                                0.03, kCloudLatticeSize);
+  plan.clouds = make_cloud_plan(s, camera, -1e4, plan.light.sun_direction, plan.light.sun,
+                                plan.light.sky, 0.03, kCloudLatticeSize);
   return make_shade_params<Real>(plan);
 }
 
@@ -119,6 +119,21 @@ TEST_CASE("theCoverageIsTheShareOfTheLayerHoldingCloud", "[clouds]") {
     CHECK(p.cloud_mean_density == Approx(density_sum / points.size()).margin(0.03));
     CHECK(cloud_density(p, cloud_lattice(), 123.0, 456.0, 1e9, work) == p.cloud_mean_density);
   }
+}
+
+TEST_CASE("aCoverageTooSmallToLeaveOneIsNoCloud", "[clouds]") {
+  // 1 - 1e-17 is 1 in double: no quantile to take (log's argument would be 0); as coverage 0.
+  for (const double coverage : {0.0, 1e-17, 1e-300}) {
+    CloudSettings s;
+    s.coverage = coverage;
+    CHECK(cloud_params<double>(s).cloud_threshold == kCloudThresholdBeyond);
+  }
+  CloudSettings full;
+  full.coverage = 1.0;
+  CHECK(cloud_params<double>(full).cloud_threshold == -kCloudThresholdBeyond);
+  CloudSettings almost;
+  almost.coverage = 1e-12;
+  CHECK(std::isfinite(cloud_params<double>(almost).cloud_threshold));
 }
 
 TEST_CASE("aPathLiesInTheLayerWhereAFineMarchFindsIt", "[clouds]") {

@@ -129,6 +129,7 @@ Offsets<ShadeParams<float>> shade_offsets() {
   o.add("cloud_steps", &p.cloud_steps);
   o.add("cloud_bottom", &p.cloud_bottom);
   o.add("cloud_top", &p.cloud_top);
+  o.add("cloud_ground", &p.cloud_ground);
   o.add("cloud_extinction_log2", &p.cloud_extinction_log2);
   o.add("cloud_sun_depth_log2", &p.cloud_sun_depth_log2);
   o.add("cloud_threshold", &p.cloud_threshold);

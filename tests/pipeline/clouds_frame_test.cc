@@ -141,6 +141,26 @@ TEST_CASE("theWaterReflectsTheLayer", "[clouds]") {
   CHECK(test::frame_counter(a, "sun rays through the cloud layer") > 0);
 }
 
+TEST_CASE("aLayerBelowEveryTerrainChangesNoBitAndASetSunReadsNoPath", "[clouds]") {
+  // Below the horizon without water the background stands for terrain past the far distance:
+  // its path ends by the frame's lowest terrain height, above a layer 100 km down.
+  const std::vector<std::string> dry = {"terrain.water_level=null"};
+  auto buried = dry;
+  buried.push_back("sky.clouds={\"altitude\": -1e5, \"coverage\": 1, \"density\": 1}");
+  for (const Backend backend : {Backend::kReference, Backend::kSimd}) {
+    const Frame a = render_clouds(resolve_scene("default", small_cloud_frame(buried)), backend);
+    const Frame b = render_clouds(resolve_scene("default", small_cloud_frame(dry)), backend);
+    CHECK(test::same_bits(a.image.linear, b.image.linear));
+    CHECK(test::frame_counter(a, "view rays through the cloud layer") == 0);
+  }
+  const Frame night = render_clouds(
+      resolve_scene("default",
+                    small_cloud_frame({"sky.clouds={}", "lighting.sun_elevation_deg=-30"})),
+      Backend::kSimd);
+  CHECK(test::frame_counter(night, "sun rays through the cloud layer") == 0);
+  CHECK(test::frame_counter(night, "view rays through the cloud layer") > 0);
+}
+
 TEST_CASE("theTruthReadsTheLayerAlongEachPath", "[clouds]") {
   // An overcast of constant density: every point of a path reads the same, so the truth's
   // midpoint rule is the one point; a broken layer's paths read differently.
