@@ -30,7 +30,7 @@ Real path_density(const ShadeParams<Real>& p, const NoiseLattice& lattice, const
                   const Vec3<Real>& dir, Real horizontal, const CloudPath<Real>& path,
                   const Footprint& footprint_at, ShadeWork& work) {
   const Real inv_steps = Real(1) / Real(p.cloud_steps);  // cloud_steps >= 1
-  const Real span = path.length * horizontal * inv_steps;
+  const Real span = path.length * horizontal * inv_steps * Real(kCloudSpanFootprint);
   Real sum = Real(0);
   for (int k = 0; k < p.cloud_steps; ++k) {
     const Real t = path.start + path.length * ((Real(k) + Real(0.5)) * inv_steps);

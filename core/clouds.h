@@ -30,6 +30,8 @@
 namespace relief {
 
 inline constexpr double kCloudMinSlope = 1e-4;
+// The share of a path's horizontal span that widens its footprint (clouds.cc, path_density).
+inline constexpr double kCloudSpanFootprint = 0.25;
 
 // Where a path from height y0 (camera-relative) along a unit direction of vertical
 // component dy, from 0 to `end`, lies inside the layer: from `start` over `length` (0: it

@@ -116,7 +116,8 @@ HWY_INLINE V CloudMiddleDensity(D d, const ShadeParams<float>& p, const LatticeV
                                 const V3<V>& origin, const V3<V>& dir, V horizontal, V start,
                                 V length, V footprint, M active, ShadeWork& work) {
   const V one = hn::Set(d, 1.0f);
-  const V span = hn::Mul(hn::Mul(length, horizontal), one);
+  const V span =
+      hn::Mul(hn::Mul(hn::Mul(length, horizontal), one), hn::Set(d, float(kCloudSpanFootprint)));
   const V t = hn::Add(start, hn::Mul(length, hn::Set(d, 0.5f)));
   const V x = hn::Add(origin.x, hn::Mul(t, dir.x));
   const V z = hn::Add(origin.z, hn::Mul(t, dir.z));
