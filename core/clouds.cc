@@ -21,10 +21,13 @@ Real octave_fade(Real footprint, Real inv_cell) {
 
 // The mean density over p.cloud_steps points of `path` from `origin` along unit `dir`
 // (camera-relative; the view ray's origin is the camera), `horizontal` the length of dir's
-// (x, z). The footprint at distance t along the path is footprint_at(t), widened to the
-// horizontal span each point stands for: an octave whose cells the path crosses by the dozen
-// averages out along it (to its mean, 0), so it fades as it would under a wide pixel, and a
-// long slanted path tends to the layer's mean instead of reading one cell's all-or-nothing.
+// (x, z). The footprint at distance t along the path is footprint_at(t), widened to a
+// quarter of the horizontal span each point stands for (kCloudSpanFootprint): an octave whose
+// cells the path crosses by the dozen averages out along it (to its mean, 0), so it fades as
+// under a wide pixel, and a long slanted path tends to the layer's mean instead of reading one
+// cell's all-or-nothing. Not the whole span: fading octaves out of the fBm is not averaging
+// the clamped density, and by the whole span the frame moved away from the ground truth
+// (docs/stages.md, "Clouds").
 template <class Real, class Footprint>
 Real path_density(const ShadeParams<Real>& p, const NoiseLattice& lattice, const Vec3<Real>& origin,
                   const Vec3<Real>& dir, Real horizontal, const CloudPath<Real>& path,

@@ -14,7 +14,9 @@
 //   fades out between half a cell and a whole one (the dithering noise's rule, shade.cc);
 //   D = clamp((n - threshold) sharpness, 0, 1), then mean + (D - mean) fade_0: where even the
 //   largest octave is under the footprint the layer holds its mean density E[D].
-// S is sample_lattice<kCubic> of core/interpolant.h.
+// S is sample_lattice<kCubic> of core/interpolant.h. A path's point is read at a footprint of
+// at least kCloudSpanFootprint of the horizontal span it stands for (clouds.cc,
+// path_density), so a long slanted path does not read one cell's all-or-nothing.
 //
 // Domains: the path's vertical direction is floored at kCloudMinSlope in magnitude (its sign
 // kept), so both crossings t = (h - y0) / dy are finite; every length is capped at `end` (at
