@@ -66,11 +66,11 @@ Vec3<Real> shade_water(const ShadeParams<Real>& p, const NoiseLattice& lattice,
   const Vec3<Real>& e = p.extinction_log2;
   const Vec3<Real> transmitted{exp2_det(-e.x * path), exp2_det(-e.y * path), exp2_det(-e.z * path)};
 
-  Vec3<Real> body_light = p.sky_light + p.sun * (Real(0.5) * std::max(Real(0), p.sun_direction.y));
-  if (p.clouds) {  // the sun's part through the cloud layer above the surface point
-    body_light = p.sky_light + (p.sun * (Real(0.5) * std::max(Real(0), p.sun_direction.y))) *
-                                   cloud_sun_share(p, lattice, s, footprint, work);
-  }
+  // The sun's part through the cloud layer above the surface point, where there is one.
+  const Vec3<Real> sun_part = p.sun * (Real(0.5) * std::max(Real(0), p.sun_direction.y));
+  const Vec3<Real> body_light =
+      p.sky_light +
+      (p.clouds ? sun_part * cloud_sun_share(p, lattice, s, footprint, work) : sun_part);
   const Vec3<Real> body = mix(p.shallow, p.deep, f) * body_light;
   const Vec3<Real> one{Real(1), Real(1), Real(1)};
   const Vec3<Real> under = ground * transmitted + body * (one - transmitted);
