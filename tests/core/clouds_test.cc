@@ -43,6 +43,22 @@ ShadeParams<Real> cloud_params(const CloudSettings& s, glm::dvec3 camera = {0, 0
   return make_shade_params<Real>(plan);
 }
 
+// An even overcast 300 units thick from height 1000, extinction 0.002 per unit: full
+// everywhere, so a path's depth is 0.002 x its length exactly.
+CloudSettings even_overcast() {
+  CloudSettings s;
+  s.altitude = 1000.0;
+  s.coverage = 1.0;
+  s.density = 0.002;
+  return s;
+}
+
+// The layer's own light where the cloud is full (the sky's, the sun's through half the layer).
+template <class Real>
+Real full_cloud_light(const ShadeParams<Real>& p) {
+  return p.cloud_sky_light.x + p.cloud_sun_light.x * std::exp2(-p.cloud_sun_depth_log2);
+}
+
 double standard_normal_cdf(double x) {
   return 0.5 * std::erfc(-x / std::sqrt(2.0));
 }
@@ -177,10 +193,7 @@ TEST_CASE("aPathLiesInTheLayerWhereAFineMarchFindsIt", "[clouds]") {
 }
 
 TEST_CASE("theSunsShareThroughTheLayerFallsWithItsDensityAndIsOneAboveIt", "[clouds]") {
-  CloudSettings s;
-  s.altitude = 1000.0;
-  s.coverage = 1.0;  // full everywhere: the path's depth is density x length exactly
-  s.density = 0.002;
+  const CloudSettings s = even_overcast();
   const ShadeParams<double> p = cloud_params<double>(s, {0, 0, 0}, 30.0);
   ShadeWork work;
   const double share = cloud_sun_share(p, cloud_lattice(), Vec3<double>{0, 0, 0}, 0.0, work);
@@ -197,10 +210,7 @@ TEST_CASE("theSunsShareThroughTheLayerFallsWithItsDensityAndIsOneAboveIt", "[clo
 }
 
 TEST_CASE("theLayerOverTheSkyIsOpaqueOnlyWhereItsDepthIs", "[clouds]") {
-  CloudSettings s;
-  s.altitude = 1000.0;
-  s.coverage = 1.0;
-  s.density = 0.002;
+  const CloudSettings s = even_overcast();
   ShadeParams<double> p = cloud_params<double>(s);
   p.fog_enabled = 0;
   ShadeWork work;
@@ -208,8 +218,7 @@ TEST_CASE("theLayerOverTheSkyIsOpaqueOnlyWhereItsDepthIs", "[clouds]") {
   const Vec3<double> up{0, 1, 0};
   const Vec3<double> seen = clouds_over(p, cloud_lattice(), sky, up, 1e11, work);
   const double t = std::exp(-0.002 * 300.0);
-  const double light =
-      p.cloud_sky_light.x + p.cloud_sun_light.x * std::exp2(-p.cloud_sun_depth_log2);
+  const double light = full_cloud_light(p);
   CHECK(seen.x == Approx(sky.x * t + light * (1 - t)).epsilon(1e-6));
   // Looking down from under the layer, or at ground before it: untouched.
   const Vec3<double> down{0, -1, 0};
@@ -221,16 +230,12 @@ TEST_CASE("theLayerOverTheSkyIsOpaqueOnlyWhereItsDepthIs", "[clouds]") {
 TEST_CASE("aPathFromAPointSeesTheLayerAboveIt", "[clouds]") {
   // The water's reflected ray: from a point under an even overcast straight up, the layer's
   // whole thickness, wherever the point lies; from the camera, clouds_over to the bit.
-  CloudSettings s;
-  s.altitude = 1000.0;
-  s.coverage = 1.0;
-  s.density = 0.002;
+  const CloudSettings s = even_overcast();
   ShadeParams<float> p = cloud_params<float>(s);
   p.fog_enabled = 0;
   ShadeWork work;
   const Vec3<float> black{0, 0, 0}, up{0, 1, 0};
-  const float light =
-      p.cloud_sky_light.x + p.cloud_sun_light.x * std::exp2(-p.cloud_sun_depth_log2);
+  const float light = full_cloud_light(p);
   for (const Vec3<float> origin : {Vec3<float>{0, -50, 0}, Vec3<float>{5000, 300, -7000}}) {
     const Vec3<float> c =
         clouds_over_from(p, cloud_lattice(), black, origin, 800.0f, up, 1e11f, work);
