@@ -154,6 +154,16 @@ std::vector<Variation> full_variations(const Scene& scene) {
                      {"lighting.shadow_resolution=" + std::to_string(n)}});
     }
   }
+  // The cloud layer's octaves (core/clouds.h), where the scene has one: each costs a lattice
+  // sample per path through the layer.
+  if (scene.sky.clouds) {
+    for (int n : {2, 3, 5, 8}) {
+      out.push_back({"cloud octaves " + std::to_string(n),
+                     "cloud_octaves",
+                     std::to_string(n),
+                     {"sky.clouds.octaves=" + std::to_string(n)}});
+    }
+  }
   // Combined moves along the axes that buy the most accuracy per millisecond, so that the
   // front is not made of one-knob moves alone.
   const int side = scene_grid_side(scene);

@@ -195,6 +195,29 @@ TEST_CASE("quickSweepOfATinySceneMeasuresEveryConfiguration", "[sweep][cli]") {
   }
 }
 
+TEST_CASE("aSweepOfACloudySceneTurnsTheLayersOctavesAndSkipsItsGlRows", "[sweep][clouds]") {
+  const Scene scene = resolve_scene("clouds", {"viewport.width=64", "viewport.height=48"});
+  const SweepPlan plan = plan_sweep(scene, false, std::nullopt);
+  std::vector<std::string> octaves;
+  for (const SweepConfiguration& c : plan.configurations) {
+    if (c.knob == "cloud_octaves") {
+      octaves.push_back(c.value);
+      CHECK(configured_scene(scene, c).sky.clouds->octaves == std::stoi(c.value));
+    }
+  }
+  // 5 is the preset's own: it collapses into the default row.
+  CHECK(octaves == std::vector<std::string>{"2", "3", "8"});
+  bool gl_skipped = false;
+  for (const SweepSkipped& s : plan.skipped) {
+    gl_skipped = gl_skipped || s.reason.find("sky.clouds") != std::string::npos;
+  }
+  CHECK(gl_skipped);
+  const SweepPlan clear = plan_sweep(resolve_scene("default", {}), false, std::nullopt);
+  for (const SweepConfiguration& c : clear.configurations) {
+    CHECK(c.knob != "cloud_octaves");
+  }
+}
+
 TEST_CASE("sweepRefusesBadOptionsWithNothingWritten", "[sweep][cli]") {
   test::TempDir dir("sweep-bad");
   const std::filesystem::path out = dir.path() / "out";
