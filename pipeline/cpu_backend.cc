@@ -299,7 +299,7 @@ void CpuBackend<Real>::prepare(StageId id) {
       shade_ = make_shade_params<Real>(shading_plan_);
       add_planet_shading(plan_, scene_.terrain.base_height, shade_);
       apply_skips(request_.skips, water_in_view(), shade_);
-      shade_.cloud_steps = std::clamp(request_.cloud_steps, 1, limits::kMaxCloudSteps);
+      shade_.cloud_steps = request_.cloud_steps;  // 1 ... kMaxCloudSteps (render_with)
       const int rows = band_rows_ < 0
                            ? state_.height
                            : std::max(0, std::min(state_.height, band_first_row_ + band_rows_) -

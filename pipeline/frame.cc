@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 
+#include "core/limits.h"
 #include "pipeline/cpu_backend.h"
 #include "pipeline/gl_backend.h"
 #include "pipeline/stage_table.h"
@@ -72,6 +73,11 @@ template <class Real>
 Frame render_with(const Scene& scene, const SceneResources& resources,
                   const FrameRequest& request) {
   const Clock::time_point start = Clock::now();
+  if (request.cloud_steps < 1 || request.cloud_steps > limits::kMaxCloudSteps) {
+    throw std::invalid_argument(
+        "FrameRequest::cloud_steps = " + std::to_string(request.cloud_steps) + "; allowed 1 ... " +
+        std::to_string(limits::kMaxCloudSteps));
+  }
   std::unique_ptr<FrameBackend> backend;
   if (request.backend == Backend::kGl) {
     backend = make_gl_backend(scene, resources, request);

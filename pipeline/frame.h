@@ -69,7 +69,8 @@ struct FrameRequest {
   // Null: stage 2's own LOD rule (§4.1).
   std::shared_ptr<const OctaveCountRule> octave_count_rule;
   // Points the cloud layer reads along each path (core/clouds.h): 1 in a frame; the ground
-  // truth takes more. The CPU backends only, 1 ... kMaxCloudSteps.
+  // truth takes more. The CPU backends only, 1 ... kMaxCloudSteps (render_frame throws
+  // std::invalid_argument outside).
   int cloud_steps = 1;
   // Memory the rasteriser's bins may take (raster/rasterize.h); a frame whose bins need more
   // throws MemoryLimitError.

@@ -3,11 +3,13 @@
 // layer and over water; a layer holding no cloud changes no bit; an opaque overcast leaves
 // the ground lit as if the sun were off; its work counted; its fields refused out of range.
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <catch2/catch.hpp>
 
+#include "core/limits.h"
 #include "core/scene/scene_json.h"
 #include "pipeline/frame.h"
 #include "pipeline/scene_resources.h"
@@ -174,6 +176,9 @@ TEST_CASE("theTruthReadsTheLayerAlongEachPath", "[clouds]") {
   }
   CHECK(test::frame_counter(many, "cloud lattice samples") >
         8 * test::frame_counter(one, "cloud lattice samples"));
+  for (const int steps : {0, -1, limits::kMaxCloudSteps + 1}) {
+    CHECK_THROWS_AS(render_clouds(constant, Backend::kReference, steps), std::invalid_argument);
+  }
   const Scene broken = resolve_scene("default", small_cloud_frame({"sky.clouds={}"}));
   CHECK_FALSE(test::same_bits(render_clouds(broken, Backend::kReferenceDouble, 1).image.linear,
                               render_clouds(broken, Backend::kReferenceDouble, 16).image.linear));
