@@ -4,11 +4,13 @@
 // reads one point per path (cloud_steps = 1; the ground truth's several points run in the
 // double reference only). An octave whose fade is 0 in every lane that needs it is skipped, as
 // the scalar loop stops there per pixel (the fades fall with each octave: a cell is exactly
-// half the last). Lanes outside a mask read the lattice at 0 and are discarded. The density, the
-// sun's share and the layer over a radiance are out of line: called from four places of the
-// shading (terrain, background, the water's reflection and body), inlined they multiplied the
-// shading kernel's compile time and size for a call per vector of pixels.
-// Included by a kernel's -inl.h inside its per-target section (Highway's re-inclusion guard).
+// half the last). Lanes outside a mask read the lattice at 0 and are discarded.
+// Compiled in its own translation unit, simd/clouds.cc, whose out-of-line entries the shading
+// calls (simd/cloud_calls-inl.h): inlined in four places of simd/shade.cc (terrain, background,
+// the water's reflection and body) they nearly doubled its Release compile and more than doubled
+// its compile under ASan + UBSan, already the slowest of the build (over 13 minutes before the
+// layer on the 2-core machine).
+// Included by simd/clouds.cc inside its per-target section (Highway's re-inclusion guard).
 #if defined(RELIEF_SIMD_CLOUDS_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef RELIEF_SIMD_CLOUDS_INL_H_
 #undef RELIEF_SIMD_CLOUDS_INL_H_
@@ -62,8 +64,8 @@ HWY_INLINE V OctaveFade(D d, V footprint, float inv_cell) {
 
 // cloud_density (clouds.cc) for the lanes of `active`; the others hold the mean density.
 template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
-HWY_NOINLINE V CloudDensity(D d, const ShadeParams<float>& p, const LatticeView& lattice, V x, V z,
-                            V footprint, M active, ShadeWork& work) {
+HWY_INLINE V CloudDensity(D d, const ShadeParams<float>& p, const LatticeView& lattice, V x, V z,
+                          V footprint, M active, ShadeWork& work) {
   const V zero = hn::Zero(d);
   const V mean = hn::Set(d, p.cloud_mean_density);
   const V fade0 = OctaveFade(d, footprint, p.cloud_inv_scale[0]);
@@ -130,8 +132,8 @@ HWY_INLINE V CloudMiddleDensity(D d, const ShadeParams<float>& p, const LatticeV
 
 // cloud_sun_share (clouds.cc) of the points `position` of the lanes of `active`; 1 elsewhere.
 template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
-HWY_NOINLINE V CloudSunShare(D d, const ShadeParams<float>& p, const LatticeView& lattice,
-                             const V3<V>& position, V footprint, M active, ShadeWork& work) {
+HWY_INLINE V CloudSunShare(D d, const ShadeParams<float>& p, const LatticeView& lattice,
+                           const V3<V>& position, V footprint, M active, ShadeWork& work) {
   const V one = hn::Set(d, 1.0f);
   const Vec3<float>& s = p.sun_direction;
   if (!(s.y > 0.0f)) {
@@ -158,9 +160,9 @@ HWY_NOINLINE V CloudSunShare(D d, const ShadeParams<float>& p, const LatticeView
 // the camera-relative `origin` (`origin_distance` from the camera) up to `end` through the
 // layer; the radiance itself elsewhere.
 template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
-HWY_NOINLINE V3<V> CloudsOverFrom(D d, const ShadeParams<float>& p, const LatticeView& lattice,
-                                  const V3<V>& radiance, const V3<V>& origin, V origin_distance,
-                                  const V3<V>& dir, V end, M active, ShadeWork& work) {
+HWY_INLINE V3<V> CloudsOverFrom(D d, const ShadeParams<float>& p, const LatticeView& lattice,
+                                const V3<V>& radiance, const V3<V>& origin, V origin_distance,
+                                const V3<V>& dir, V end, M active, ShadeWork& work) {
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0f);
   V start, length;
   CloudPathLanes(d, p, origin.y, dir.y, end, start, length);
@@ -187,16 +189,6 @@ HWY_NOINLINE V3<V> CloudsOverFrom(D d, const ShadeParams<float>& p, const Lattic
   const V3<V> over =
       Add3(Scale3(radiance, transmittance), Scale3(seen, hn::Sub(one, transmittance)));
   return Select3(crossing, over, radiance);
-}
-
-// clouds_over (clouds.cc): the same from the camera.
-template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
-HWY_INLINE V3<V> CloudsOver(D d, const ShadeParams<float>& p, const LatticeView& lattice,
-                            const V3<V>& radiance, const V3<V>& dir, V end, M active,
-                            ShadeWork& work) {
-  const V zero = hn::Zero(d);
-  return CloudsOverFrom(d, p, lattice, radiance, V3<V>{zero, zero, zero}, zero, dir, end, active,
-                        work);
 }
 
 }  // namespace HWY_NAMESPACE

@@ -23,7 +23,7 @@
 #include "core/shade.h"
 #include "core/stage_params.h"
 #include "simd/background_rays-inl.h"
-#include "simd/clouds-inl.h"
+#include "simd/cloud_calls-inl.h"
 #include "simd/gradient_shade-inl.h"
 #include "simd/planet_shade-inl.h"
 #include "simd/shade_vec3-inl.h"
@@ -55,9 +55,9 @@ HWY_INLINE V3<V> TerrainRadiance(D d, const ShadeContext& ctx, const AttributeVe
   // The cloud layer's shadow (clouds.cc), at the pixel's footprint.
   AttributeVectors<V> lit = a;
   if (p.clouds) {
-    lit.sun =
-        hn::Mul(a.sun, CloudSunShare(d, p, ctx.lattice, position,
-                                     hn::Mul(distance, hn::Set(d, p.pixel_angle)), covered, work));
+    lit.sun = hn::Mul(
+        a.sun, CloudSunShareLanes(p, ctx.lattice, position,
+                                  hn::Mul(distance, hn::Set(d, p.pixel_angle)), covered, work));
   }
   V3<V> radiance = p.gradient_enabled
                        ? GouraudLight(d, p, GradientAlbedo(d, p, relative_y), lit.lambert, lit.ny,
@@ -94,7 +94,8 @@ HWY_INLINE V3<V> TerrainRadiance(D d, const ShadeContext& ctx, const AttributeVe
     work.fogged_pixels += hn::CountTrue(d, covered);
     radiance = ApplyFog(d, p, radiance, view, fog_distance);
   }
-  return p.clouds ? CloudsOver(d, p, ctx.lattice, radiance, view, fog_distance, covered, work)
+  return p.clouds ? CloudsOverLanes(p, ctx.lattice, radiance, V3<V>{zero, zero, zero}, zero, view,
+                                    fog_distance, covered, work)
                   : radiance;
 }
 
@@ -130,7 +131,9 @@ HWY_INLINE V3<V> BackgroundRadiance(D d, const ShadeContext& ctx, int px0, int p
       end = hn::IfThenElse(below, StdMin(end, hn::Div(hn::Set(d, p.cloud_ground), dir.y)), end);
     }
   }
-  return p.clouds ? CloudsOver(d, p, ctx.lattice, result, dir, end, background, work) : result;
+  return p.clouds ? CloudsOverLanes(p, ctx.lattice, result, V3<V>{zero, zero, zero}, zero, dir, end,
+                                    background, work)
+                  : result;
 }
 
 // One vector of pixels k .. k + lanes - 1 of a row, `valid` the lanes inside the rectangle;

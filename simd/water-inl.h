@@ -16,7 +16,7 @@
 #include "core/limits.h"
 #include "core/shade.h"
 #include "core/stage_params.h"
-#include "simd/clouds-inl.h"
+#include "simd/cloud_calls-inl.h"
 #include "simd/det_math-inl.h"
 #include "simd/lattice-inl.h"
 #include "simd/shade_vec3-inl.h"
@@ -116,8 +116,8 @@ HWY_INLINE V3<V> ShadeWater(D d, const ShadeParams<float>& p, const LatticeView&
   reflected.y = hn::Abs(reflected.y);
   V3<V> sky = SkyRadiance(d, p, skybox, reflected);
   if (p.clouds) {  // from the surface point, to the sky
-    sky = CloudsOverFrom(d, p, lattice, sky, s, surface_distance, reflected,
-                         hn::Set(d, float(limits::kMaxCameraRelativeDistance)), active, work);
+    sky = CloudsOverLanes(p, lattice, sky, s, surface_distance, reflected,
+                          hn::Set(d, float(limits::kMaxCameraRelativeDistance)), active, work);
   }
 
   const float eta = float(kRelativeIndex);
@@ -137,7 +137,7 @@ HWY_INLINE V3<V> ShadeWater(D d, const ShadeParams<float>& p, const LatticeView&
   if (p.clouds) {  // the sun's part through the cloud layer above the surface point
     body_light =
         Add3(Set3(d, p.sky_light),
-             Scale3(Set3(d, sun_part), CloudSunShare(d, p, lattice, s, footprint, active, work)));
+             Scale3(Set3(d, sun_part), CloudSunShareLanes(p, lattice, s, footprint, active, work)));
   }
   const V3<V> body = Mul3(Mix3(Set3(d, p.shallow), Set3(d, p.deep), f), body_light);
   const V3<V> under =
