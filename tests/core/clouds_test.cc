@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <random>
 
 #include <catch2/catch.hpp>
 
@@ -17,6 +16,7 @@
 #include "core/lattice.h"
 #include "core/shading_plan.h"
 #include "core/stage_params.h"
+#include "tests/support/test_support.h"
 
 namespace relief {
 namespace {
@@ -74,11 +74,11 @@ TEST_CASE("theNormalQuantileInvertsTheNormalDistribution", "[clouds]") {
 
 // Points of the layer spread over many cells, seeded.
 std::vector<std::pair<double, double>> layer_points(int count) {
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> u(-2e5, 2e5);
+  test::TestRandom random(11);
   std::vector<std::pair<double, double>> out;
   for (int i = 0; i < count; ++i) {
-    out.emplace_back(u(rng), u(rng));
+    const double x = random.uniform(-2e5, 2e5);
+    out.emplace_back(x, random.uniform(-2e5, 2e5));
   }
   return out;
 }
@@ -156,20 +156,20 @@ TEST_CASE("aPathLiesInTheLayerWhereAFineMarchFindsIt", "[clouds]") {
   // The band's heights relative to the camera: [-50, 250] (the camera inside), [100, 400]
   // (below it), [-900, -600] (above it); rays up, down, level and grazing; ends before, inside
   // and beyond the band.
-  std::mt19937_64 rng(3);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  test::TestRandom random(3);
+  const auto unit = [&] { return random.uniform(-1.0, 1.0); };
   for (const double bottom : {-50.0, 100.0, -900.0}) {
     CloudSettings s;
     s.altitude = bottom;
     s.thickness = 300.0;
     const ShadeParams<double> p = cloud_params<double>(s);
     for (int trial = 0; trial < 400; ++trial) {
-      const double y0 = trial % 4 == 0 ? 0.0 : 600.0 * unit(rng);
-      double dy = trial % 7 == 0 ? 0.0 : unit(rng);
+      const double y0 = trial % 4 == 0 ? 0.0 : 600.0 * unit();
+      double dy = trial % 7 == 0 ? 0.0 : unit();
       if (trial % 11 == 0) {
-        dy = 1e-5 * unit(rng);
+        dy = 1e-5 * unit();
       }
-      const double end = trial % 5 == 0 ? 1e11 : 3000.0 * (unit(rng) + 1.0);
+      const double end = trial % 5 == 0 ? 1e11 : 3000.0 * (unit() + 1.0);
       const CloudPath<double> path = cloud_path(p, y0, dy, end);
       REQUIRE(std::isfinite(path.start));
       REQUIRE(std::isfinite(path.length));
