@@ -121,8 +121,10 @@ template <class Real>
 Vec3<Real> open_water(const ShadeParams<Real>& p, const ShadeResources& r, const Vec3<Real>& view,
                       const Vec3<Real>& d, Real surface, ShadeWork& work) {
   const Real footprint = surface_footprint(p, surface, view);
+  // No cast shadow: the horizon cache ends with the terrain drawn (docs/stages.md, "Cast
+  // shadows on the water").
   const Vec3<Real> open = shade_water(p, *r.lattice, r.skybox, view, surface, Real(1e6),
-                                      Vec3<Real>{0, 0, 0}, footprint, work);
+                                      Vec3<Real>{0, 0, 0}, footprint, Real(1), work);
   ++work.water_pixels;
   if (!p.fog_enabled) {
     return open;
@@ -245,8 +247,9 @@ Vec3<Real> terrain_radiance(const ShadeParams<Real>& p, const ShadeResources& r,
       water_view = to_local_frame(view, up);
     }
     const Real footprint = surface_footprint(p, surface, water_view);
-    radiance = shade_water(p, *r.lattice, r.skybox, water_view, surface,
-                           std::max(Real(0), a.water_depth), radiance, footprint, work);
+    radiance =
+        shade_water(p, *r.lattice, r.skybox, water_view, surface, std::max(Real(0), a.water_depth),
+                    radiance, footprint, a.water_sun, work);
     fog_distance = surface;
     ++work.water_pixels;
   }

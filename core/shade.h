@@ -45,6 +45,10 @@ struct PixelAttributes {
   // shading.mode = gradient: the vertices' Lambert terms interpolated (gradient_shade.h);
   // not read otherwise.
   Real lambert;
+  // Where the view ray meets the water surface before this ground point: the sun disc's
+  // visible share at that surface point (sun_visibility.h, water.h); 1 without cast shadows.
+  // Read only there.
+  Real water_sun;
 };
 
 // The work stage 8 did, counted per pixel (docs/stages.md, "Skipped work").
@@ -105,11 +109,12 @@ struct ShadingInputs {
   std::span<const float> dx_ddx, dx_ddy, dz_ddx, dz_ddy, height_ddx, height_ddy;
   std::span<const float> nx, ny, nz;  // interpolated normal (renormalised here)
   std::span<const float> slope;
-  std::span<const float> water_depth;   // interpolated per-vertex depth (§4.3)
-  std::span<const float> drop = {};     // a planet's curvature drop; empty: 0 (the plane)
-  std::span<const float> sun = {};      // the sun disc's visible share; empty: 1 (no shadows)
-  std::span<const float> sky = {};      // the sky's open share; empty: 1 (no sky light)
-  std::span<const float> lambert = {};  // gradient mode's interpolated Lambert term; empty: 0
+  std::span<const float> water_depth;     // interpolated per-vertex depth (§4.3)
+  std::span<const float> drop = {};       // a planet's curvature drop; empty: 0 (the plane)
+  std::span<const float> sun = {};        // the sun disc's visible share; empty: 1 (no shadows)
+  std::span<const float> sky = {};        // the sky's open share; empty: 1 (no sky light)
+  std::span<const float> lambert = {};    // gradient mode's interpolated Lambert term; empty: 0
+  std::span<const float> water_sun = {};  // the sun's share at the water surface; empty: 1
 
   template <class Real>
   PixelAttributes<Real> at(std::size_t k) const {
@@ -130,7 +135,8 @@ struct ShadingInputs {
             drop.empty() ? Real(0) : Real(drop[k]),
             sun.empty() ? Real(1) : Real(sun[k]),
             sky.empty() ? Real(1) : Real(sky[k]),
-            lambert.empty() ? Real(0) : Real(lambert[k])};
+            lambert.empty() ? Real(0) : Real(lambert[k]),
+            water_sun.empty() ? Real(1) : Real(water_sun[k])};
   }
 };
 

@@ -20,32 +20,34 @@ Real power_of_half_cosine(Real c, int squarings) {
   return x;
 }
 
-// The sun disc (20 x the sun) with its smooth edge and the halo around it, in direction d.
+// The sun disc (20 x the sun) with its smooth edge and the halo around it, in direction d; the
+// disc times `disc_share`, the share of it that the terrain leaves in view (sky.h).
 // Under the atmosphere no halo: its haze scatters the glow (atmosphere.h), and p.sun is
 // already the light that reaches the camera's height.
 template <class Real>
-Vec3<Real> sun_light(const ShadeParams<Real>& p, const Vec3<Real>& d) {
+Vec3<Real> sun_light(const ShadeParams<Real>& p, const Vec3<Real>& d, Real disc_share) {
   const Vec3<Real>& sun = p.sun;
   const Real c = dot(d, p.sun_direction);
   const Real inner = p.sun_cos_inner, outer = p.sun_cos_outer;
   const Real disc = inner > outer ? smooth01((c - outer) / (inner - outer)) : Real(c >= inner);
   if (p.atmosphere != 0) {
-    return sun * (Real(20) * disc);
+    return sun * (Real(20) * disc * disc_share);
   }
   const Real halo = Real(0.06) * power_of_half_cosine(c, 5);
-  return sun * (Real(20) * disc + halo);
+  return sun * (Real(20) * disc * disc_share + halo);
 }
 
 }  // namespace
 
 template <class Real>
-Vec3<Real> sky_radiance(const ShadeParams<Real>& p, const Skybox* skybox, const Vec3<Real>& d) {
+Vec3<Real> sky_radiance(const ShadeParams<Real>& p, const Skybox* skybox, const Vec3<Real>& d,
+                        Real disc_share) {
   if (p.skybox != 0 && skybox != nullptr) {
     const Vec3<Real> color = skybox_radiance(*skybox, d);
-    return p.skybox_sun != 0 ? color + sun_light(p, d) : color;
+    return p.skybox_sun != 0 ? color + sun_light(p, d, disc_share) : color;
   }
   if (p.atmosphere != 0) {
-    return atmosphere_sky(p, d) + sun_light(p, d);
+    return atmosphere_sky(p, d) + sun_light(p, d, disc_share);
   }
   const Vec3<Real>& zenith = p.zenith;
   const Vec3<Real>& horizon = p.horizon;
@@ -53,7 +55,7 @@ Vec3<Real> sky_radiance(const ShadeParams<Real>& p, const Skybox* skybox, const 
   if (d.y > Real(0)) {
     color = mix(horizon, zenith, std::sqrt(d.y));  // domain: d.y > 0
   }
-  return color + sun_light(p, d);
+  return color + sun_light(p, d, disc_share);
 }
 
 template <class Real>
@@ -81,9 +83,9 @@ Vec3<Real> apply_fog(const ShadeParams<Real>& p, const Vec3<Real>& radiance, con
 }
 
 template Vec3<float> sky_radiance<float>(const ShadeParams<float>&, const Skybox*,
-                                         const Vec3<float>&);
+                                         const Vec3<float>&, float);
 template Vec3<double> sky_radiance<double>(const ShadeParams<double>&, const Skybox*,
-                                           const Vec3<double>&);
+                                           const Vec3<double>&, double);
 template Vec3<float> fog_color<float>(const ShadeParams<float>&, const Vec3<float>&);
 template Vec3<double> fog_color<double>(const ShadeParams<double>&, const Vec3<double>&);
 template Vec3<float> apply_fog<float>(const ShadeParams<float>&, const Vec3<float>&,

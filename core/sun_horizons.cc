@@ -82,6 +82,8 @@ ShadowPlan make_shadow_plan(const Scene& scene, const FramePlan& frame) {
   }
   plan.enabled = light.shadows;
   plan.sky = light.sky_occlusion;
+  plan.water = frame.water_enabled;
+  plan.water_level = frame.relative_water_level;
   const double elevation = light.sun_elevation_deg, radius = scene.sky.sun_disc_deg;
   const double azimuth = light.sun_azimuth_deg * kDegree;
   plan.axis_x = std::sin(azimuth);
@@ -175,6 +177,8 @@ ShadowParams<Real> make_shadow_params(const ShadowPlan& plan) {
   p.sin_radius = Real(plan.sin_radius);
   p.lit_tangent = Real(plan.lit_tangent);
   p.dark_tangent = Real(plan.dark_tangent);
+  p.water = plan.water ? 1 : 0;
+  p.water_level = Real(plan.water_level);
   return p;
 }
 

@@ -80,6 +80,10 @@ struct ShadowPlan {
   // tan(elevation - radius) and tan(elevation + radius): a horizon below the first lights the
   // whole disc, one above the second hides it (each clamped to +-1e30 at +-90 degrees).
   double lit_tangent = 0, dark_tangent = 0;
+  // The frame's water (terrain.water_level above some terrain, the camera above it): the
+  // level's samples are raised to its surface (raise_to_water_surface), camera-relative.
+  bool water = false;
+  double water_level = 0;
 };
 
 // Camera-relative u of the last sample of a level's rows (ShadowPlan in double, ShadowParams
@@ -121,6 +125,8 @@ struct ShadowParams {
   Real reach = 0, sky_reach = 0;
   Real sin_elevation = 0, cos_elevation = 1, sin_radius = 0;
   Real lit_tangent = 0, dark_tangent = 0;
+  std::int32_t water = 0;  // ShadowPlan::water
+  Real water_level = 0;
 };
 
 template <class Real>
@@ -218,6 +224,26 @@ LevelRange shadow_level_range(const ShadowPlan& plan, const DrawnExtent& drawn);
 template <class Real>
 void shadow_row_positions(const ShadowParams<Real>& params, int level, int row, std::span<Real> dx,
                           std::span<Real> dz, std::span<Real> nu);
+
+// Where the frame has water (p.water), each of `heights` below the water level raised to it:
+// the cache then holds the horizons of the ground and of the water surface, the one seen by
+// the sun where it lies higher. A point on the surface (the glint, core/water.h) sees the sun
+// over the terrain around the water, not over the lake bed beneath it, whose samples would
+// set a horizon close below the point that the point's lift cannot undo (sun_visibility.h:
+// the horizon of a sample lowered by lift / run to the same occluder understates a raised
+// point's horizon, which farther, higher terrain may set). Ground under the water then takes
+// the share of the surface above it: the light reaches it through that surface. Raising
+// changes nothing for a point at or above the water level (the raised samples lie no higher
+// than it, and the sun is above the horizon wherever a share is computed).
+template <class Real>
+void raise_to_water_surface(const ShadowParams<Real>& p, std::span<Real> heights) {
+  if (p.water == 0) {
+    return;
+  }
+  for (Real& h : heights) {
+    h = std::max(h, p.water_level);
+  }
+}
 
 // The work of the sweep (docs/stages.md, "Skipped work").
 struct HorizonWork {

@@ -42,7 +42,8 @@ Vec3<Real> wave_normal(const ShadeParams<Real>& p, const NoiseLattice& lattice, 
 template <class Real>
 Vec3<Real> shade_water(const ShadeParams<Real>& p, const NoiseLattice& lattice,
                        const Skybox* skybox, const Vec3<Real>& view, Real surface_distance,
-                       Real depth, const Vec3<Real>& ground, Real footprint, ShadeWork& work) {
+                       Real depth, const Vec3<Real>& ground, Real footprint, Real sun_share,
+                       ShadeWork& work) {
   const Real f = smooth01(depth * p.inv_full_depth);
   const Vec3<Real> s = view * surface_distance;
   const Vec3<Real> n = wave_normal(p, lattice, s.x, s.z, p.wave_strength * f, footprint);
@@ -52,7 +53,7 @@ Vec3<Real> shade_water(const ShadeParams<Real>& p, const NoiseLattice& lattice,
   const Real fresnel = Real(kFresnelF0) + Real(1 - kFresnelF0) * (m * m * m * m * m);
   Vec3<Real> reflected = view - n * (Real(2) * dot(view, n));
   reflected.y = std::abs(reflected.y);  // a steep wave must not reflect below the horizon
-  Vec3<Real> sky = sky_radiance(p, skybox, reflected);
+  Vec3<Real> sky = sky_radiance(p, skybox, reflected, sun_share);
   if (p.clouds) {  // from the surface point, to the sky
     sky = clouds_over_from(p, lattice, sky, s, surface_distance, reflected,
                            Real(limits::kMaxCameraRelativeDistance), work);
@@ -66,8 +67,10 @@ Vec3<Real> shade_water(const ShadeParams<Real>& p, const NoiseLattice& lattice,
   const Vec3<Real>& e = p.extinction_log2;
   const Vec3<Real> transmitted{exp2_det(-e.x * path), exp2_det(-e.y * path), exp2_det(-e.z * path)};
 
-  // The sun's part through the cloud layer above the surface point, where there is one.
-  const Vec3<Real> sun_part = p.sun * (Real(0.5) * std::max(Real(0), p.sun_direction.y));
+  // The sun's part past the terrain's cast shadow (x 1 without one: the same bits) and through
+  // the cloud layer above the surface point, where there is one.
+  const Vec3<Real> sun_part =
+      p.sun * (Real(0.5) * std::max(Real(0), p.sun_direction.y)) * sun_share;
   const Vec3<Real> body_light =
       p.sky_light +
       (p.clouds ? sun_part * cloud_sun_share(p, lattice, s, footprint, work) : sun_part);
@@ -84,9 +87,9 @@ template Vec3<double> wave_normal<double>(const ShadeParams<double>&, const Nois
                                           double, double, double);
 template Vec3<float> shade_water<float>(const ShadeParams<float>&, const NoiseLattice&,
                                         const Skybox*, const Vec3<float>&, float, float,
-                                        const Vec3<float>&, float, ShadeWork&);
+                                        const Vec3<float>&, float, float, ShadeWork&);
 template Vec3<double> shade_water<double>(const ShadeParams<double>&, const NoiseLattice&,
                                           const Skybox*, const Vec3<double>&, double, double,
-                                          const Vec3<double>&, double, ShadeWork&);
+                                          const Vec3<double>&, double, double, ShadeWork&);
 
 }  // namespace relief

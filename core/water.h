@@ -28,11 +28,15 @@ namespace relief {
 // size on the surface, world units.
 // `lattice`: the terrain's noise lattice, which the waves reuse. The reflected sky is seen
 // through the cloud layer where the scene has one (clouds.h; its sun glint so shadowed by the
-// clouds), its work counted into `work`.
+// clouds), its work counted into `work`. `sun_share` in [0, 1]: the sun disc's share that the
+// terrain leaves in view from the surface point (cast shadows, sun_visibility.h; 1 without
+// them): it scales the sun glint (the reflected disc, not the sky's halo) and the sunlit part
+// of the water body, as a cast shadow darkens the ground.
 template <class Real>
 Vec3<Real> shade_water(const ShadeParams<Real>& params, const NoiseLattice& lattice,
                        const Skybox* skybox, const Vec3<Real>& view, Real surface_distance,
-                       Real depth, const Vec3<Real>& ground, Real footprint, ShadeWork& work);
+                       Real depth, const Vec3<Real>& ground, Real footprint, Real sun_share,
+                       ShadeWork& work);
 
 // The wave normal at camera-relative surface position (x, z), for bump strength `strength`.
 template <class Real>

@@ -67,6 +67,7 @@ void CpuBackend<Real>::run_shadow_heights(std::size_t begin, std::size_t end) {
       kernels_.sketch(params_.sketch, plan_.terrain.sketch->heights, IndexRange{0, std::size_t(n)},
                       dx, dz, nu, {}, heights);
     }
+    raise_to_water_surface(shadow_, heights);
   }
   const std::lock_guard<std::mutex> lock(work_mutex_);
   shadow_fbm_work_.points += work.points;

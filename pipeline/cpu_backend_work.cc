@@ -209,6 +209,12 @@ void CpuBackend<Real>::describe(StageId id, StageTime& time) const {
         count("pixels with the sun disc's share evaluated", shadow.evaluated);
         count("pixels in full shadow", shadow.dark);
         count("pixels beyond the shadow cache", shadow.outside);
+        if (shade_.water_enabled != 0 && shade_.terrain_water != 0) {
+          const ShadowWork& water = w.water_shadow;
+          count("water surface shadow lookups", water.pixels);
+          count("water surface points proven lit", water.lit);
+          count("water surface points in full shadow", water.dark);
+        }
       }
       if (shadow_.sky != 0) {
         count("sky lookups", w.sky.pixels);

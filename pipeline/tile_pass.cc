@@ -24,7 +24,7 @@ std::int64_t nanoseconds_between(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(b - a).count();
 }
 
-// A tile's scratch buffers: visibility, attributes and linear radiance (about 0.3 MB in
+// A tile's scratch buffers: visibility, attributes and linear radiance (about 0.8 MB in
 // double), allocated per tile so that concurrent tiles never share them.
 template <class Real>
 struct TileScratch {
@@ -277,6 +277,8 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
         std::is_same_v<Real, float> && kernels_.shade == KernelKind::kHighway;
     tile_sun_shares(shadows_, kernels_.sun, highway_shade, vis, scratch->attributes, work.shadow);
     tile_sky_shares(shadows_, kernels_.sky, highway_shade, vis, scratch->attributes, work.sky);
+    tile_water_sun_shares(shadows_, shade_, kernels_.sun, highway_shade, vis, scratch->attributes,
+                          work.water_shadow);
   }
   const Clock::time_point shadowed = Clock::now();
 
@@ -285,29 +287,11 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
   bool shaded_simd = false;
   if constexpr (std::is_same_v<Real, float>) {
     if (kernels_.shade == KernelKind::kHighway) {
-      const TileAttributes<float>& a = scratch->attributes;
-      constexpr std::size_t n = TileAttributes<float>::kPixels;
-      const ShadingInputs in{
-          {vis.primitive, n},
-          {a.dx, n},
-          {a.dz, n},
-          {a.height, n},
-          {a.dx_ddx, n},
-          {a.dx_ddy, n},
-          {a.dz_ddx, n},
-          {a.dz_ddy, n},
-          {a.height_ddx, n},
-          {a.height_ddy, n},
-          {a.nx, n},
-          {a.ny, n},
-          {a.nz, n},
-          {a.slope, n},
-          {a.water_depth, n},
-          streams_.drop.empty() ? std::span<const float>{} : std::span<const float>(a.drop, n),
-          shadows_.params != nullptr ? std::span<const float>(a.sun, n) : std::span<const float>{},
-          shadows_.sky != nullptr ? std::span<const float>(a.sky, n) : std::span<const float>{},
-          streams_.lambert.empty() ? std::span<const float>{}
-                                   : std::span<const float>(a.lambert, n)};
+      const bool water_sun =
+          shadows_.params != nullptr && shade_.water_enabled && shade_.terrain_water;
+      const ShadingInputs in = scratch->attributes.inputs(
+          vis.primitive, {!streams_.drop.empty(), shadows_.params != nullptr,
+                          shadows_.sky != nullptr, !streams_.lambert.empty(), water_sun});
       simd::shade_rect(shade_, resources_, in, vis.x0, vis.y0, vis.width, vis.height,
                        raster::kTileSize, std::span<float>(scratch->rgb), work.shade);
       shaded_simd = true;

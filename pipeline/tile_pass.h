@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <mutex>
 #include <span>
+#include <type_traits>
 
 #include "core/shade.h"
 #include "core/sky_horizons.h"
@@ -55,11 +56,48 @@ struct TileAttributes {
   Real sun[kPixels];      // the sun disc's visible share (sun_visibility.h); 1 without shadows
   Real sky[kPixels];      // the sky's open share (sky_horizons.h); 1 without sky light
   Real lambert[kPixels];  // gradient mode's interpolated Lambert term (gradient_shade.h)
+  // The sun's share at the water surface in front of the pixel's ground (tile_shadows.h); 1
+  // without cast shadows, and where no water lies in front.
+  Real water_sun[kPixels];
 
   PixelAttributes<Real> at(std::size_t k) const {
-    return {dx[k],     dz[k],          height[k],     dx_ddx[k], dx_ddy[k], dz_ddx[k],
-            dz_ddy[k], height_ddx[k],  height_ddy[k], nx[k],     ny[k],     nz[k],
-            slope[k],  water_depth[k], drop[k],       sun[k],    sky[k],    lambert[k]};
+    return {dx[k],     dz[k],     height[k],     dx_ddx[k],      dx_ddy[k],
+            dz_ddx[k], dz_ddy[k], height_ddx[k], height_ddy[k],  nx[k],
+            ny[k],     nz[k],     slope[k],      water_depth[k], drop[k],
+            sun[k],    sky[k],    lambert[k],    water_sun[k]};
+  }
+
+  // The tile as stage 8's Highway kernel reads it (core/shade.h's ShadingInputs), the optional
+  // fields empty where the frame has none (read as their constants there).
+  struct Present {
+    bool drop, sun, sky, lambert, water_sun;
+  };
+  ShadingInputs inputs(const std::uint32_t* primitive,
+                       Present present) const requires std::is_same_v<Real, float> {
+    constexpr std::size_t n = kPixels;
+    const auto optional = [](bool on, const float* field) {
+      return on ? std::span<const float>(field, n) : std::span<const float>{};
+    };
+    return {{primitive, n},
+            {dx, n},
+            {dz, n},
+            {height, n},
+            {dx_ddx, n},
+            {dx_ddy, n},
+            {dz_ddx, n},
+            {dz_ddy, n},
+            {height_ddx, n},
+            {height_ddy, n},
+            {nx, n},
+            {ny, n},
+            {nz, n},
+            {slope, n},
+            {water_depth, n},
+            optional(present.drop, drop),
+            optional(present.sun, sun),
+            optional(present.sky, sky),
+            optional(present.lambert, lambert),
+            optional(present.water_sun, water_sun)};
   }
 };
 
@@ -69,8 +107,9 @@ struct TileWork {
   std::uint64_t tile_triangles = 0;  // (triangle, tile) pairs rasterised
   std::uint64_t covered_pixels = 0;  // pixels a triangle covers: attributes resolved
   ShadeWork shade;
-  ShadowWork shadow;  // cast shadows' lookups (sun_visibility.h)
-  SkyWork sky;        // sky light's lookups (sky_horizons.h)
+  ShadowWork shadow;        // cast shadows' lookups (sun_visibility.h)
+  SkyWork sky;              // sky light's lookups (sky_horizons.h)
+  ShadowWork water_shadow;  // cast shadows' lookups at water surfaces (tile_shadows.h)
 
   TileWork& operator+=(const TileWork& o) {
     tiles_drawn += o.tiles_drawn;
@@ -79,6 +118,7 @@ struct TileWork {
     shade += o.shade;
     shadow += o.shadow;
     sky += o.sky;
+    water_shadow += o.water_shadow;
     return *this;
   }
 };

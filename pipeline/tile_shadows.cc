@@ -1,6 +1,8 @@
 #include "pipeline/tile_shadows.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <iterator>
 #include <type_traits>
 
 #include "simd/sky_share.h"
@@ -60,6 +62,59 @@ void tile_sun_shares(const TileShadows<Real>& shadows, KernelKind kind, bool hig
 }
 
 template <class Real>
+void tile_water_sun_shares(const TileShadows<Real>& shadows, const ShadeParams<Real>& shade,
+                           KernelKind kind, bool highway_shade, const raster::TileVisibility& vis,
+                           TileAttributes<Real>& a, ShadowWork& work) {
+  if (!shade.water_enabled || !shade.terrain_water) {
+    return;  // no pixel has water in front
+  }
+  if (shadows.params == nullptr) {
+    if (!highway_shade) {  // the portable shade reads the share of every pixel with water
+      std::fill(a.water_sun, a.water_sun + TileAttributes<Real>::kPixels, Real(1));
+    }
+    return;
+  }
+  // One row at a time: the surface points (core/shade.cc: the view ray meets the water at
+  // distance level / view.y, at position * (level / height)), pixels with no water in front
+  // masked out. Both negative there (height < level < 0: water_enabled means the camera is
+  // above the water), so the ratio lies in (0, 1): a point between the camera and the ground.
+  constexpr int kRow = raster::kTileSize;
+  const Real level = shade.water_level;
+  for (int py = vis.y0; py < vis.y0 + vis.height; ++py) {
+    const std::size_t row = vis.index(vis.x0, py);
+    std::uint32_t water[kRow];
+    Real sx[kRow] = {}, sy[kRow] = {}, sz[kRow] = {}, share[kRow];
+    std::fill(std::begin(water), std::end(water), raster::kNoPrimitive);
+    for (int i = 0; i < vis.width; ++i) {
+      const std::size_t k = row + std::size_t(i);
+      share[i] = Real(1);
+      if (vis.primitive[k] == raster::kNoPrimitive || !(a.height[k] < level)) {
+        continue;
+      }
+      const Real t = level / a.height[k];
+      water[i] = vis.primitive[k];
+      sx[i] = a.dx[k] * t;
+      sy[i] = level;
+      sz[i] = a.dz[k] * t;
+    }
+    bool highway = false;
+    if constexpr (std::is_same_v<Real, float>) {
+      if (kind == KernelKind::kHighway) {
+        simd::sun_shares(*shadows.params, *shadows.cache, {water, kRow}, {sx, kRow}, {sy, kRow},
+                         {sz, kRow}, vis.width, 1, kRow, {share, kRow}, work);
+        highway = true;
+      }
+    }
+    for (int i = 0; !highway && i < vis.width; ++i) {
+      if (water[i] != raster::kNoPrimitive) {
+        share[i] = sun_visibility<Real>(*shadows.params, *shadows.cache, sx[i], sy[i], sz[i], work);
+      }
+    }
+    std::copy(share, share + vis.width, a.water_sun + row);
+  }
+}
+
+template <class Real>
 void tile_sky_shares(const TileShadows<Real>& shadows, KernelKind kind, bool highway_shade,
                      const raster::TileVisibility& vis, TileAttributes<Real>& a, SkyWork& work) {
   tile_shares(
@@ -80,6 +135,13 @@ template void tile_sun_shares<float>(const TileShadows<float>&, KernelKind, bool
 template void tile_sun_shares<double>(const TileShadows<double>&, KernelKind, bool,
                                       const raster::TileVisibility&, TileAttributes<double>&,
                                       ShadowWork&);
+
+template void tile_water_sun_shares<float>(const TileShadows<float>&, const ShadeParams<float>&,
+                                           KernelKind, bool, const raster::TileVisibility&,
+                                           TileAttributes<float>&, ShadowWork&);
+template void tile_water_sun_shares<double>(const TileShadows<double>&, const ShadeParams<double>&,
+                                            KernelKind, bool, const raster::TileVisibility&,
+                                            TileAttributes<double>&, ShadowWork&);
 
 template void tile_sky_shares<float>(const TileShadows<float>&, KernelKind, bool,
                                      const raster::TileVisibility&, TileAttributes<float>&,

@@ -1,8 +1,8 @@
-// Per-target planet parts of stage 8 (core/planet_shading.h, core/shade.cc's planet branches)
-// for float, one pixel per lane: the rotation into a point's local frame, and the background
-// of a planet frame (the water sphere, the datum sphere's fog, or the sky read from the limb),
-// with the scalar code's operations in its order.
-// Included by simd/shade-inl.h inside its per-target section (Highway's re-inclusion guard).
+// Per-target planet part of stage 8 (core/planet_shading.h) for float, one pixel per lane: the
+// rotation into a point's local frame, with the scalar code's operations in its order (a
+// planet frame's background is simd/background-inl.h's).
+// Included by simd/shade-inl.h and simd/background-inl.h inside their per-target sections
+// (Highway's re-inclusion guard).
 #if defined(RELIEF_SIMD_PLANET_SHADE_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef RELIEF_SIMD_PLANET_SHADE_INL_H_
 #undef RELIEF_SIMD_PLANET_SHADE_INL_H_
@@ -18,11 +18,7 @@
 
 #include "core/planet_shading.h"
 #include "core/stage_params.h"
-#include "simd/planet_rays-inl.h"
 #include "simd/shade_vec3-inl.h"
-#include "simd/sky-inl.h"
-#include "simd/textured_shade-inl.h"
-#include "simd/water-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace relief::simd {
@@ -50,34 +46,6 @@ HWY_INLINE V3<V> ToLocalFrame(D d, const V3<V>& v, const V3<V>& up) {
   const V k = hn::Div(one, hn::IfThenElse(rotate, hn::Add(one, up.y), one));
   const V3<V> rotated = Add3(Add3(v, wv), Scale3(wwv, k));
   return Select3(rotate, rotated, v);
-}
-
-// planet_background (shade.cc) for the lanes of `background`, pixels (px0 + lane, py), whose
-// view rays rounded to float and normalised are `dir`. The sphere tests and the sky's
-// direction from the limb run in double lanes (PlanetRays); the shading in float lanes.
-template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
-HWY_INLINE V3<V> PlanetBackground(D d, const ShadeContext& ctx, int px0, int py, const V3<V>& dir,
-                                  M background, ShadeWork& work) {
-  const ShadeParams<float>& p = *ctx.p;
-  const V zero = hn::Zero(d);
-  const PlanetRayVectors<D> rays = PlanetRays(d, p, px0, py);
-  const M water = hn::And(background, rays.water);
-  const M ground = hn::AndNot(rays.water, hn::And(background, rays.ground));
-  const M sky = hn::AndNot(hn::Or(rays.water, rays.ground), background);
-  V3<V> result{zero, zero, zero};
-  if (!hn::AllFalse(d, sky)) {
-    result = SkyRadiance(d, p, ctx.skybox, rays.sky);
-  }
-  if (!hn::AllFalse(d, ground)) {
-    result = Select3(ground, FogColor(d, p, dir), result);
-  }
-  const std::size_t count = hn::CountTrue(d, water);
-  if (count != 0) {
-    const V3<V> open = OpenWater(d, p, ctx.lattice, ctx.skybox, ToLocalFrame(d, dir, rays.up), dir,
-                                 rays.surface, water, count, work);
-    result = Select3(water, open, result);
-  }
-  return result;
 }
 
 }  // namespace HWY_NAMESPACE

@@ -22,10 +22,10 @@
 #include "core/limits.h"
 #include "core/shade.h"
 #include "core/stage_params.h"
-#include "simd/background_rays-inl.h"
 #include "simd/cloud_calls-inl.h"
 #include "simd/gradient_shade-inl.h"
 #include "simd/planet_shade-inl.h"
+#include "simd/shade_calls-inl.h"
 #include "simd/shade_vec3-inl.h"
 #include "simd/sky-inl.h"
 #include "simd/textured_shade-inl.h"
@@ -82,9 +82,9 @@ HWY_INLINE V3<V> TerrainRadiance(D d, const ShadeContext& ctx, const AttributeVe
         water_view = ToLocalFrame(d, view, up);
       }
       const V footprint = SurfaceFootprint(d, p, surface, water_view.y);
-      const V3<V> water =
-          ShadeWater(d, p, ctx.lattice, ctx.skybox, water_view, surface,
-                     StdMax(zero, a.water_depth), radiance, footprint, under_water, work);
+      const V3<V> water = ShadeWaterLanes(p, ctx.lattice, ctx.skybox, water_view, surface,
+                                          StdMax(zero, a.water_depth), radiance, footprint,
+                                          a.water_sun, under_water, work);
       radiance = Select3(under_water, water, radiance);
       fog_distance = hn::IfThenElse(under_water, surface, distance);
       work.water_pixels += count;
@@ -97,43 +97,6 @@ HWY_INLINE V3<V> TerrainRadiance(D d, const ShadeContext& ctx, const AttributeVe
   return p.clouds ? CloudsOverLanes(p, ctx.lattice, radiance, V3<V>{zero, zero, zero}, zero, view,
                                     fog_distance, covered, work)
                   : radiance;
-}
-
-// background_radiance (shade.cc) for the lanes of `background`, pixels (px0 + lane, py).
-template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
-HWY_INLINE V3<V> BackgroundRadiance(D d, const ShadeContext& ctx, int px0, int py, M background,
-                                    ShadeWork& work) {
-  const ShadeParams<float>& p = *ctx.p;
-  const V zero = hn::Zero(d);
-  work.background_pixels += hn::CountTrue(d, background);
-  const V3<V> dir = NormalizeOr(d, BackgroundRays(d, p, px0, py), Set3(d, p.camera_forward));
-  if (p.planet_center_distance > 0.0) {
-    return PlanetBackground(d, ctx, px0, py, dir, background, work);
-  }
-  const M below = hn::Lt(dir.y, zero);
-  const M below_lanes = hn::And(background, below);
-  V3<V> result{zero, zero, zero};
-  if (!hn::AllFalse(d, hn::AndNot(below, background))) {
-    result = SkyRadiance(d, p, ctx.skybox, dir);
-  }
-  // The sky and the fog lie beyond every distance; open water at its surface (shade.cc).
-  V end = hn::Set(d, float(limits::kMaxCameraRelativeDistance));
-  const std::size_t count = hn::CountTrue(d, below_lanes);
-  if (count != 0) {
-    const V surface = hn::Div(hn::Set(d, p.water_level), dir.y);
-    const V3<V> ground = p.water_enabled ? OpenWater(d, p, ctx.lattice, ctx.skybox, dir, dir,
-                                                     surface, below_lanes, count, work)
-                                         : FogColor(d, p, dir);
-    result = Select3(below, ground, result);
-    if (p.water_enabled) {
-      end = hn::IfThenElse(below, surface, end);
-    } else if (p.clouds) {  // terrain past the far distance, no lower than the frame's lowest
-      end = hn::IfThenElse(below, StdMin(end, hn::Div(hn::Set(d, p.cloud_ground), dir.y)), end);
-    }
-  }
-  return p.clouds ? CloudsOverLanes(p, ctx.lattice, result, V3<V>{zero, zero, zero}, zero, dir, end,
-                                    background, work)
-                  : result;
 }
 
 // One vector of pixels k .. k + lanes - 1 of a row, `valid` the lanes inside the rectangle;
@@ -153,13 +116,14 @@ HWY_INLINE V3<V> ShadeVector(D d, const ShadeContext& ctx, const std::uint32_t* 
     const auto load = [&](int field) {
       return hn::IfThenElseZero(covered, hn::LoadU(d, fields[field]));
     };
-    const AttributeVectors<V> a{load(0),  load(1),  load(2),  load(3),  load(4),  load(5),
-                                load(6),  load(7),  load(8),  load(9),  load(10), load(11),
-                                load(12), load(13), load(14), load(15), load(16), load(17)};
+    const AttributeVectors<V> a{load(0),  load(1),  load(2),  load(3),  load(4),
+                                load(5),  load(6),  load(7),  load(8),  load(9),
+                                load(10), load(11), load(12), load(13), load(14),
+                                load(15), load(16), load(17), load(18)};
     radiance = TerrainRadiance(d, ctx, a, covered, work);
   }
   if (!hn::AllFalse(d, background)) {
-    radiance = Select3(covered, radiance, BackgroundRadiance(d, ctx, px0, py, background, work));
+    radiance = Select3(covered, radiance, BackgroundLanes(ctx, px0, py, background, work));
   }
   const V exposure = hn::Set(d, ctx.p->exposure);
   return Scale3(radiance, exposure);
@@ -181,18 +145,22 @@ void ShadeRect(const ShadeParams<float>& p, const ShadeResources& r, const Shadi
   }
   ctx.skybox = skybox_view_of(r.skybox);
   const std::span<const float> spans[kShadeFields] = {
-      in.dx,     in.dz,          in.height,     in.dx_ddx,  in.dx_ddy, in.dz_ddx,
-      in.dz_ddy, in.height_ddx,  in.height_ddy, in.nx,      in.ny,     in.nz,
-      in.slope,  in.water_depth, in.sun,        in.lambert, in.drop,   in.sky};
-  // The water depth is not resolved (and may be absent) where no terrain lies under water.
+      in.dx,         in.dz,         in.height, in.dx_ddx, in.dx_ddy,   in.dz_ddx, in.dz_ddy,
+      in.height_ddx, in.height_ddy, in.nx,     in.ny,     in.nz,       in.slope,  in.water_depth,
+      in.sun,        in.lambert,    in.drop,   in.sky,    in.water_sun};
+  // The water depth and the sun's share at the water surface are not resolved (and may be
+  // absent) where no terrain lies under water.
   const bool reads_depth = p.water_enabled && p.terrain_water;
   // Fields read from the constant tail (0, the plane's drop among them; the sun's share 1, the
   // whole disc): absent, or unread.
-  const auto absent = [&](int f) { return spans[f].empty() || (f == kDepthField && !reads_depth); };
+  const auto absent = [&](int f) {
+    return spans[f].empty() || ((f == kDepthField || f == kWaterSunField) && !reads_depth);
+  };
   constexpr int kMaxLanes = HWY_MAX_BYTES / sizeof(float);
   HWY_ALIGN float tail[kShadeFields][kMaxLanes] = {};
   std::fill(std::begin(tail[kSunField]), std::end(tail[kSunField]), 1.0f);
   std::fill(std::begin(tail[kSkyField]), std::end(tail[kSkyField]), 1.0f);
+  std::fill(std::begin(tail[kWaterSunField]), std::end(tail[kWaterSunField]), 1.0f);
   HWY_ALIGN std::uint32_t tail_primitive[kMaxLanes] = {};
   HWY_ALIGN float out[3 * kMaxLanes];
   ShadeWork work;

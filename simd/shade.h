@@ -18,7 +18,7 @@ namespace relief::simd {
 // in.primitive[k] != 0xffffffff) and background_radiance<float>(p, r, x0 + i, y0 + j) (the
 // others) times the exposure, and adds to `work` exactly the counts the scalar code adds.
 // Reads only the pixels of the rectangle (the attributes of covered pixels only; water_depth
-// only when p.water_enabled && p.terrain_water).
+// and water_sun only when p.water_enabled && p.terrain_water).
 void shade_rect(const ShadeParams<float>& p, const ShadeResources& r, const ShadingInputs& in,
                 int x0, int y0, int width, int height, int stride, std::span<float> rgb,
                 ShadeWork& work);

@@ -34,9 +34,9 @@ HWY_INLINE V PowerOfHalfCosine(D d, V c, int squarings) {
   return x;
 }
 
-// sun_light (sky.cc): the sun disc and its halo in directions `dir`.
+// sun_light (sky.cc): the sun disc times `disc_share` and its halo in directions `dir`.
 template <class D, class V = hn::Vec<D>>
-HWY_INLINE V3<V> SunLight(D d, const ShadeParams<float>& p, const V3<V>& dir) {
+HWY_INLINE V3<V> SunLight(D d, const ShadeParams<float>& p, const V3<V>& dir, V disc_share) {
   const V c = Dot3(dir, Set3(d, p.sun_direction));
   const float inner = p.sun_cos_inner, outer = p.sun_cos_outer;
   V disc;
@@ -46,24 +46,25 @@ HWY_INLINE V3<V> SunLight(D d, const ShadeParams<float>& p, const V3<V>& dir) {
     disc = hn::IfThenElseZero(hn::Ge(c, hn::Set(d, inner)), hn::Set(d, 1.0f));
   }
   if (p.atmosphere != 0) {
-    return Scale3(Set3(d, p.sun), hn::Mul(hn::Set(d, 20.0f), disc));
+    return Scale3(Set3(d, p.sun), hn::Mul(hn::Mul(hn::Set(d, 20.0f), disc), disc_share));
   }
   const V halo = hn::Mul(hn::Set(d, float(0.06)), PowerOfHalfCosine(d, c, 5));
-  const V k = hn::Add(hn::Mul(hn::Set(d, 20.0f), disc), halo);
+  const V k = hn::Add(hn::Mul(hn::Mul(hn::Set(d, 20.0f), disc), disc_share), halo);
   return Scale3(Set3(d, p.sun), k);
 }
 
 // sky_radiance (sky.cc) of unit directions `dir`: the skybox where p.skybox is set and `box`
-// holds its faces, else the gradient; plus the sun.
+// holds its faces, else the gradient; plus the sun, its disc times `disc_share` (1: the same
+// bits as without).
 template <class D, class V = hn::Vec<D>>
 HWY_INLINE V3<V> SkyRadiance(D d, const ShadeParams<float>& p, const SkyboxView& box,
-                             const V3<V>& dir) {
+                             const V3<V>& dir, V disc_share) {
   if (p.skybox != 0 && box.texels != nullptr) {
     const V3<V> color = SkyboxRadiance(d, box, dir);
-    return p.skybox_sun != 0 ? Add3(color, SunLight(d, p, dir)) : color;
+    return p.skybox_sun != 0 ? Add3(color, SunLight(d, p, dir, disc_share)) : color;
   }
   if (p.atmosphere != 0) {
-    return Add3(AtmosphereSky(d, p, dir), SunLight(d, p, dir));
+    return Add3(AtmosphereSky(d, p, dir), SunLight(d, p, dir, disc_share));
   }
   const V3<V> horizon = Set3(d, p.horizon);
   V3<V> color = horizon;
@@ -72,7 +73,13 @@ HWY_INLINE V3<V> SkyRadiance(D d, const ShadeParams<float>& p, const SkyboxView&
     // sqrt's domain is the lanes above the horizon; the others' result is discarded.
     color = Select3(above, Mix3(horizon, Set3(d, p.zenith), hn::Sqrt(dir.y)), horizon);
   }
-  return Add3(color, SunLight(d, p, dir));
+  return Add3(color, SunLight(d, p, dir, disc_share));
+}
+
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE V3<V> SkyRadiance(D d, const ShadeParams<float>& p, const SkyboxView& box,
+                             const V3<V>& dir) {
+  return SkyRadiance(d, p, box, dir, hn::Set(d, 1.0f));
 }
 
 // fog_color (sky.cc): the horizon plus the sun's glow.

@@ -33,9 +33,9 @@ namespace hn = hwy::HWY_NAMESPACE;
 constexpr double kShadeMinProjectionWeight = 0.01;
 constexpr double kShadeMinLayerWeight = 1e-3;
 
-// The per-pixel fields ShadeRect reads, in AttributeVectors' order; five may be absent.
-constexpr int kShadeFields = 18, kDepthField = 13, kSunField = 14, kLambertField = 15,
-              kDropField = 16, kSkyField = 17;
+// The per-pixel fields ShadeRect reads, in AttributeVectors' order; six may be absent.
+constexpr int kShadeFields = 19, kDepthField = 13, kSunField = 14, kLambertField = 15,
+              kDropField = 16, kSkyField = 17, kWaterSunField = 18;
 
 // What the kernel reads besides the pixels: the parameters and the resources' views.
 struct ShadeContext {
@@ -52,10 +52,11 @@ struct AttributeVectors {
   V dx_ddx, dx_ddy, dz_ddx, dz_ddy, height_ddx, height_ddy;
   V nx, ny, nz;
   V slope, water_depth;
-  V sun;      // the sun disc's visible share (1 without cast shadows)
-  V lambert;  // gradient mode's interpolated per-vertex Lambert term (0 otherwise)
-  V drop;     // a planet's curvature drop (0 on the plane)
-  V sky;      // the sky's open share (1 without sky light)
+  V sun;        // the sun disc's visible share (1 without cast shadows)
+  V lambert;    // gradient mode's interpolated per-vertex Lambert term (0 otherwise)
+  V drop;       // a planet's curvature drop (0 on the plane)
+  V sky;        // the sky's open share (1 without sky light)
+  V water_sun;  // the sun's share at the water surface in front (1 without cast shadows)
 };
 
 // sample (shade.cc): texture_lod at level 0's size (nearest_mip_lod's level where the frame

@@ -96,7 +96,8 @@ HWY_INLINE V3<V> WaveNormal(D d, const ShadeParams<float>& p, const LatticeView&
 template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
 HWY_INLINE V3<V> ShadeWater(D d, const ShadeParams<float>& p, const LatticeView& lattice,
                             const SkyboxView& skybox, const V3<V>& view, V surface_distance,
-                            V depth, const V3<V>& ground, V footprint, M active, ShadeWork& work) {
+                            V depth, const V3<V>& ground, V footprint, V sun_share, M active,
+                            ShadeWork& work) {
   constexpr double kFresnelF0 = 0.02;             // water.cc
   constexpr double kRelativeIndex = 1.0 / 1.333;  // water.cc
   constexpr double kMinTransmittedCosine = 0.1;   // water.cc
@@ -114,7 +115,7 @@ HWY_INLINE V3<V> ShadeWater(D d, const ShadeParams<float>& p, const LatticeView&
                                     hn::Mul(hn::Mul(hn::Mul(hn::Mul(m, m), m), m), m)));
   V3<V> reflected = Sub3(view, Scale3(n, hn::Mul(hn::Set(d, 2.0f), view_n)));
   reflected.y = hn::Abs(reflected.y);
-  V3<V> sky = SkyRadiance(d, p, skybox, reflected);
+  V3<V> sky = SkyRadiance(d, p, skybox, reflected, sun_share);
   if (p.clouds) {  // from the surface point, to the sky
     sky = CloudsOverLanes(p, lattice, sky, s, surface_distance, reflected,
                           hn::Set(d, float(limits::kMaxCameraRelativeDistance)), active, work);
@@ -130,15 +131,15 @@ HWY_INLINE V3<V> ShadeWater(D d, const ShadeParams<float>& p, const LatticeView&
                           Exp2Det(d, hn::Mul(hn::Set(d, -e.y), path)),
                           Exp2Det(d, hn::Mul(hn::Set(d, -e.z), path))};
 
-  // Per frame, in float as the scalar code forms it per pixel.
+  // Per frame, in float as the scalar code forms it per pixel; then past the terrain's cast
+  // shadow and through the cloud layer above the surface point.
   const Vec3<float> sun_part =
       p.sun * (0.5f * (0.0f < p.sun_direction.y ? p.sun_direction.y : 0.0f));
-  V3<V> body_light = Set3(d, p.sky_light + sun_part);
-  if (p.clouds) {  // the sun's part through the cloud layer above the surface point
-    body_light =
-        Add3(Set3(d, p.sky_light),
-             Scale3(Set3(d, sun_part), CloudSunShareLanes(p, lattice, s, footprint, active, work)));
+  V3<V> sun_lit = Scale3(Set3(d, sun_part), sun_share);
+  if (p.clouds) {
+    sun_lit = Scale3(sun_lit, CloudSunShareLanes(p, lattice, s, footprint, active, work));
   }
+  const V3<V> body_light = Add3(Set3(d, p.sky_light), sun_lit);
   const V3<V> body = Mul3(Mix3(Set3(d, p.shallow), Set3(d, p.deep), f), body_light);
   const V3<V> under =
       Add3(Mul3(ground, transmitted), Mul3(body, Sub3(Set3(d, 1.0f, 1.0f, 1.0f), transmitted)));
@@ -151,25 +152,6 @@ template <class D, class V = hn::Vec<D>>
 HWY_INLINE V SurfaceFootprint(D d, const ShadeParams<float>& p, V distance, V view_y) {
   return hn::Div(hn::Mul(distance, hn::Set(d, p.pixel_angle)),
                  StdMax(hn::Abs(view_y), hn::Set(d, float(0.05))));
-}
-
-// open_water (shade.cc) for the lanes of `active`, `count` of them: open water `surface` along
-// the view ray `dir`, seen as `view` in the water's own frame, then fogged along dir; counted
-// as the scalar code counts it.
-template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
-HWY_INLINE V3<V> OpenWater(D d, const ShadeParams<float>& p, const LatticeView& lattice,
-                           const SkyboxView& skybox, const V3<V>& view, const V3<V>& dir, V surface,
-                           M active, std::size_t count, ShadeWork& work) {
-  const V zero = hn::Zero(d);
-  const V footprint = SurfaceFootprint(d, p, surface, view.y);
-  const V3<V> open = ShadeWater(d, p, lattice, skybox, view, surface, hn::Set(d, 1e6f),
-                                V3<V>{zero, zero, zero}, footprint, active, work);
-  work.water_pixels += count;
-  if (!p.fog_enabled) {
-    return open;
-  }
-  work.fogged_pixels += count;
-  return ApplyFog(d, p, open, dir, surface);
 }
 
 }  // namespace HWY_NAMESPACE

@@ -241,7 +241,8 @@ TEST_CASE("aFlatTerrainAndASunAtTheZenithCastNoShadow", "[shadows]") {
 
 TEST_CASE("aSetSunLightsNoTerrainPixel", "[shadows]") {
   // Below the horizon by more than its radius the sun lights nothing: every terrain pixel as
-  // with no sun at all (no water: its glint is not shadowed; no fog: its colour has the sun's).
+  // with no sun at all (no water: the glint of open water past the terrain takes no shadow; no
+  // fog: its colour has the sun's).
   const Scene set = resolve_scene(
       "default", test::small_shadow_frame({"lighting.shadows=true", "lighting.sun_elevation_deg=-2",
                                            "terrain.water_level=null", "sky.fog_density=0"}));

@@ -134,6 +134,7 @@ SunHorizonCache<Real> build_horizon_cache(const ShadowPlan& plan, const FramePla
         add_sketch<Real>(sketch, resources.sketch_or_null()->heights, IndexRange{0, std::size_t(n)},
                          dx, dz, nu, {}, heights);
       }
+      raise_to_water_surface(params, heights);
     }
   }
   for (int level = first; level < end; ++level) {
@@ -153,12 +154,16 @@ template SunHorizonCache<double> build_horizon_cache<double>(const ShadowPlan&, 
 namespace {
 
 // Each covered pixel's share of the sun disc and of the sky from one cache of
-// build_horizon_cache; each empty where the scene has no shadows, or no sky light.
+// build_horizon_cache; each empty where the scene has no shadows, or no sky light. With
+// shadows and water, `water_sun`: the sun's share where the view ray meets the water surface
+// before the pixel's ground (below the camera-relative level: the surface point lies along
+// the ray at level / height of the way).
 struct CacheShares {
-  std::vector<float> sun, sky;
+  std::vector<float> sun, sky, water_sun;
 };
 CacheShares cache_shares(const Scene& scene, const SceneResources& resources,
-                         const TerrainFrame& frame, const ShadingInputs& inputs) {
+                         const TerrainFrame& frame, const ShadeParams<float>& shade,
+                         const ShadingInputs& inputs) {
   const ShadowPlan plan = make_shadow_plan(scene, frame.plan);
   CacheShares shares;
   if (!plan.enabled && !plan.sky) {
@@ -169,6 +174,8 @@ CacheShares cache_shares(const Scene& scene, const SceneResources& resources,
   const std::size_t pixels = inputs.primitive.size();
   shares.sun.assign(plan.enabled ? pixels : 0, 1.0f);
   shares.sky.assign(plan.sky ? pixels : 0, 1.0f);
+  const bool water = plan.enabled && shade.water_enabled;
+  shares.water_sun.assign(water ? pixels : 0, 1.0f);
   ShadowWork sun_work;
   SkyWork sky_work;
   for (std::size_t k = 0; k < pixels; ++k) {
@@ -181,6 +188,11 @@ CacheShares cache_shares(const Scene& scene, const SceneResources& resources,
     }
     if (plan.sky) {
       shares.sky[k] = sky_visibility<float>(params, cache, inputs.dx[k], inputs.dz[k], sky_work);
+    }
+    if (water && inputs.height[k] < shade.water_level) {
+      const float t = shade.water_level / inputs.height[k];  // both negative
+      shares.water_sun[k] = sun_visibility<float>(params, cache, inputs.dx[k] * t,
+                                                  shade.water_level, inputs.dz[k] * t, sun_work);
     }
   }
   return shares;
@@ -196,9 +208,10 @@ FrameImage render_whole_frame(const Scene& scene, const SceneResources& resource
   add_planet_shading(frame.plan, scene.terrain.base_height, params);
   const ShadeResources shade_resources{&resources.lattice, resources.textures};
   ShadingInputs inputs = shading_inputs(frame, resolved);
-  const CacheShares shares = cache_shares(scene, resources, frame, inputs);
+  const CacheShares shares = cache_shares(scene, resources, frame, params, inputs);
   inputs.sun = shares.sun;
   inputs.sky = shares.sky;
+  inputs.water_sun = shares.water_sun;
   // Gradient mode: every vertex lit (core/vertex_transform.h), its Lambert term resolved.
   raster::ResolvedFrame lambert_resolved;
   if (plan.gradient.enabled) {
