@@ -197,7 +197,8 @@ void SunHorizonCache<Real>::allocate(int n, int first, int end, bool sun, bool w
 template <class Real>
 DrawnExtent drawn_extent(const ShadowPlan& plan, const GridLayout& layout, RowRange rows,
                          std::span<const Real> dx, std::span<const Real> dz,
-                         std::span<const std::uint8_t> valid, std::span<const std::uint8_t> need) {
+                         std::span<const Real> height, std::span<const std::uint8_t> valid,
+                         std::span<const std::uint8_t> need) {
   const auto frame = [&](std::size_t k, double& u, double& v) {
     u = double(dx[k]) * plan.axis_x + double(dz[k]) * plan.axis_z;
     v = double(dz[k]) * plan.axis_x - double(dx[k]) * plan.axis_z;
@@ -213,7 +214,7 @@ DrawnExtent drawn_extent(const ShadowPlan& plan, const GridLayout& layout, RowRa
       double u, v;
       frame(k, u, v);
       const double own = std::max(std::abs(u), std::abs(v));
-      double edge = 0.0;
+      double edge = 0.0, low = double(height[k]);
       for (const auto& step : kNeighbours) {
         const int ni = i + step[0], nj = j + step[1];
         if (ni < 0 || nj < 0 || ni >= layout.width || nj >= layout.height) {
@@ -226,18 +227,29 @@ DrawnExtent drawn_extent(const ShadowPlan& plan, const GridLayout& layout, RowRa
         double mu, mv;
         frame(m, mu, mv);
         edge = std::max({edge, std::abs(mu - u), std::abs(mv - v)});
+        low = std::min(low, double(height[m]));
       }
       drawn.nearest = std::min(drawn.nearest, own - edge - 1e-4 * own);
       drawn.farthest = std::max(drawn.farthest, (own + edge) * (1.0 + 1e-4));
+      drawn.lowest = std::min(drawn.lowest, low);
     }
   }
   return drawn;
 }
 
-LevelRange shadow_level_range(const ShadowPlan& plan, const DrawnExtent& drawn) {
+LevelRange shadow_level_range(const ShadowPlan& plan, const DrawnExtent& drawn_ground) {
   LevelRange range{plan.levels, plan.levels};
-  if (!(drawn.nearest < HUGE_VAL)) {
+  if (!(drawn_ground.nearest < HUGE_VAL)) {
     return range;
+  }
+  // A drawn point under the water has its surface lookup (the glint's share, core/water.h)
+  // nearer the camera, at level / height of its distance: no less than level / lowest, the
+  // drawn triangles' lowest height (both negative; widened by 1e-4 for the pixels' float
+  // interpolation), in any norm the distance is measured in.
+  DrawnExtent drawn = drawn_ground;
+  const double lowest = drawn.lowest * (1.0 + 1e-4);
+  if (plan.enabled && plan.water && lowest < plan.water_level && drawn.nearest > 0.0) {
+    drawn.nearest *= plan.water_level / lowest;  // in (0, 1)
   }
   const double span = double(plan.resolution - 1);
   const auto last_u = [&](int level) { return level_last_u(plan, level); };
@@ -339,11 +351,11 @@ template struct SunHorizonCache<float>;
 template struct SunHorizonCache<double>;
 template DrawnExtent drawn_extent<float>(const ShadowPlan&, const GridLayout&, RowRange,
                                          std::span<const float>, std::span<const float>,
-                                         std::span<const std::uint8_t>,
+                                         std::span<const float>, std::span<const std::uint8_t>,
                                          std::span<const std::uint8_t>);
 template DrawnExtent drawn_extent<double>(const ShadowPlan&, const GridLayout&, RowRange,
                                           std::span<const double>, std::span<const double>,
-                                          std::span<const std::uint8_t>,
+                                          std::span<const double>, std::span<const std::uint8_t>,
                                           std::span<const std::uint8_t>);
 template void shadow_row_positions<float>(const ShadowParams<float>&, int, int, std::span<float>,
                                           std::span<float>, std::span<float>);

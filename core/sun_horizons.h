@@ -193,23 +193,28 @@ struct SunHorizonCache {
 // in `need`, vertex_culling.h) and valid: per such vertex its own distance less (plus) the
 // largest Chebyshev distance to a grid neighbour it shares a triangle with ((i +- 1, j),
 // (i, j +- 1), (i + 1, j + 1), (i - 1, j - 1)), widened by 1e-4 of it for the pixels'
-// interpolation in float. Empty (nearest +inf, farthest 0) where there is none.
+// interpolation in float; and the lowest camera-relative height of those triangles (their
+// vertices'). Empty (nearest +inf, farthest 0, lowest +inf) where there is none.
 struct DrawnExtent {
   double nearest = HUGE_VAL;
   double farthest = 0;
+  double lowest = HUGE_VAL;
 
   void merge(const DrawnExtent& o) {
     nearest = std::min(nearest, o.nearest);
     farthest = std::max(farthest, o.farthest);
+    lowest = std::min(lowest, o.lowest);
   }
 };
 template <class Real>
 DrawnExtent drawn_extent(const ShadowPlan& plan, const GridLayout& layout, RowRange rows,
                          std::span<const Real> dx, std::span<const Real> dz,
-                         std::span<const std::uint8_t> valid, std::span<const std::uint8_t> need);
+                         std::span<const Real> height, std::span<const std::uint8_t> valid,
+                         std::span<const std::uint8_t> need);
 
 // The levels a frame with pixels within `drawn` builds, [first, end): from the finest whose
-// square reaches the nearest pixel (every finer square lies nearer than any pixel) to the one
+// square reaches the nearest pixel (every finer square lies nearer than any pixel; with water,
+// the nearest water surface a pixel's ray can meet in front of its ground) to the one
 // past the level whose row ends reach the occluders beyond the farthest pixel's level, and
 // the next coarser level too (a pixel near its level's edge reads it: sun_visibility.h). The
 // squares are tested with a margin of 1e-4 for the float test of a pixel against a square.
@@ -232,9 +237,10 @@ void shadow_row_positions(const ShadowParams<Real>& params, int level, int row, 
 // set a horizon close below the point that the point's lift cannot undo (sun_visibility.h:
 // the horizon of a sample lowered by lift / run to the same occluder understates a raised
 // point's horizon, which farther, higher terrain may set). Ground under the water then takes
-// the share of the surface above it: the light reaches it through that surface. Raising
-// changes nothing for a point at or above the water level (the raised samples lie no higher
-// than it, and the sun is above the horizon wherever a share is computed).
+// the share of the surface above it: the light reaches it through that surface. Land changes
+// only within a cell of the shore, where a point's four samples include raised ones, or a
+// sample's tangent plane (sky light) reads one; elsewhere the raised samples lie below a point
+// at or above the water and set no horizon the sun, higher than its radius, stands under.
 template <class Real>
 void raise_to_water_surface(const ShadowParams<Real>& p, std::span<Real> heights) {
   if (p.water == 0) {

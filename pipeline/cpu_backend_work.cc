@@ -102,7 +102,7 @@ void CpuBackend<Real>::tally_draws(RowRange rows, const NeedCount& count) {
   // Where pixels can lie in the sun's frame: the cache levels built (core/sun_horizons.h).
   const DrawnExtent drawn = shadow_rows() > 0 && request_.skips.unread_shadow_levels
                                 ? drawn_extent<Real>(shadow_plan_, plan_.layout, rows, grid_.dx,
-                                                     grid_.dz, grid_.valid, need_)
+                                                     grid_.dz, grid_.height, grid_.valid, need_)
                                 : DrawnExtent{};
   const std::lock_guard<std::mutex> lock(work_mutex_);
   draws_.evaluate += count.evaluate;

@@ -91,9 +91,6 @@ TEST_CASE("aCastShadowOnTheWaterTakesTheSunGlintAndTheSunlitBodyButNotTheSky", "
   CHECK(deep_dark.x < deep_lit.x);
   CHECK(deep_dark.y > 0.0);
   CHECK(deep_half.y == Approx(0.5 * (deep_lit.y + deep_dark.y)).epsilon(1e-9));
-  // Share 1 is the frame without shadows, bit for bit (the default of sky_radiance too).
-  const Vec3<double> again = water(glint_view, 0.0, 1.0);
-  CHECK(again.x == lit.x);
 }
 
 TEST_CASE("theWaterInACastShadowLosesTheSunWhereExactRayCastingFindsItsSurfaceShadowed",
@@ -181,8 +178,11 @@ TEST_CASE("theWaterInACastShadowLosesTheSunWhereExactRayCastingFindsItsSurfaceSh
                  << in_sun << " in the sun, " << kept << " of them unchanged");
   REQUIRE(in_shadow >= 60);
   REQUIRE(in_sun >= 60);
-  CHECK(darkened >= in_shadow * 9 / 10);
-  CHECK(kept >= in_sun * 9 / 10);
+  // The cache sees the terrain only at its samples (a peak between two lowers its horizon) and
+  // interpolates four samples' shares (one across a shore, higher, may shade a lit point): a
+  // twentieth either way (measured: 60 of 60 shadowed pixels changed, 5007 of 5012 lit kept).
+  CHECK(darkened >= in_shadow * 19 / 20);
+  CHECK(kept >= in_sun * 19 / 20);
 }
 
 TEST_CASE("shadowsOnTheWaterOnlyDarkenAndTheWholeFrameOracleDrawsThem", "[shadows]") {
@@ -239,6 +239,29 @@ TEST_CASE("waterShadowFramesAreBitIdenticalOnEveryTargetAndThreadCountAndWithout
       }
     });
   }
+}
+
+TEST_CASE("aFrameBuildsTheFinerLevelsItsWaterSurfacesReadAndNoSkipChangesItsBytes",
+          "[shadows][skip]") {
+  // A camera just above the lake looking down: the water's surface points lie much nearer
+  // than the ground under them, in finer cache levels than any drawn ground reaches.
+  const Scene scene = resolve_scene(
+      "lake", test::small_shadow_frame({"camera.position=[0,100,0]", "camera.pitch_deg=-35",
+                                        "lighting.sun_azimuth_deg=165",
+                                        "lighting.sun_elevation_deg=4", "lighting.shadows=true"}));
+  const SceneResources resources = load_scene_resources(scene);
+  FrameRequest request;
+  request.outputs.linear = true;
+  const Frame skipped = render_frame(scene, resources, request);
+  REQUIRE(test::frame_counter(skipped, "water surface shadow lookups") > 1000);
+  REQUIRE(test::frame_counter(skipped, "water surface points proven lit") <
+          test::frame_counter(skipped, "water surface shadow lookups"));
+  FrameRequest every_level = request;
+  every_level.skips.unread_shadow_levels = false;
+  const Frame built = render_frame(scene, resources, every_level);
+  CHECK(test::same_bits(skipped.image.linear, built.image.linear));
+  // The whole-frame oracle builds every level too.
+  CHECK(skipped.image.srgb == render_whole_frame(scene, resources).srgb);
 }
 
 }  // namespace
