@@ -122,7 +122,7 @@ Vec3<Real> open_water(const ShadeParams<Real>& p, const ShadeResources& r, const
                       const Vec3<Real>& d, Real surface, ShadeWork& work) {
   const Real footprint = surface_footprint(p, surface, view);
   // No cast shadow: the horizon cache ends with the terrain drawn (docs/stages.md, "Cast
-  // shadows on the water").
+  // shadows", "On the water").
   const Vec3<Real> open = shade_water(p, *r.lattice, r.skybox, view, surface, Real(1e6),
                                       Vec3<Real>{0, 0, 0}, footprint, Real(1), work);
   ++work.water_pixels;
