@@ -19,7 +19,6 @@
 #include "core/shade.h"
 #include "core/stage_params.h"
 #include "simd/background_rays-inl.h"
-#include "simd/cloud_calls-inl.h"
 #include "simd/planet_rays-inl.h"
 #include "simd/planet_shade-inl.h"
 #include "simd/shade_calls-inl.h"

@@ -6,7 +6,7 @@
 // the scalar loop stops there per pixel (the fades fall with each octave: a cell is exactly
 // half the last). Lanes outside a mask read the lattice at 0 and are discarded.
 // Compiled in its own translation unit, simd/clouds.cc, whose out-of-line entries the shading
-// calls (simd/cloud_calls-inl.h): inlined in four places of simd/shade.cc (terrain, background,
+// calls (simd/shade_calls-inl.h): inlined in four places of simd/shade.cc (terrain, background,
 // the water's reflection and body) they nearly doubled its Release compile and more than doubled
 // its compile under ASan + UBSan, already the slowest of the build (over 13 minutes before the
 // layer on the 2-core machine).

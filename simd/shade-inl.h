@@ -22,7 +22,6 @@
 #include "core/limits.h"
 #include "core/shade.h"
 #include "core/stage_params.h"
-#include "simd/cloud_calls-inl.h"
 #include "simd/gradient_shade-inl.h"
 #include "simd/planet_shade-inl.h"
 #include "simd/shade_calls-inl.h"

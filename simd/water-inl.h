@@ -16,9 +16,9 @@
 #include "core/limits.h"
 #include "core/shade.h"
 #include "core/stage_params.h"
-#include "simd/cloud_calls-inl.h"
 #include "simd/det_math-inl.h"
 #include "simd/lattice-inl.h"
+#include "simd/shade_calls-inl.h"
 #include "simd/shade_vec3-inl.h"
 #include "simd/sky-inl.h"
 

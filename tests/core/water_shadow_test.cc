@@ -214,12 +214,26 @@ TEST_CASE("waterShadowFramesAreBitIdenticalOnEveryTargetAndThreadCountAndWithout
       resolve_scene("lake", test::small_shadow_frame({"lighting.sun_azimuth_deg=260",
                                                       "lighting.sun_elevation_deg=20",
                                                       "lighting.shadows=true"})),
+      // Hostile heights: the camera a millimetre above the water (every surface point's
+      // ratio level / height tiny, the points at the camera's feet), and the water a hair
+      // below the highest terrain seen from far above it (the ratio near 1).
+      resolve_scene("lake", test::small_shadow_frame(
+                                {"camera.position=[0,95.001,0]", "camera.pitch_deg=-20",
+                                 "lighting.sun_azimuth_deg=165", "lighting.sun_elevation_deg=4",
+                                 "lighting.shadows=true"})),
+      resolve_scene("lake", test::small_shadow_frame(
+                                {"camera.position=[0,20000,0]", "camera.pitch_deg=-60",
+                                 "terrain.water_level=400", "lighting.sun_elevation_deg=8",
+                                 "lighting.shadows=true"})),
   };
   for (const Scene& scene : scenes) {
     const SceneResources resources = load_scene_resources(scene);
     FrameRequest request;
     request.outputs.linear = true;
     const Frame reference = render_frame(scene, resources, request);
+    for (const float value : reference.image.linear) {
+      REQUIRE(std::isfinite(value));
+    }
     REQUIRE(test::frame_counter(reference, kCounters[0]) > 0);
     // The lit skip leaves out the share's arithmetic, never its value.
     FrameRequest no_skip = request;
