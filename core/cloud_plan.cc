@@ -3,13 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/atmosphere.h"
 #include "core/det_math.h"
 
 namespace relief {
 
 namespace {
-
-constexpr double kLn2 = 0.6931471805599453;
 
 // x mod period in [0, period); x finite.
 double wrapped(double x, double period) {

@@ -123,8 +123,9 @@ Vec3<Real> open_water(const ShadeParams<Real>& p, const ShadeResources& r, const
   const Real footprint = surface_footprint(p, surface, view);
   // No cast shadow: the horizon cache ends with the terrain drawn (docs/stages.md, "Cast
   // shadows", "On the water").
-  const Vec3<Real> open = shade_water(p, *r.lattice, r.skybox, view, surface, Real(1e6),
-                                      Vec3<Real>{0, 0, 0}, footprint, Real(1), work);
+  const Vec3<Real> zero{0, 0, 0};
+  const Vec3<Real> open = shade_water(p, *r.lattice, r.skybox, view, surface, Real(1e6), zero,
+                                      footprint, Real(1), zero, Real(0), work);
   ++work.water_pixels;
   if (!p.fog_enabled) {
     return open;
@@ -214,6 +215,21 @@ Vec3<Real> textured_radiance(const ShadeParams<Real>& p, const ShadeResources& r
 }  // namespace
 
 template <class Real>
+Vec3<Real> lit_terrain(const ShadeParams<Real>& p, const ShadeResources& r,
+                       const PixelAttributes<Real>& a, const Vec3<Real>& position, Real distance,
+                       const Vec3<Real>& view, ShadeWork& work) {
+  // The cloud layer's shadow (clouds.h): the sun's share passed through it, at the pixel's
+  // footprint.
+  PixelAttributes<Real> lit = a;
+  if (p.clouds) {
+    lit.sun = a.sun * cloud_sun_share(p, *r.lattice, position, distance * p.pixel_angle, work);
+  }
+  return p.gradient_enabled
+             ? gouraud_light(p, gradient_albedo(p, a.height), lit.lambert, lit.ny, lit.sun, lit.sky)
+             : textured_radiance(p, r, lit, distance, view, work);
+}
+
+template <class Real>
 Vec3<Real> terrain_radiance(const ShadeParams<Real>& p, const ShadeResources& r,
                             const PixelAttributes<Real>& a, ShadeWork& work) {
   ++work.terrain_pixels;
@@ -223,15 +239,7 @@ Vec3<Real> terrain_radiance(const ShadeParams<Real>& p, const ShadeResources& r,
   const Vec3<Real> position{a.dx, relative_y - a.drop, a.dz};
   const Real distance = std::sqrt(dot(position, position));
   const Vec3<Real> view = normalize_or(position, p.camera_forward);
-  // The cloud layer's shadow (clouds.h): the sun's share passed through it, at the pixel's
-  // footprint.
-  PixelAttributes<Real> lit = a;
-  if (p.clouds) {
-    lit.sun = a.sun * cloud_sun_share(p, *r.lattice, position, distance * p.pixel_angle, work);
-  }
-  Vec3<Real> radiance = p.gradient_enabled ? gouraud_light(p, gradient_albedo(p, relative_y),
-                                                           lit.lambert, lit.ny, lit.sun, lit.sky)
-                                           : textured_radiance(p, r, lit, distance, view, work);
+  Vec3<Real> radiance = lit_terrain(p, r, a, position, distance, view, work);
 
   Real fog_distance = distance;
   if (p.water_enabled && p.terrain_water && relative_y < p.water_level && view.y < Real(0)) {
@@ -247,9 +255,10 @@ Vec3<Real> terrain_radiance(const ShadeParams<Real>& p, const ShadeResources& r,
       water_view = to_local_frame(view, up);
     }
     const Real footprint = surface_footprint(p, surface, water_view);
-    radiance =
-        shade_water(p, *r.lattice, r.skybox, water_view, surface, std::max(Real(0), a.water_depth),
-                    radiance, footprint, a.water_sun, work);
+    radiance = shade_water(p, *r.lattice, r.skybox, water_view, surface,
+                           std::max(Real(0), a.water_depth), radiance, footprint, a.water_sun,
+                           Vec3<Real>{a.reflection_r, a.reflection_g, a.reflection_b},
+                           a.reflection_weight, work);
     fog_distance = surface;
     ++work.water_pixels;
   }
@@ -317,6 +326,12 @@ void shade_pixels(const ShadeParams<Real>& p, const ShadeResources& r, const Sha
 
 template Vec3<float> facing_normal<float>(const Vec3<float>&, const Vec3<float>&, ShadeWork&);
 template Vec3<double> facing_normal<double>(const Vec3<double>&, const Vec3<double>&, ShadeWork&);
+template Vec3<float> lit_terrain<float>(const ShadeParams<float>&, const ShadeResources&,
+                                        const PixelAttributes<float>&, const Vec3<float>&, float,
+                                        const Vec3<float>&, ShadeWork&);
+template Vec3<double> lit_terrain<double>(const ShadeParams<double>&, const ShadeResources&,
+                                          const PixelAttributes<double>&, const Vec3<double>&,
+                                          double, const Vec3<double>&, ShadeWork&);
 template Vec3<float> terrain_radiance<float>(const ShadeParams<float>&, const ShadeResources&,
                                              const PixelAttributes<float>&, ShadeWork&);
 template Vec3<double> terrain_radiance<double>(const ShadeParams<double>&, const ShadeResources&,

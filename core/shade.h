@@ -49,6 +49,10 @@ struct PixelAttributes {
   // visible share at that surface point (sun_visibility.h, water.h); 1 without cast shadows.
   // Read only there.
   Real water_sun;
+  // There too, with water.reflect_terrain: the terrain the reflected ray meets, its radiance
+  // and weight 1, or weight 0 where it escapes to the sky (water_reflection.h); read only
+  // there, and weight 0 without reflections.
+  Real reflection_r, reflection_g, reflection_b, reflection_weight;
 };
 
 // The work stage 8 did, counted per pixel (docs/stages.md, "Skipped work").
@@ -92,6 +96,15 @@ struct ShadeWork {
 template <class Real>
 Vec3<Real> facing_normal(const Vec3<Real>& n, const Vec3<Real>& view, ShadeWork& work);
 
+// The terrain lit at camera-relative `position` (a's, less its drop), seen along unit `view`
+// from `distance`: the sun (through the cloud layer's shadow), the sky and the ambient light,
+// the layers' texture or the gradient; no water, fog or cloud in front (terrain_radiance adds
+// those; the reflections, water_reflection.h, their own).
+template <class Real>
+Vec3<Real> lit_terrain(const ShadeParams<Real>& params, const ShadeResources& resources,
+                       const PixelAttributes<Real>& a, const Vec3<Real>& position, Real distance,
+                       const Vec3<Real>& view, ShadeWork& work);
+
 // Radiance of a covered pixel, before the exposure; counts its work into `work`.
 template <class Real>
 Vec3<Real> terrain_radiance(const ShadeParams<Real>& params, const ShadeResources& resources,
@@ -115,6 +128,9 @@ struct ShadingInputs {
   std::span<const float> sky = {};        // the sky's open share; empty: 1 (no sky light)
   std::span<const float> lambert = {};    // gradient mode's interpolated Lambert term; empty: 0
   std::span<const float> water_sun = {};  // the sun's share at the water surface; empty: 1
+  // The terrain reflected there (water_reflection.h); empty: none (weight 0).
+  std::span<const float> reflection_r = {}, reflection_g = {}, reflection_b = {};
+  std::span<const float> reflection_weight = {};
 
   template <class Real>
   PixelAttributes<Real> at(std::size_t k) const {
@@ -136,7 +152,11 @@ struct ShadingInputs {
             sun.empty() ? Real(1) : Real(sun[k]),
             sky.empty() ? Real(1) : Real(sky[k]),
             lambert.empty() ? Real(0) : Real(lambert[k]),
-            water_sun.empty() ? Real(1) : Real(water_sun[k])};
+            water_sun.empty() ? Real(1) : Real(water_sun[k]),
+            reflection_weight.empty() ? Real(0) : Real(reflection_r[k]),
+            reflection_weight.empty() ? Real(0) : Real(reflection_g[k]),
+            reflection_weight.empty() ? Real(0) : Real(reflection_b[k]),
+            reflection_weight.empty() ? Real(0) : Real(reflection_weight[k])};
   }
 };
 

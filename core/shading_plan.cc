@@ -119,6 +119,7 @@ ShadingPlan make_shading_plan(const Scene& scene, const FramePlan& frame, int la
   water.extinction_log2 = vec(w.extinction) / M_LN2;
   water.inv_full_depth = 1.0 / w.full_depth;
   water.strength = w.wave_strength;
+  water.reflect_terrain = water.enabled && w.reflect_terrain;
   // Three octaves of waves, each shorter, weaker and travelling in its own direction.
   const double lengths[kWaveOctaves] = {1.0, 1.0 / 2.3, 1.0 / 5.1};
   const double amplitudes[kWaveOctaves] = {1.0, 0.5, 0.25};

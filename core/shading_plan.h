@@ -59,6 +59,7 @@ struct WaterPlan {
   glm::dvec3 extinction_log2;  // per world unit, / ln 2
   double inv_full_depth = 1;
   double strength = 0;
+  bool reflect_terrain = false;            // water.reflect_terrain, where enabled
   double wave_inv_length[kWaveOctaves]{};  // lattice cells per world unit
   double wave_offset_x[kWaveOctaves]{};    // (camera + velocity time) in cells, mod P
   double wave_offset_z[kWaveOctaves]{};

@@ -218,9 +218,12 @@
   A(Real, cloud_warp_gain, [limits::kMaxCloudOctaves], {}) E                                    \
   A(Real, cloud_warp_offset, [4], {}) E                                                         \
   F(Vec3<Real>, cloud_sun_light, {}) F(Vec3<Real>, cloud_sky_light, {}) E                       \
+  /* water.reflect_terrain (core/water_reflection.h): 1 where the water mixes its sky toward  \
+     the terrain its reflected ray meets (the GL backend refuses it). */                      \
+  F(std::int32_t, terrain_reflections, 0) E                                                     \
   /* Unused: keeps the float struct's size a multiple of 16 bytes, the size GL gives the     \
      std430 block that mirrors it (gpu/shaders/shade_params.glsl.in). */                        \
-  A(std::int32_t, reserved, [4], {}) E                                                          \
+  A(std::int32_t, reserved, [3], {}) E                                                          \
   F(Vec3<Real>, camera_forward, {}) E                                                           \
   /* The background's view ray per pixel is formed in double (it is the sky's direction to   \
      a thousandth of a pixel at any field of view) and rounded once: these stay double. */     \

@@ -227,6 +227,7 @@ ShadeParams<Real> make_shade_params(const ShadingPlan& plan) {
   p.extinction_log2 = rounded<Real>(w.extinction_log2);
   p.inv_full_depth = Real(w.inv_full_depth);
   p.wave_strength = Real(w.strength);
+  p.terrain_reflections = w.reflect_terrain ? 1 : 0;
   for (int o = 0; o < kWaveOctaves; ++o) {
     p.wave_inv_length[o] = Real(w.wave_inv_length[o]);
     p.wave_offset_x[o] = Real(w.wave_offset_x[o]);

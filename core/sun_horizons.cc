@@ -66,7 +66,9 @@ ShadowGeometry shadow_geometry(const CameraFrame& camera, int viewport_height, i
 int shadow_cache_levels(const Scene& scene) {
   const bool planet = scene.terrain.planet && scene.terrain.planet->radius != 0.0;
   const bool sun_up = scene.lighting.sun_elevation_deg + scene.sky.sun_disc_deg > 0.0;
-  if (planet || !((scene.lighting.shadows && sun_up) || scene.lighting.sky_occlusion)) {
+  const bool reflections = scene.water.reflect_terrain && scene.terrain.water_level;
+  if (planet ||
+      !((scene.lighting.shadows && sun_up) || scene.lighting.sky_occlusion || reflections)) {
     return 0;
   }
   return shadow_geometry(make_camera_frame(scene.camera, scene.viewport), scene.viewport.height,
@@ -77,11 +79,13 @@ int shadow_cache_levels(const Scene& scene) {
 ShadowPlan make_shadow_plan(const Scene& scene, const FramePlan& frame) {
   ShadowPlan plan;
   const LightingSettings& light = scene.lighting;
-  if ((!light.shadows && !light.sky_occlusion) || frame.planet.enabled) {
+  const bool reflections = scene.water.reflect_terrain && frame.water_enabled;
+  if ((!light.shadows && !light.sky_occlusion && !reflections) || frame.planet.enabled) {
     return plan;
   }
   plan.enabled = light.shadows;
   plan.sky = light.sky_occlusion;
+  plan.reflections = reflections;
   plan.water = frame.water_enabled;
   plan.water_level = frame.relative_water_level;
   const double elevation = light.sun_elevation_deg, radius = scene.sky.sun_disc_deg;
@@ -93,9 +97,10 @@ ShadowPlan make_shadow_plan(const Scene& scene, const FramePlan& frame) {
   plan.sin_radius = std::sin(radius * kDegree);
   plan.lit_tangent = clamped_tangent(elevation - radius);
   plan.dark_tangent = clamped_tangent(elevation + radius);
-  // With the sun set no pixel reads the sun's horizons; sky light still reads the cache.
+  // With the sun set no pixel reads the sun's horizons; sky light and the reflections still
+  // read the cache.
   plan.sun_set = elevation + radius <= 0.0;
-  if (plan.sun_set && !plan.sky) {
+  if (plan.sun_set && !plan.sky && !plan.reflections) {
     return plan;
   }
 
@@ -179,6 +184,7 @@ ShadowParams<Real> make_shadow_params(const ShadowPlan& plan) {
   p.dark_tangent = Real(plan.dark_tangent);
   p.water = plan.water ? 1 : 0;
   p.water_level = Real(plan.water_level);
+  p.reflections = plan.reflections ? 1 : 0;
   return p;
 }
 
@@ -248,7 +254,8 @@ LevelRange shadow_level_range(const ShadowPlan& plan, const DrawnExtent& drawn_g
   // interpolation), in any norm the distance is measured in.
   DrawnExtent drawn = drawn_ground;
   const double lowest = drawn.lowest * (1.0 + 1e-4);
-  if (plan.enabled && plan.water && lowest < plan.water_level && drawn.nearest > 0.0) {
+  if ((plan.enabled || plan.reflections) && plan.water && lowest < plan.water_level &&
+      drawn.nearest > 0.0) {
     drawn.nearest *= plan.water_level / lowest;  // in (0, 1)
   }
   const double span = double(plan.resolution - 1);
@@ -288,6 +295,11 @@ LevelRange shadow_level_range(const ShadowPlan& plan, const DrawnExtent& drawn_g
     ++top;
   }
   range.end = top + 1;
+  // A reflected ray (water_reflection.h) reaches terrain no pixel draws, past the farthest
+  // drawn one: up to the coarsest level, four times the far plane's distance.
+  if (plan.reflections) {
+    range.end = plan.levels;
+  }
   return range;
 }
 

@@ -84,6 +84,9 @@ struct ShadowPlan {
   // level's samples are raised to its surface (raise_to_water_surface), camera-relative.
   bool water = false;
   double water_level = 0;
+  // water.reflect_terrain: the reflected rays march over the levels' heights
+  // (water_reflection.h), which are then built whether or not the sun is up.
+  bool reflections = false;
 };
 
 // Camera-relative u of the last sample of a level's rows (ShadowPlan in double, ShadowParams
@@ -97,8 +100,8 @@ auto level_last_u(const Params& p, int level) {
 
 // From the scene's lighting and the frame: the sun, the levels (shadow_geometry, anchored to
 // the world lattice of their spacings about the camera), their octave counts and the
-// occluders' reach. Disabled where lighting.shadows and lighting.sky_occlusion are off, or on
-// a planet.
+// occluders' reach. Disabled where lighting.shadows, lighting.sky_occlusion and the water's
+// reflections (water.reflect_terrain with water in the frame) are off, or on a planet.
 ShadowPlan make_shadow_plan(const Scene& scene, const FramePlan& frame);
 
 // How far from the camera the cache's samples that sum each octave lie (octave_coordinates.h):
@@ -127,6 +130,7 @@ struct ShadowParams {
   Real lit_tangent = 0, dark_tangent = 0;
   std::int32_t water = 0;  // ShadowPlan::water
   Real water_level = 0;
+  std::int32_t reflections = 0;  // ShadowPlan::reflections
 };
 
 template <class Real>
@@ -217,8 +221,9 @@ DrawnExtent drawn_extent(const ShadowPlan& plan, const GridLayout& layout, RowRa
 // the nearest water surface a pixel's ray can meet in front of its ground) to the one
 // past the level whose row ends reach the occluders beyond the farthest pixel's level, and
 // the next coarser level too (a pixel near its level's edge reads it: sun_visibility.h). The
-// squares are tested with a margin of 1e-4 for the float test of a pixel against a square.
-// None (first == end) where `drawn` is empty.
+// squares are tested with a margin of 1e-4 for the float test of a pixel against a square;
+// with reflections, to the coarsest level (their rays reach past every pixel). None
+// (first == end) where `drawn` is empty.
 struct LevelRange {
   int first = 0, end = 0;
 };

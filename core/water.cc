@@ -43,7 +43,7 @@ template <class Real>
 Vec3<Real> shade_water(const ShadeParams<Real>& p, const NoiseLattice& lattice,
                        const Skybox* skybox, const Vec3<Real>& view, Real surface_distance,
                        Real depth, const Vec3<Real>& ground, Real footprint, Real sun_share,
-                       ShadeWork& work) {
+                       const Vec3<Real>& terrain, Real terrain_weight, ShadeWork& work) {
   const Real f = smooth01(depth * p.inv_full_depth);
   const Vec3<Real> s = view * surface_distance;
   const Vec3<Real> n = wave_normal(p, lattice, s.x, s.z, p.wave_strength * f, footprint);
@@ -57,6 +57,9 @@ Vec3<Real> shade_water(const ShadeParams<Real>& p, const NoiseLattice& lattice,
   if (p.clouds) {  // from the surface point, to the sky
     sky = clouds_over_from(p, lattice, sky, s, surface_distance, reflected,
                            Real(limits::kMaxCameraRelativeDistance), work);
+  }
+  if (p.terrain_reflections) {  // the terrain the reflected ray meets hides the sky behind it
+    sky = sky + (terrain - sky) * terrain_weight;
   }
 
   // Snell: t = eta v + (eta cos_i - sqrt(k)) n, k = 1 - eta^2 (1 - cos_i^2) > 0 from air.
@@ -87,9 +90,11 @@ template Vec3<double> wave_normal<double>(const ShadeParams<double>&, const Nois
                                           double, double, double);
 template Vec3<float> shade_water<float>(const ShadeParams<float>&, const NoiseLattice&,
                                         const Skybox*, const Vec3<float>&, float, float,
-                                        const Vec3<float>&, float, float, ShadeWork&);
+                                        const Vec3<float>&, float, float, const Vec3<float>&, float,
+                                        ShadeWork&);
 template Vec3<double> shade_water<double>(const ShadeParams<double>&, const NoiseLattice&,
                                           const Skybox*, const Vec3<double>&, double, double,
-                                          const Vec3<double>&, double, double, ShadeWork&);
+                                          const Vec3<double>&, double, double, const Vec3<double>&,
+                                          double, ShadeWork&);
 
 }  // namespace relief

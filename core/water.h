@@ -31,12 +31,15 @@ namespace relief {
 // clouds), its work counted into `work`. `sun_share` in [0, 1]: the sun disc's share that the
 // terrain leaves in view from the surface point (cast shadows, sun_visibility.h; 1 without
 // them): it scales the sun glint (the reflected disc, not the sky's halo) and the sunlit part
-// of the water body, as a cast shadow darkens the ground.
+// of the water body, as a cast shadow darkens the ground. `terrain`, `terrain_weight`: with
+// water.reflect_terrain (params.terrain_reflections) the terrain the reflected ray meets
+// (water_reflection.h) and 1, or 0 where it escapes: the reflected sky and clouds mixed toward
+// it by the weight (x + (t - x) 0: the sky's bits); unread without reflections.
 template <class Real>
 Vec3<Real> shade_water(const ShadeParams<Real>& params, const NoiseLattice& lattice,
                        const Skybox* skybox, const Vec3<Real>& view, Real surface_distance,
                        Real depth, const Vec3<Real>& ground, Real footprint, Real sun_share,
-                       ShadeWork& work);
+                       const Vec3<Real>& terrain, Real terrain_weight, ShadeWork& work);
 
 // The wave normal at camera-relative surface position (x, z), for bump strength `strength`.
 template <class Real>

@@ -145,14 +145,21 @@ std::vector<Variation> full_variations(const Scene& scene) {
        {Backend::kSimd, Backend::kReference, Backend::kReferenceDouble, Backend::kGl}) {
     out.push_back(backend_variation(backend));
   }
-  // Cast shadows' and sky light's horizon cache (core/sun_horizons.h), where the scene has one.
-  if (scene.lighting.shadows || scene.lighting.sky_occlusion) {
+  // Cast shadows', sky light's and the reflections' horizon cache (core/sun_horizons.h), where
+  // the scene has one.
+  const bool reflections = scene.water.reflect_terrain && scene.terrain.water_level;
+  if (scene.lighting.shadows || scene.lighting.sky_occlusion || reflections) {
     for (int n : {128, 256, 512, 1024}) {
       out.push_back({"shadows " + std::to_string(n),
                      "shadow_resolution",
                      std::to_string(n),
                      {"lighting.shadow_resolution=" + std::to_string(n)}});
     }
+  }
+  // The reflections themselves (core/water_reflection.h): their error is the truth's reflected
+  // terrain missing from the water.
+  if (reflections) {
+    out.push_back({"no reflections", "reflect_terrain", "false", {"water.reflect_terrain=false"}});
   }
   // The cloud layer's octaves (core/clouds.h), where the scene has one: each costs a lattice
   // sample per path through the layer.

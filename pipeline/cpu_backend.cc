@@ -80,8 +80,9 @@ std::size_t CpuBackend<Real>::units(StageId id) const {
     case StageId::kBinning:
       return raster::setup_chunk_count(frame_triangles().count());
     case StageId::kShadowHeights:
-    case StageId::kSunHorizons:
       return shadow_rows();
+    case StageId::kSunHorizons:
+      return sweeps_horizons() ? shadow_rows() : 0;
     case StageId::kSkyHorizons:  // as many columns as rows
       return shadow_.sky != 0 ? shadow_rows() : 0;
     case StageId::kTiles:
@@ -341,8 +342,7 @@ void CpuBackend<Real>::prepare(StageId id) {
       tile_pass_ = std::make_unique<TilePass<Real>>(
           state_, frame_triangles(), streams, shade_, ShadeResources{&lattice_, textures_, skybox_},
           o, plan_.camera.position.y, image_, kernels_.tiles, band_rows_ < 0 ? 0 : band_first_row_,
-          TileShadows<Real>{shadow_.enabled != 0 ? &shadow_ : nullptr, &horizons_,
-                            shadow_.sky != 0 ? &shadow_ : nullptr});
+          tile_shadows());
       return;
     }
     default:
@@ -362,13 +362,12 @@ void CpuBackend<Real>::after(StageId id) {
       }
       choose_coordinate_forms(plan_.terrain, reach_, params_.fbm);
       return;
+    case StageId::kShadowHeights:
+      build_reflection_maxima();
+      return;
     case StageId::kDrawNeeds:
       params_.surface.water_enabled = water_in_view() ? 1 : 0;
-      if (shadow_rows() > 0 && request_.skips.unread_shadow_levels) {
-        const LevelRange range = shadow_level_range(shadow_plan_, drawn_);
-        shadow_.first_level = range.first;
-        shadow_.end_level = range.end;
-      }
+      choose_cache_levels();
       return;
     case StageId::kTriangleSetup:
       tally_setup();

@@ -27,6 +27,7 @@
 #include "core/stage_params.h"
 #include "core/sun_horizons.h"
 #include "core/vertex_culling.h"
+#include "core/water_reflection.h"
 #include "pipeline/cpu_kernels.h"
 #include "pipeline/frame_backend.h"
 #include "pipeline/tile_pass.h"
@@ -94,9 +95,14 @@ class CpuBackend final : public FrameBackend {
   // beyond what the frame's estimate left of the budget.
   void tally_setup();
   bool water_in_view() const;
-  // Cast shadows and sky light: the cache's rows to build (levels x N), none without either
-  // or, without sky light, after sunset.
+  // Cast shadows, sky light and the water's reflections: the cache's rows to build (levels x
+  // N), none without any or, with cast shadows alone, after sunset.
   std::size_t shadow_rows() const;
+  bool sweeps_horizons() const;  // the cache's rows and columns swept (shadows, sky light)
+  // After the draw flags: the levels the frame builds and the reflections read.
+  void choose_cache_levels();
+  void build_reflection_maxima();  // after the cache's heights, with reflections
+  TileShadows<Real> tile_shadows() const;
   // The cache's three stages: its heights, the rows' sweeps, the columns' (sky light).
   void run_horizon_cache(StageId id, std::size_t begin, std::size_t end);
   void run_shadow_heights(std::size_t begin, std::size_t end);
@@ -152,6 +158,11 @@ class CpuBackend final : public FrameBackend {
   DrawnExtent drawn_;  // where the drawn triangles lie in the sun's frame
   HorizonWork horizon_work_;
   HorizonWork sky_work_;  // the columns' sweeps (sky light)
+  // The water's reflections (core/water_reflection.h): the cache's parameters with the levels
+  // the frame reads (shadow_level_range, whether or not it skips the others), and those
+  // levels' blocks' largest heights.
+  ShadowParams<Real> reflection_levels_;
+  HeightBlockMaxima<Real> maxima_;
   ShadingPlan shading_plan_;
   ShadeParams<Real> shade_;
   FrameImage image_;

@@ -1,6 +1,7 @@
-// CpuBackend's cast shadows and sky light (cpu_backend.h, core/sun_horizons.h,
-// core/sky_horizons.h): the horizon cache's rows to build, their heights through the frame's
-// own stage-3 kernels, and their sweeps along the rows and the columns.
+// CpuBackend's cast shadows, sky light and reflections (cpu_backend.h, core/sun_horizons.h,
+// core/sky_horizons.h, core/water_reflection.h): the horizon cache's levels and rows to build,
+// their heights through the frame's own stage-3 kernels, their sweeps along the rows and the
+// columns, the reflections' block maxima, and what the tiles read of them.
 #include <algorithm>
 #include <mutex>
 
@@ -10,13 +11,21 @@ namespace relief {
 
 template <class Real>
 std::size_t CpuBackend<Real>::shadow_rows() const {
-  // Cast shadows read the cache while the sun is up; sky light whenever it is on.
-  if ((shadow_.enabled == 0 || shadow_.sun_set != 0) && shadow_.sky == 0) {
+  // Cast shadows read the cache while the sun is up; sky light and the water's reflections
+  // whenever they are on.
+  if ((shadow_.enabled == 0 || shadow_.sun_set != 0) && shadow_.sky == 0 &&
+      shadow_.reflections == 0) {
     return 0;
   }
   // Levels [first_level, end_level): the others no pixel reads (shadow_level_range).
   return std::size_t(shadow_.end_level - shadow_.first_level) *
          std::size_t(shadow_plan_.resolution);
+}
+
+template <class Real>
+bool CpuBackend<Real>::sweeps_horizons() const {
+  // The sweeps serve cast shadows (the sun up) and sky light; the reflections read heights.
+  return (shadow_.enabled != 0 && shadow_.sun_set == 0) || shadow_.sky != 0;
 }
 
 template <class Real>
@@ -74,10 +83,52 @@ void CpuBackend<Real>::run_shadow_heights(std::size_t begin, std::size_t end) {
   shadow_fbm_work_.octaves += work.octaves;
 }
 
+template <class Real>
+void CpuBackend<Real>::choose_cache_levels() {
+  if (!water_in_view()) {  // no pixel has water in front: no reflected ray, no cache for one
+    shadow_.reflections = 0;
+  }
+  if (shadow_rows() == 0 || (!request_.skips.unread_shadow_levels && shadow_.reflections == 0)) {
+    return;
+  }
+  const LevelRange range = shadow_level_range(shadow_plan_, drawn_);
+  if (request_.skips.unread_shadow_levels) {
+    shadow_.first_level = range.first;
+    shadow_.end_level = range.end;
+  }
+  // The reflected rays read those levels alone, with the skip or without; with them the range
+  // ends at the coarsest level, so the rows' sweeps continue as far either way: the skip
+  // changes no bit of them (core/water_reflection.h).
+  reflection_levels_ = shadow_;
+  reflection_levels_.first_level = range.first;
+  reflection_levels_.end_level = range.end;
+}
+
+template <class Real>
+void CpuBackend<Real>::build_reflection_maxima() {
+  if (shadow_.reflections != 0 && shadow_rows() > 0) {  // every row's heights written
+    build_height_block_maxima(reflection_levels_, horizons_, reflection_levels_.first_level,
+                              reflection_levels_.end_level, maxima_);
+  }
+}
+
+template <class Real>
+TileShadows<Real> CpuBackend<Real>::tile_shadows() const {
+  // The water's reflections march over the cache's heights (core/water_reflection.h).
+  const bool reflects = shadow_.reflections != 0 && shadow_rows() > 0;
+  return TileShadows<Real>{shadow_.enabled != 0 ? &shadow_ : nullptr, &horizons_,
+                           shadow_.sky != 0 ? &shadow_ : nullptr,
+                           reflects ? &reflection_levels_ : nullptr, reflects ? &maxima_ : nullptr};
+}
+
 // The members defined here, for both backends (the class itself is instantiated once, in
 // cpu_backend.cc).
 #define RELIEF_INSTANTIATE_SHADOWS(Real)                                                \
   template std::size_t CpuBackend<Real>::shadow_rows() const;                           \
+  template bool CpuBackend<Real>::sweeps_horizons() const;                              \
+  template void CpuBackend<Real>::choose_cache_levels();                                \
+  template void CpuBackend<Real>::build_reflection_maxima();                            \
+  template TileShadows<Real> CpuBackend<Real>::tile_shadows() const;                    \
   template void CpuBackend<Real>::run_horizon_cache(StageId, std::size_t, std::size_t); \
   template void CpuBackend<Real>::run_shadow_heights(std::size_t, std::size_t);
 RELIEF_INSTANTIATE_SHADOWS(float)

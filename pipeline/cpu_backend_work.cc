@@ -100,10 +100,11 @@ void CpuBackend<Real>::tally_draws(RowRange rows, const NeedCount& count) {
     }
   }
   // Where pixels can lie in the sun's frame: the cache levels built (core/sun_horizons.h).
-  const DrawnExtent drawn = shadow_rows() > 0 && request_.skips.unread_shadow_levels
-                                ? drawn_extent<Real>(shadow_plan_, plan_.layout, rows, grid_.dx,
-                                                     grid_.dz, grid_.height, grid_.valid, need_)
-                                : DrawnExtent{};
+  const DrawnExtent drawn =
+      shadow_rows() > 0 && (request_.skips.unread_shadow_levels || shadow_.reflections != 0)
+          ? drawn_extent<Real>(shadow_plan_, plan_.layout, rows, grid_.dx, grid_.dz, grid_.height,
+                               grid_.valid, need_)
+          : DrawnExtent{};
   const std::lock_guard<std::mutex> lock(work_mutex_);
   draws_.evaluate += count.evaluate;
   draws_.draw += count.draw;
@@ -215,6 +216,16 @@ void CpuBackend<Real>::describe(StageId id, StageTime& time) const {
           count("water surface points proven lit", water.lit);
           count("water surface points in full shadow", water.dark);
         }
+      }
+      if (shadow_.reflections != 0 && shade_.terrain_water != 0) {
+        const ReflectionWork& r = w.reflection;
+        count("reflected rays marched", r.rays);
+        count("reflected rays' height lookups", r.lookups);
+        count("blocks skipped below a reflected ray", r.skipped);
+        count("levels skipped below a reflected ray", r.levels);
+        count("reflected rays meeting the terrain", r.hits);
+        count("reflected rays above every height", r.above);
+        count("reflected rays leaving the cache", r.left);
       }
       if (shadow_.sky != 0) {
         count("sky lookups", w.sky.pixels);

@@ -328,6 +328,11 @@ std::string gl_missing_feature(const Scene& scene) {
     return "lighting.sky_occlusion = true: the GL backend has no sky light yet; allowed false" +
            other;
   }
+  if (scene.water.reflect_terrain && scene.terrain.water_level) {  // the same cache
+    return "water.reflect_terrain = true: the GL backend has no terrain reflections yet; allowed "
+           "false" +
+           other;
+  }
   if (scene.sky.clouds) {  // docs/stages.md, "Clouds"
     return "sky.clouds is set: the GL backend has no cloud layer yet; allowed null" + other;
   }

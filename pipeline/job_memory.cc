@@ -12,6 +12,7 @@
 #include "core/input_file.h"
 #include "core/limits.h"
 #include "core/sun_horizons.h"
+#include "core/water_reflection.h"
 #include "image/png_header.h"
 #include "pipeline/basis_resources.h"
 #include "pipeline/heightfield_files.h"
@@ -141,10 +142,10 @@ std::uintmax_t grid_vertices(const Scene& scene) {
   return make_grid_layout(scene.grid.width, scene.grid.height).size();
 }
 
-// Cast shadows' and sky light's horizon cache (core/sun_horizons.h): the levels the scene lays
-// out, N^2 samples each with a height, the sun's two values (with the sun up) and the sky's
-// one in the backend's precision; a frame builds those its pixels read (the GL backend
-// refuses both).
+// Cast shadows', sky light's and the reflections' horizon cache (core/sun_horizons.h): the
+// levels the scene lays out, N^2 samples each with a height, the sun's two values (with the sun
+// up) and the sky's one in the backend's precision, and the reflections' block maxima; a frame
+// builds those its pixels read (the GL backend refuses all three).
 void add_shadow_cache(const Scene& scene, Backend backend, MemoryEstimate& estimate) {
   const int levels = shadow_cache_levels(scene);
   if (levels == 0 || backend == Backend::kGl) {
@@ -158,6 +159,13 @@ void add_shadow_cache(const Scene& scene, Backend backend, MemoryEstimate& estim
   const std::uintmax_t values = 1 + (sun ? 2 : 0) + (scene.lighting.sky_occlusion ? 1 : 0);
   estimate.add("shadow cache " + size_text(int(n), int(n)) + " x " + std::to_string(levels),
                n * n * std::uintmax_t(levels) * values * value);
+  if (scene.water.reflect_terrain && scene.terrain.water_level) {  // water_reflection.h
+    std::uintmax_t blocks = (n - 1 + kReflectionBlock - 1) / kReflectionBlock, maxima = 0;
+    for (int tier = 0; tier < kMaxReflectionTiers; ++tier, blocks = (blocks + 1) / 2) {
+      maxima += blocks * blocks;  // an overestimate by the tiers not built (< 1/3)
+    }
+    estimate.add("reflections' block maxima", maxima * std::uintmax_t(levels) * value);
+  }
 }
 
 }  // namespace

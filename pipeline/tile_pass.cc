@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/srgb.h"
+#include "pipeline/tile_reflections.h"
 #include "pipeline/tile_shadows.h"
 #include "raster/resolve.h"
 #include "simd/raster_tile.h"
@@ -284,6 +285,8 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
     tile_sky_shares(shadows_, kernels_.sky, highway_shade, vis, scratch->attributes, work.sky);
     tile_water_sun_shares(shadows_, shade_, kernels_.sun, highway_shade, vis, scratch->attributes,
                           work.water_shadow);
+    tile_water_reflections(shadows_, shade_, resources_, highway_shade, vis, scratch->attributes,
+                           work.reflection, work.shade);
   }
   const Clock::time_point shadowed = Clock::now();
 
@@ -296,7 +299,8 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
           shadows_.params != nullptr && shade_.water_enabled && shade_.terrain_water;
       const ShadingInputs in = scratch->attributes.inputs(
           vis.primitive, {!streams_.drop.empty(), shadows_.params != nullptr,
-                          shadows_.sky != nullptr, !streams_.lambert.empty(), water_sun});
+                          shadows_.sky != nullptr, !streams_.lambert.empty(), water_sun,
+                          shadows_.reflections != nullptr && shade_.terrain_reflections != 0});
       simd::shade_rect(shade_, resources_, in, vis.x0, vis.y0, vis.width, vis.height,
                        raster::kTileSize, std::span<float>(scratch->rgb), work.shade);
       shaded_simd = true;

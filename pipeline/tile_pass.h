@@ -21,6 +21,7 @@
 #include "core/sky_horizons.h"
 #include "core/stage_params.h"
 #include "core/sun_visibility.h"
+#include "core/water_reflection.h"
 #include "pipeline/frame.h"
 #include "pipeline/kernel_kind.h"
 #include "raster/bins.h"
@@ -59,18 +60,41 @@ struct TileAttributes {
   // The sun's share at the water surface in front of the pixel's ground (tile_shadows.h); 1
   // without cast shadows, and where no water lies in front.
   Real water_sun[kPixels];
+  // There too, the terrain the reflected ray meets and its weight (tile_reflections.h); weight
+  // 0 without reflections, and where no water lies in front.
+  Real reflection_r[kPixels], reflection_g[kPixels], reflection_b[kPixels];
+  Real reflection_weight[kPixels];
 
   PixelAttributes<Real> at(std::size_t k) const {
-    return {dx[k],     dz[k],     height[k],     dx_ddx[k],      dx_ddy[k],
-            dz_ddx[k], dz_ddy[k], height_ddx[k], height_ddy[k],  nx[k],
-            ny[k],     nz[k],     slope[k],      water_depth[k], drop[k],
-            sun[k],    sky[k],    lambert[k],    water_sun[k]};
+    return {dx[k],
+            dz[k],
+            height[k],
+            dx_ddx[k],
+            dx_ddy[k],
+            dz_ddx[k],
+            dz_ddy[k],
+            height_ddx[k],
+            height_ddy[k],
+            nx[k],
+            ny[k],
+            nz[k],
+            slope[k],
+            water_depth[k],
+            drop[k],
+            sun[k],
+            sky[k],
+            lambert[k],
+            water_sun[k],
+            reflection_r[k],
+            reflection_g[k],
+            reflection_b[k],
+            reflection_weight[k]};
   }
 
   // The tile as stage 8's Highway kernel reads it (core/shade.h's ShadingInputs), the optional
   // fields empty where the frame has none (read as their constants there).
   struct Present {
-    bool drop, sun, sky, lambert, water_sun;
+    bool drop, sun, sky, lambert, water_sun, reflection;
   };
   ShadingInputs inputs(const std::uint32_t* primitive,
                        Present present) const requires std::is_same_v<Real, float> {
@@ -97,7 +121,11 @@ struct TileAttributes {
             optional(present.sun, sun),
             optional(present.sky, sky),
             optional(present.lambert, lambert),
-            optional(present.water_sun, water_sun)};
+            optional(present.water_sun, water_sun),
+            optional(present.reflection, reflection_r),
+            optional(present.reflection, reflection_g),
+            optional(present.reflection, reflection_b),
+            optional(present.reflection, reflection_weight)};
   }
 };
 
@@ -107,9 +135,10 @@ struct TileWork {
   std::uint64_t tile_triangles = 0;  // (triangle, tile) pairs rasterised
   std::uint64_t covered_pixels = 0;  // pixels a triangle covers: attributes resolved
   ShadeWork shade;
-  ShadowWork shadow;        // cast shadows' lookups (sun_visibility.h)
-  SkyWork sky;              // sky light's lookups (sky_horizons.h)
-  ShadowWork water_shadow;  // cast shadows' lookups at water surfaces (tile_shadows.h)
+  ShadowWork shadow;          // cast shadows' lookups (sun_visibility.h)
+  SkyWork sky;                // sky light's lookups (sky_horizons.h)
+  ShadowWork water_shadow;    // cast shadows' lookups at water surfaces (tile_shadows.h)
+  ReflectionWork reflection;  // the reflected rays (core/water_reflection.h)
 
   TileWork& operator+=(const TileWork& o) {
     tiles_drawn += o.tiles_drawn;
@@ -119,6 +148,7 @@ struct TileWork {
     shadow += o.shadow;
     sky += o.sky;
     water_shadow += o.water_shadow;
+    reflection += o.reflection;
     return *this;
   }
 };
@@ -149,6 +179,10 @@ struct TileShadows {
   const ShadowParams<Real>* params = nullptr;
   const SunHorizonCache<Real>* cache = nullptr;
   const ShadowParams<Real>* sky = nullptr;
+  // With the water's reflections (water.reflect_terrain): the cache's layout and its blocks'
+  // maxima (core/water_reflection.h); null without.
+  const ShadowParams<Real>* reflections = nullptr;
+  const HeightBlockMaxima<Real>* maxima = nullptr;
 };
 
 template <class Real>

@@ -44,7 +44,7 @@ HWY_INLINE V3<V> OpenWater(D d, const ShadeParams<float>& p, const LatticeView& 
   const V footprint = SurfaceFootprint(d, p, surface, view.y);
   const V3<V> open =
       ShadeWaterLanes(p, lattice, skybox, view, surface, hn::Set(d, 1e6f), V3<V>{zero, zero, zero},
-                      footprint, hn::Set(d, 1.0f), active, work);
+                      footprint, hn::Set(d, 1.0f), V3<V>{zero, zero, zero}, zero, active, work);
   work.water_pixels += count;
   if (!p.fog_enabled) {
     return open;

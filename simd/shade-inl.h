@@ -81,9 +81,10 @@ HWY_INLINE V3<V> TerrainRadiance(D d, const ShadeContext& ctx, const AttributeVe
         water_view = ToLocalFrame(d, view, up);
       }
       const V footprint = SurfaceFootprint(d, p, surface, water_view.y);
-      const V3<V> water = ShadeWaterLanes(p, ctx.lattice, ctx.skybox, water_view, surface,
-                                          StdMax(zero, a.water_depth), radiance, footprint,
-                                          a.water_sun, under_water, work);
+      const V3<V> water = ShadeWaterLanes(
+          p, ctx.lattice, ctx.skybox, water_view, surface, StdMax(zero, a.water_depth), radiance,
+          footprint, a.water_sun, V3<V>{a.reflection_r, a.reflection_g, a.reflection_b},
+          a.reflection_weight, under_water, work);
       radiance = Select3(under_water, water, radiance);
       fog_distance = hn::IfThenElse(under_water, surface, distance);
       work.water_pixels += count;
@@ -115,10 +116,10 @@ HWY_INLINE V3<V> ShadeVector(D d, const ShadeContext& ctx, const std::uint32_t* 
     const auto load = [&](int field) {
       return hn::IfThenElseZero(covered, hn::LoadU(d, fields[field]));
     };
-    const AttributeVectors<V> a{load(0),  load(1),  load(2),  load(3),  load(4),
-                                load(5),  load(6),  load(7),  load(8),  load(9),
-                                load(10), load(11), load(12), load(13), load(14),
-                                load(15), load(16), load(17), load(18)};
+    const AttributeVectors<V> a{load(0),  load(1),  load(2),  load(3),  load(4),  load(5),
+                                load(6),  load(7),  load(8),  load(9),  load(10), load(11),
+                                load(12), load(13), load(14), load(15), load(16), load(17),
+                                load(18), load(19), load(20), load(21), load(22)};
     radiance = TerrainRadiance(d, ctx, a, covered, work);
   }
   if (!hn::AllFalse(d, background)) {
@@ -143,17 +144,37 @@ void ShadeRect(const ShadeParams<float>& p, const ShadeResources& r, const Shadi
     ctx.textures[layer] = texture_view_of(r.textures[layer]);
   }
   ctx.skybox = skybox_view_of(r.skybox);
-  const std::span<const float> spans[kShadeFields] = {
-      in.dx,         in.dz,         in.height, in.dx_ddx, in.dx_ddy,   in.dz_ddx, in.dz_ddy,
-      in.height_ddx, in.height_ddy, in.nx,     in.ny,     in.nz,       in.slope,  in.water_depth,
-      in.sun,        in.lambert,    in.drop,   in.sky,    in.water_sun};
-  // The water depth and the sun's share at the water surface are not resolved (and may be
-  // absent) where no terrain lies under water.
+  const std::span<const float> spans[kShadeFields] = {in.dx,
+                                                      in.dz,
+                                                      in.height,
+                                                      in.dx_ddx,
+                                                      in.dx_ddy,
+                                                      in.dz_ddx,
+                                                      in.dz_ddy,
+                                                      in.height_ddx,
+                                                      in.height_ddy,
+                                                      in.nx,
+                                                      in.ny,
+                                                      in.nz,
+                                                      in.slope,
+                                                      in.water_depth,
+                                                      in.sun,
+                                                      in.lambert,
+                                                      in.drop,
+                                                      in.sky,
+                                                      in.water_sun,
+                                                      in.reflection_r,
+                                                      in.reflection_g,
+                                                      in.reflection_b,
+                                                      in.reflection_weight};
+  // The water depth, the sun's share at the water surface and the reflection are not resolved
+  // (and may be absent) where no terrain lies under water.
   const bool reads_depth = p.water_enabled && p.terrain_water;
   // Fields read from the constant tail (0, the plane's drop among them; the sun's share 1, the
   // whole disc): absent, or unread.
   const auto absent = [&](int f) {
-    return spans[f].empty() || ((f == kDepthField || f == kWaterSunField) && !reads_depth);
+    return spans[f].empty() ||
+           ((f == kDepthField || f == kWaterSunField || f >= kReflectionFields) && !reads_depth);
   };
   constexpr int kMaxLanes = HWY_MAX_BYTES / sizeof(float);
   HWY_ALIGN float tail[kShadeFields][kMaxLanes] = {};

@@ -36,8 +36,8 @@ using ShadeMask = hn::Mask<ShadeTag>;
 V3<ShadeVec> ShadeWaterLanes(const ShadeParams<float>& p, const LatticeView& lattice,
                              const SkyboxView& skybox, const V3<ShadeVec>& view,
                              ShadeVec surface_distance, ShadeVec depth, const V3<ShadeVec>& ground,
-                             ShadeVec footprint, ShadeVec sun_share, ShadeMask active,
-                             ShadeWork& work);
+                             ShadeVec footprint, ShadeVec sun_share, const V3<ShadeVec>& terrain,
+                             ShadeVec terrain_weight, ShadeMask active, ShadeWork& work);
 
 // background_radiance (core/shade.cc) for the lanes of `background`, pixels (px0 + lane, py)
 // (simd/background-inl.h's BackgroundRadiance; zero elsewhere or unspecified).

@@ -16,10 +16,10 @@ namespace HWY_NAMESPACE {
 V3<ShadeVec> ShadeWaterLanes(const ShadeParams<float>& p, const LatticeView& lattice,
                              const SkyboxView& skybox, const V3<ShadeVec>& view,
                              ShadeVec surface_distance, ShadeVec depth, const V3<ShadeVec>& ground,
-                             ShadeVec footprint, ShadeVec sun_share, ShadeMask active,
-                             ShadeWork& work) {
+                             ShadeVec footprint, ShadeVec sun_share, const V3<ShadeVec>& terrain,
+                             ShadeVec terrain_weight, ShadeMask active, ShadeWork& work) {
   return ShadeWater(ShadeTag(), p, lattice, skybox, view, surface_distance, depth, ground,
-                    footprint, sun_share, active, work);
+                    footprint, sun_share, terrain, terrain_weight, active, work);
 }
 
 }  // namespace HWY_NAMESPACE

@@ -33,9 +33,10 @@ namespace hn = hwy::HWY_NAMESPACE;
 constexpr double kShadeMinProjectionWeight = 0.01;
 constexpr double kShadeMinLayerWeight = 1e-3;
 
-// The per-pixel fields ShadeRect reads, in AttributeVectors' order; six may be absent.
-constexpr int kShadeFields = 19, kDepthField = 13, kSunField = 14, kLambertField = 15,
-              kDropField = 16, kSkyField = 17, kWaterSunField = 18;
+// The per-pixel fields ShadeRect reads, in AttributeVectors' order; ten may be absent (the
+// reflection's four from kReflectionFields on).
+constexpr int kShadeFields = 23, kDepthField = 13, kSunField = 14, kLambertField = 15,
+              kDropField = 16, kSkyField = 17, kWaterSunField = 18, kReflectionFields = 19;
 
 // What the kernel reads besides the pixels: the parameters and the resources' views.
 struct ShadeContext {
@@ -57,6 +58,8 @@ struct AttributeVectors {
   V drop;       // a planet's curvature drop (0 on the plane)
   V sky;        // the sky's open share (1 without sky light)
   V water_sun;  // the sun's share at the water surface in front (1 without cast shadows)
+  // The terrain reflected there and its weight (0 without reflections: core/water_reflection.h)
+  V reflection_r, reflection_g, reflection_b, reflection_weight;
 };
 
 // sample (shade.cc): texture_lod at level 0's size (nearest_mip_lod's level where the frame

@@ -96,8 +96,8 @@ HWY_INLINE V3<V> WaveNormal(D d, const ShadeParams<float>& p, const LatticeView&
 template <class D, class V = hn::Vec<D>, class M = hn::Mask<D>>
 HWY_INLINE V3<V> ShadeWater(D d, const ShadeParams<float>& p, const LatticeView& lattice,
                             const SkyboxView& skybox, const V3<V>& view, V surface_distance,
-                            V depth, const V3<V>& ground, V footprint, V sun_share, M active,
-                            ShadeWork& work) {
+                            V depth, const V3<V>& ground, V footprint, V sun_share,
+                            const V3<V>& terrain, V terrain_weight, M active, ShadeWork& work) {
   constexpr double kFresnelF0 = 0.02;             // water.cc
   constexpr double kRelativeIndex = 1.0 / 1.333;  // water.cc
   constexpr double kMinTransmittedCosine = 0.1;   // water.cc
@@ -119,6 +119,9 @@ HWY_INLINE V3<V> ShadeWater(D d, const ShadeParams<float>& p, const LatticeView&
   if (p.clouds) {  // from the surface point, to the sky
     sky = CloudsOverLanes(p, lattice, sky, s, surface_distance, reflected,
                           hn::Set(d, float(limits::kMaxCameraRelativeDistance)), active, work);
+  }
+  if (p.terrain_reflections) {  // the terrain the reflected ray meets (water.cc)
+    sky = Add3(sky, Scale3(Sub3(terrain, sky), terrain_weight));
   }
 
   const float eta = float(kRelativeIndex);

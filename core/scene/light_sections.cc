@@ -150,6 +150,10 @@ const Schema<WaterSettings>& water_schema() {
                    {"", "slope of the wave normal map in deep water"}),
       number_field("wave_speed", &S::wave_speed, Range{0.0, limits::kMaxWaveSpeed},
                    {"world units per second", "the waves' drift"}),
+      boolean_field("reflect_terrain", &S::reflect_terrain,
+                    {"",
+                     "the terrain reflected in the water, traced from its surface over the "
+                     "shadows' horizon cache (not on planets)"}),
   });
   return schema;
 }

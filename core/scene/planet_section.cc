@@ -113,6 +113,13 @@ void validate_planet(const Scene& scene) {
                          format_number(radius) +
                          "): sky light is built for the plane only; allowed false here");
   }
+  // The reflected rays march over the same cache (docs/stages.md, "Reflections").
+  if (scene.water.reflect_terrain && t.water_level) {
+    throw SceneError("water.reflect_terrain",
+                     "scene: water.reflect_terrain = true on a planet (terrain.planet.radius = " +
+                         format_number(radius) +
+                         "): reflections are built for the plane only; allowed false here");
+  }
   // The atmosphere's closed form integrates over flat ground (core/atmosphere.h); a sphere's
   // shell has none.
   if (scene.sky.atmosphere) {

@@ -280,6 +280,9 @@ struct WaterSettings {
   double wave_length = 7.0;                 // world units, the largest wave of the normal map
   double wave_strength = 0.2;               // slope of the wave normal map in deep water
   double wave_speed = 1.2;                  // world units per second
+  // The terrain reflected in the water (Miller): the reflected ray marched over the shadows'
+  // horizon cache (core/water_reflection.h); off: the paper's sky alone, no reflection pass.
+  bool reflect_terrain = false;
 };
 
 // A skybox (Mekala): six square PNG faces in place of the sky gradient, sampled as GL samples a

@@ -123,7 +123,7 @@ const Schema<HeightFieldSettings>& heightfield_schema() {
            "draw the field by GeoMipMapping (tiles at levels of detail, stitched, culled by a "
            "quadtree and by occlusion) instead of the projected grid; null: the projected grid",
            "needs fractal and level_of_detail false, the plane, no "
-           "lighting.shadows or lighting.sky_occlusion, a CPU backend"}),
+           "lighting.shadows, lighting.sky_occlusion or water.reflect_terrain, a CPU backend"}),
   });
   return schema;
 }
@@ -158,6 +158,12 @@ void validate_geomipmap(const Scene& scene) {
                      "lighting.sky_occlusion = true" + why +
                          "sky light reads the shadows' horizon cache, which is not built for the "
                          "mesh yet; allowed false");
+  }
+  if (scene.water.reflect_terrain && t.water_level) {  // the same cache (water_reflection.h)
+    throw SceneError("water.reflect_terrain",
+                     "water.reflect_terrain = true" + why +
+                         "the reflected rays march over the shadows' horizon cache, which is not "
+                         "built for the mesh yet; allowed false");
   }
 }
 

@@ -343,23 +343,25 @@ TEST_CASE("waterFadesIntoTheGroundAtTheShorelineAndDeepensWithDepth", "[shading]
   ShadeWork work;
   // At zero depth only a weak Fresnel reflection covers the ground.
   const Vec3<double> shore =
-      shade_water(f.params, f.lattice, nullptr, view, 100.0, 0.0, ground, 1e3, 1.0, work);
+      shade_water(f.params, f.lattice, nullptr, view, 100.0, 0.0, ground, 1e3, 1.0, {}, 0.0, work);
   CHECK(std::abs(shore.x - ground.x) < 0.05);
   CHECK(std::abs(shore.y - ground.y) < 0.05);
   // Deeper water hides the ground: the result stops depending on it.
-  const Vec3<double> deep_a =
-      shade_water(f.params, f.lattice, nullptr, view, 100.0, 200.0, ground, 1e3, 1.0, work);
+  const Vec3<double> deep_a = shade_water(f.params, f.lattice, nullptr, view, 100.0, 200.0, ground,
+                                          1e3, 1.0, {}, 0.0, work);
   const Vec3<double> deep_b = shade_water(f.params, f.lattice, nullptr, view, 100.0, 200.0,
-                                          Vec3<double>{0, 0, 0}, 1e3, 1.0, work);
+                                          Vec3<double>{0, 0, 0}, 1e3, 1.0, {}, 0.0, work);
   CHECK(std::abs(deep_a.x - deep_b.x) < 1e-6);
   // Red is absorbed first: deep water is greener than it is red.
   CHECK(deep_a.y > deep_a.x);
   // Continuous in depth.
   double previous =
-      shade_water(f.params, f.lattice, nullptr, view, 100.0, 0.0, ground, 1e3, 1.0, work).x;
+      shade_water(f.params, f.lattice, nullptr, view, 100.0, 0.0, ground, 1e3, 1.0, {}, 0.0, work)
+          .x;
   for (double depth = 0.01; depth < 30; depth += 0.01) {
-    const double now =
-        shade_water(f.params, f.lattice, nullptr, view, 100.0, depth, ground, 1e3, 1.0, work).x;
+    const double now = shade_water(f.params, f.lattice, nullptr, view, 100.0, depth, ground, 1e3,
+                                   1.0, {}, 0.0, work)
+                           .x;
     REQUIRE(std::abs(now - previous) < 0.01);
     previous = now;
   }

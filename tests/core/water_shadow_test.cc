@@ -67,7 +67,7 @@ TEST_CASE("aCastShadowOnTheWaterTakesTheSunGlintAndTheSunlitBodyButNotTheSky", "
   const Vec3<double> sun = p.sun_direction;
   const Vec3<double> glint_view = normalize_or(Vec3<double>{sun.x, -sun.y, sun.z}, sun);
   const auto water = [&](const Vec3<double>& view, double depth, double share) {
-    return shade_water(p, lattice, nullptr, view, 100.0, depth, ground, 1e9, share, work);
+    return shade_water(p, lattice, nullptr, view, 100.0, depth, ground, 1e9, share, {}, 0.0, work);
   };
   const Vec3<double> lit = water(glint_view, 0.0, 1.0);
   const Vec3<double> dark = water(glint_view, 0.0, 0.0);

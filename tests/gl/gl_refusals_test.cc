@@ -135,6 +135,18 @@ TEST_CASE("theGlBackendRefusesSkyLightItCannotDraw", "[gl]") {
   CHECK_FALSE(std::filesystem::exists(out));
 }
 
+TEST_CASE("theGlBackendRefusesTerrainReflectionsItCannotDraw", "[gl]") {
+  // The mirror preset without its shadows and sky light: the reflections alone, named.
+  test::TempDir dir("gl-mirror");
+  const std::string out = (dir.path() / "mirror.png").string();
+  const CliResult r = run({"render", "mirror", "--set", "lighting.shadows=false", "--set",
+                           "lighting.sky_occlusion=false", "--backend", "gl", "-o", out});
+  INFO(r.err << r.out);
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Contains("water.reflect_terrain"));
+  CHECK_FALSE(std::filesystem::exists(out));
+}
+
 TEST_CASE("theGlBackendRefusesTheCloudLayerItCannotDraw", "[gl]") {
   // No GLSL twin of the cloud layer yet (docs/stages.md, "Clouds"): refused with the field
   // named; the stress suite skips its GL rows with the same reason.

@@ -143,6 +143,7 @@ Offsets<ShadeParams<float>> shade_offsets() {
   o.add("cloud_warp_offset[0]", &p.cloud_warp_offset[0], sizeof(float));
   o.add3("cloud_sun_light", p.cloud_sun_light);
   o.add3("cloud_sky_light", p.cloud_sky_light);
+  o.add("terrain_reflections", &p.terrain_reflections);
   o.add("reserved[0]", &p.reserved[0], sizeof(std::int32_t));
   o.add3("camera_forward", p.camera_forward);
   o.add("forward[0]", &p.forward[0], sizeof(double));

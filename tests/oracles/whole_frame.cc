@@ -14,6 +14,7 @@
 #include "core/sun_horizons.h"
 #include "core/sun_visibility.h"
 #include "core/vertex_transform.h"
+#include "core/water_reflection.h"
 #include "pipeline/cpu_backend.h"
 #include "pipeline/memory_budget.h"
 
@@ -109,7 +110,7 @@ SunHorizonCache<Real> build_horizon_cache(const ShadowPlan& plan, const FramePla
                                           const SceneResources& resources, int first, int end) {
   SunHorizonCache<Real> cache;
   const bool sun = plan.enabled && !plan.sun_set;
-  if (!sun && !plan.sky) {
+  if (!sun && !plan.sky && !plan.reflections) {
     return cache;
   }
   end = end < 0 ? plan.levels : end;
@@ -137,7 +138,7 @@ SunHorizonCache<Real> build_horizon_cache(const ShadowPlan& plan, const FramePla
       raise_to_water_surface(params, heights);
     }
   }
-  for (int level = first; level < end; ++level) {
+  for (int level = first; (sun || plan.sky) && level < end; ++level) {
     sweep_sun_horizons<Real>(params, level, RowRange{0, n}, cache);
   }
   for (int level = first; plan.sky && level < end; ++level) {  // after every row's sweep
@@ -158,15 +159,18 @@ namespace {
 // shadows and water, `water_sun`: the sun's share where the view ray meets the water surface
 // before the pixel's ground (below the camera-relative level: the surface point lies along
 // the ray at level / height of the way).
+// With reflections, the terrain each water pixel's reflected ray meets over every level
+// (core/water_reflection.h), its radiance and weight.
 struct CacheShares {
   std::vector<float> sun, sky, water_sun;
+  std::vector<float> reflection_r, reflection_g, reflection_b, reflection_weight;
 };
 CacheShares cache_shares(const Scene& scene, const SceneResources& resources,
                          const TerrainFrame& frame, const ShadeParams<float>& shade,
-                         const ShadingInputs& inputs) {
+                         const ShadeResources& shade_resources, const ShadingInputs& inputs) {
   const ShadowPlan plan = make_shadow_plan(scene, frame.plan);
   CacheShares shares;
-  if (!plan.enabled && !plan.sky) {
+  if (!plan.enabled && !plan.sky && !plan.reflections) {
     return shares;
   }
   const ShadowParams<float> params = make_shadow_params<float>(plan);
@@ -176,6 +180,24 @@ CacheShares cache_shares(const Scene& scene, const SceneResources& resources,
   shares.sky.assign(plan.sky ? pixels : 0, 1.0f);
   const bool water = plan.enabled && shade.water_enabled;
   shares.water_sun.assign(water ? pixels : 0, 1.0f);
+  const bool reflections = plan.reflections && shade.terrain_reflections != 0;
+  for (std::vector<float>* v : {&shares.reflection_r, &shares.reflection_g, &shares.reflection_b,
+                                &shares.reflection_weight}) {
+    v->assign(reflections ? pixels : 0, 0.0f);
+  }
+  HeightBlockMaxima<float> maxima;
+  if (reflections) {
+    build_height_block_maxima(params, cache, 0, plan.levels, maxima);
+  }
+  const ReflectionScene<float> reflection{&shade,
+                                          shade_resources,
+                                          &params,
+                                          &cache,
+                                          &maxima,
+                                          plan.enabled ? &params : nullptr,
+                                          plan.sky ? &params : nullptr};
+  ReflectionWork reflection_work;
+  ShadeWork reflection_shade_work;
   ShadowWork sun_work;
   SkyWork sky_work;
   for (std::size_t k = 0; k < pixels; ++k) {
@@ -194,6 +216,15 @@ CacheShares cache_shares(const Scene& scene, const SceneResources& resources,
       shares.water_sun[k] = sun_visibility<float>(params, cache, inputs.dx[k] * t,
                                                   shade.water_level, inputs.dz[k] * t, sun_work);
     }
+    if (reflections && inputs.height[k] < shade.water_level) {
+      Vec3<float> radiance;
+      shares.reflection_weight[k] = reflected_terrain(reflection, inputs.dx[k], inputs.height[k],
+                                                      inputs.dz[k], inputs.water_depth[k], radiance,
+                                                      reflection_work, reflection_shade_work);
+      shares.reflection_r[k] = radiance.x;
+      shares.reflection_g[k] = radiance.y;
+      shares.reflection_b[k] = radiance.z;
+    }
   }
   return shares;
 }
@@ -208,10 +239,14 @@ FrameImage render_whole_frame(const Scene& scene, const SceneResources& resource
   add_planet_shading(frame.plan, scene.terrain.base_height, params);
   const ShadeResources shade_resources{&resources.lattice, resources.textures};
   ShadingInputs inputs = shading_inputs(frame, resolved);
-  const CacheShares shares = cache_shares(scene, resources, frame, params, inputs);
+  const CacheShares shares = cache_shares(scene, resources, frame, params, shade_resources, inputs);
   inputs.sun = shares.sun;
   inputs.sky = shares.sky;
   inputs.water_sun = shares.water_sun;
+  inputs.reflection_r = shares.reflection_r;
+  inputs.reflection_g = shares.reflection_g;
+  inputs.reflection_b = shares.reflection_b;
+  inputs.reflection_weight = shares.reflection_weight;
   // Gradient mode: every vertex lit (core/vertex_transform.h), its Lambert term resolved.
   raster::ResolvedFrame lambert_resolved;
   if (plan.gradient.enabled) {

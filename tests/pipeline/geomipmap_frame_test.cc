@@ -253,6 +253,7 @@ TEST_CASE("geomipmapIsRefusedWhereItIsNotBuiltNamingTheField", "[geomipmap]") {
           "allowed false");
   refused({"lighting.shadows=true"}, "lighting.shadows", "allowed false");
   refused({"lighting.sky_occlusion=true"}, "lighting.sky_occlusion", "allowed false");
+  refused({"water.reflect_terrain=true"}, "water.reflect_terrain", "allowed false");
   refused({"terrain.planet={\"radius\": 100000}"}, "terrain.planet.radius", "allowed 0");
   refused({"terrain.heightfield.geomipmap.tile_cells=24"},
           "terrain.heightfield.geomipmap.tile_cells", "not a power of two");
