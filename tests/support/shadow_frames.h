@@ -3,8 +3,11 @@
 // smallest horizon cache, and its linear radiance and primitive ids from the reference backend.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
+
+#include <catch2/catch.hpp>
 
 #include "core/scene/scene.h"
 #include "pipeline/frame.h"
@@ -17,6 +20,18 @@ inline std::vector<std::string> small_shadow_frame(std::vector<std::string> more
   more.insert(more.end(), {"viewport.width=200", "viewport.height=150", "grid.width=128",
                            "grid.height=128", "lighting.shadow_resolution=128"});
   return more;
+}
+
+// `request` (the linear output added) rendered, every linear value required finite: the
+// reference a bit-identity test compares the simd backend's frames with.
+inline Frame render_finite(const Scene& scene, const SceneResources& resources,
+                           FrameRequest& request) {
+  request.outputs.linear = true;
+  Frame frame = render_frame(scene, resources, request);
+  for (const float value : frame.image.linear) {
+    REQUIRE(std::isfinite(value));
+  }
+  return frame;
 }
 
 inline Frame render_reference_linear(const Scene& scene) {
