@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/clouds.h"
 #include "core/det_math.h"
 #include "core/interpolant.h"
 #include "core/limits.h"
@@ -238,16 +239,15 @@ bool trace_reflection(const ShadowParams<Real>& p, const SunHorizonCache<Real>& 
 }
 
 template <class Real>
-Real reflected_terrain(const ReflectionScene<Real>& s, Real dx, Real height, Real dz, Real depth,
-                       Vec3<Real>& radiance, ReflectionWork& work, ShadeWork& shade_work) {
-  const ShadeParams<Real>& p = *s.shade;
-  radiance = Vec3<Real>{0, 0, 0};
+ReflectionRay<Real> reflection_ray(const ShadeParams<Real>& p, const NoiseLattice& lattice, Real dx,
+                                   Real height, Real dz, Real depth) {
+  ReflectionRay<Real> ray;
   // The view ray and its surface point as terrain_radiance and shade_water form them
   // (shade.cc, water.cc): on the plane, height < level < 0, so view.y < 0.
   const Vec3<Real> position{dx, height, dz};
   const Vec3<Real> view = normalize_or(position, p.camera_forward);
   if (!(view.y < Real(0))) {
-    return Real(0);
+    return ray;
   }
   const Real surface = p.water_level / view.y;  // > 0
   const Real footprint = surface * p.pixel_angle / std::max(std::abs(view.y), Real(0.05));
@@ -255,9 +255,8 @@ Real reflected_terrain(const ReflectionScene<Real>& s, Real dx, Real height, Rea
   // On the surface exactly: view.y (level / view.y) may round below the level, under the
   // cache's raised water, where the ray would meet the water it leaves.
   const Vec3<Real> start{view.x * surface, p.water_level, view.z * surface};
-  const Vec3<Real> n =
-      wave_normal(p, *s.resources.lattice, start.x, start.z, p.wave_strength * f, footprint);
-  Vec3<Real> reflected = view - n * (Real(2) * dot(view, n));
+  const Vec3<Real> n = wave_normal(p, lattice, start.x, start.z, p.wave_strength * f, footprint);
+  const Vec3<Real> reflected = view - n * (Real(2) * dot(view, n));
   // A wave tilted toward the eye sends the reflected ray lower than the flat mirror's (whose
   // elevation is -view.y), down to the horizon and, folded above it by water.cc, back up:
   // such a ray would meet the next wave, and marched over the terrain it finds the far shore
@@ -265,12 +264,24 @@ Real reflected_terrain(const ReflectionScene<Real>& s, Real dx, Real height, Rea
   // where the ray rises at least half the mirror's elevation to 0 where it is horizontal or
   // folded (the sky of water.cc there); an unperturbed ray, and every wave far away, where
   // water.h fades the waves out, keeps weight 1.
-  const Real weight = smooth01(reflected.y / (Real(-0.5) * view.y));  // -view.y > 0
-  if (!(weight > Real(0))) {
+  ray.weight = smooth01(reflected.y / (Real(-0.5) * view.y));  // -view.y > 0
+  ray.start = start;
+  ray.surface = surface;
+  ray.direction = normalize_or(reflected, Vec3<Real>{Real(0), Real(1), Real(0)});
+  return ray;
+}
+
+template <class Real>
+Real reflected_terrain(const ReflectionScene<Real>& s, const ReflectionRay<Real>& ray,
+                       Vec3<Real>& radiance, ReflectionWork& work, ShadeWork& shade_work) {
+  const ShadeParams<Real>& p = *s.shade;
+  radiance = Vec3<Real>{0, 0, 0};
+  if (!(ray.weight > Real(0))) {
     return Real(0);
   }
-  reflected = normalize_or(reflected, Vec3<Real>{Real(0), Real(1), Real(0)});
-
+  const Vec3<Real>& start = ray.start;
+  const Vec3<Real>& reflected = ray.direction;
+  const Real surface = ray.surface;
   ReflectionHit<Real> hit;
   if (!trace_reflection(*s.levels, *s.cache, *s.maxima, start, reflected, hit, work)) {
     return Real(0);
@@ -312,7 +323,18 @@ Real reflected_terrain(const ReflectionScene<Real>& s, Real dx, Real height, Rea
   if (p.fog_enabled) {  // along the reflected path, from the surface to the hit
     radiance = apply_fog(p, radiance, reflected, hit.distance);
   }
-  return weight;
+  if (p.clouds) {  // the cloud layer between the surface and the hit, where the path crosses it
+    radiance = clouds_over_from(p, *s.resources.lattice, radiance, start, surface, reflected,
+                                hit.distance, shade_work);
+  }
+  return ray.weight;
+}
+
+template <class Real>
+Real reflected_terrain(const ReflectionScene<Real>& s, Real dx, Real height, Real dz, Real depth,
+                       Vec3<Real>& radiance, ReflectionWork& work, ShadeWork& shade_work) {
+  return reflected_terrain(s, reflection_ray(*s.shade, *s.resources.lattice, dx, height, dz, depth),
+                           radiance, work, shade_work);
 }
 
 template bool trace_reflection<float>(const ShadowParams<float>&, const SunHorizonCache<float>&,
@@ -322,6 +344,16 @@ template bool trace_reflection<double>(const ShadowParams<double>&, const SunHor
                                        const HeightBlockMaxima<double>&, const Vec3<double>&,
                                        const Vec3<double>&, ReflectionHit<double>&,
                                        ReflectionWork&);
+template ReflectionRay<float> reflection_ray<float>(const ShadeParams<float>&, const NoiseLattice&,
+                                                    float, float, float, float);
+template ReflectionRay<double> reflection_ray<double>(const ShadeParams<double>&,
+                                                      const NoiseLattice&, double, double, double,
+                                                      double);
+template float reflected_terrain<float>(const ReflectionScene<float>&, const ReflectionRay<float>&,
+                                        Vec3<float>&, ReflectionWork&, ShadeWork&);
+template double reflected_terrain<double>(const ReflectionScene<double>&,
+                                          const ReflectionRay<double>&, Vec3<double>&,
+                                          ReflectionWork&, ShadeWork&);
 template float reflected_terrain<float>(const ReflectionScene<float>&, float, float, float, float,
                                         Vec3<float>&, ReflectionWork&, ShadeWork&);
 template double reflected_terrain<double>(const ReflectionScene<double>&, double, double, double,

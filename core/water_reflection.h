@@ -6,7 +6,8 @@
 // at the frame's level of detail for its spacing, so the reflection is as detailed as the
 // ground seen at that distance). Where it meets the terrain, the reflected radiance is the
 // terrain lit there (sun, cast shadow and sky light read from the same cache, the cloud layer's
-// shadow), fogged along the reflected path; where it escapes, the sky of water.h.
+// shadow), fogged along the reflected path and seen through the cloud layer on it; where it
+// escapes, the sky of water.h.
 //
 // The march (castledragmire's max-height skipping): the reflected ray never descends (water.h
 // folds it above the horizon), so once it stands above the largest height of a block of
@@ -85,6 +86,26 @@ struct ReflectionScene {
   const ShadowParams<Real>* sun = nullptr;
   const ShadowParams<Real>* sky = nullptr;
 };
+
+// A pixel's reflected ray: where it leaves the water surface, its unit direction, the surface's
+// distance from the camera, and the terrain's weight (0: no ray to march).
+template <class Real>
+struct ReflectionRay {
+  Vec3<Real> start{}, direction{};
+  Real surface = 0;
+  Real weight = 0;
+};
+
+// The ray of the pixel at camera-relative (dx, height, dz) with water depth `depth` (the first
+// half of reflected_terrain below; simd/reflection_rays.h forms the same bits in vectors).
+template <class Real>
+ReflectionRay<Real> reflection_ray(const ShadeParams<Real>& params, const NoiseLattice& lattice,
+                                   Real dx, Real height, Real dz, Real depth);
+
+// The second half: the ray marched and its hit shaded, as below.
+template <class Real>
+Real reflected_terrain(const ReflectionScene<Real>& scene, const ReflectionRay<Real>& ray,
+                       Vec3<Real>& radiance, ReflectionWork& work, ShadeWork& shade_work);
 
 // The pixel at camera-relative (dx, height, dz) with water depth `depth`, its view ray meeting
 // the water surface first (height < water level < 0, on the plane): the reflected ray's

@@ -24,6 +24,9 @@ constexpr const char* kBinningReason =
 constexpr const char* kHullSweepReason =
     "a stack per line of the cache whose pushes and pops depend on the heights "
     "(core/horizon_lines.h)";
+constexpr const char* kReflectionMarchReason =
+    "each ray's steps, jumps and end depend on the heights it passes (core/water_reflection.h); "
+    "its set-up is the vectorised part";
 
 }  // namespace
 
@@ -47,6 +50,7 @@ CpuKernels<float> highway_kernels(bool planet) {
   k.tiles.shade = h;
   k.tiles.sun = h;  // no shadows or sky light on a planet (its table has no entry)
   k.tiles.sky = h;
+  k.tiles.reflect = h;
   for (KernelChoice& c : k.choices) {
     const std::string_view name = c.kernel;
     if (name == "clip and edge set-up") {
@@ -55,6 +59,8 @@ CpuKernels<float> highway_kernels(bool planet) {
       c.reason = kBinningReason;
     } else if (name == "hull sweep") {
       c.reason = kHullSweepReason;
+    } else if (name == "reflected rays' march") {
+      c.reason = kReflectionMarchReason;
 
     } else {
       c.kind = h;

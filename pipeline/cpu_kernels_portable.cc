@@ -49,15 +49,19 @@ CpuKernels<Real> portable_kernels(bool planet) {
       {StageId::kTiles, "tile resolve", p, ""},
       {StageId::kTiles, "sun's share", p, ""},
       {StageId::kTiles, "sky's share", p, ""},
+      {StageId::kTiles, "reflected rays' set-up", p, ""},
+      {StageId::kTiles, "reflected rays' march", p, ""},
       {StageId::kTiles, "tile shade", p, ""},
       {StageId::kTiles, "tile encode", p, ""},
   };
   if (planet) {  // docs/planet.md: the bend after stage 3, the normals' rotation after stage 4
-    // No cast shadows or sky light on a planet (the scene refuses them): their entries go.
+    // No cast shadows, sky light or reflections on a planet (the scene refuses them): their
+    // entries go.
     std::erase_if(k.choices, [](const KernelChoice& c) {
       return c.stage == StageId::kShadowHeights || c.stage == StageId::kSunHorizons ||
              c.stage == StageId::kSkyHorizons || std::string_view(c.kernel) == "sun's share" ||
-             std::string_view(c.kernel) == "sky's share";
+             std::string_view(c.kernel) == "sky's share" ||
+             std::string_view(c.kernel).starts_with("reflected rays");
     });
     k.choices.insert(k.choices.begin() + 4, {StageId::kFractal, "planet bend", p, ""});
     k.choices.insert(k.choices.begin() + 7, {StageId::kSurface, "planet normals", p, ""});

@@ -17,6 +17,9 @@ struct TileKernels {
   KernelKind resolve = KernelKind::kPortable;
   KernelKind sun = KernelKind::kPortable;  // cast shadows' share of the sun (sun_visibility.h)
   KernelKind sky = KernelKind::kPortable;  // sky light's share of the sky (sky_horizons.h)
+  // The reflected rays' set-up (water_reflection.h, simd/reflection_rays.h); their march is
+  // portable in every backend.
+  KernelKind reflect = KernelKind::kPortable;
   KernelKind shade = KernelKind::kPortable;
   KernelKind encode = KernelKind::kPortable;
 };

@@ -285,8 +285,8 @@ void TilePass<Real>::run(std::span<const raster::SetupChunk> chunks, const raste
     tile_sky_shares(shadows_, kernels_.sky, highway_shade, vis, scratch->attributes, work.sky);
     tile_water_sun_shares(shadows_, shade_, kernels_.sun, highway_shade, vis, scratch->attributes,
                           work.water_shadow);
-    tile_water_reflections(shadows_, shade_, resources_, highway_shade, vis, scratch->attributes,
-                           work.reflection, work.shade);
+    tile_water_reflections(shadows_, shade_, resources_, kernels_.reflect, highway_shade, vis,
+                           scratch->attributes, work.reflection, work.shade);
   }
   const Clock::time_point shadowed = Clock::now();
 

@@ -1,12 +1,15 @@
 #include "pipeline/tile_reflections.h"
 
 #include <algorithm>
+#include <type_traits>
+
+#include "simd/reflection_rays.h"
 
 namespace relief {
 
 template <class Real>
 void tile_water_reflections(const TileShadows<Real>& shadows, const ShadeParams<Real>& shade,
-                            const ShadeResources& resources, bool highway_shade,
+                            const ShadeResources& resources, KernelKind kind, bool highway_shade,
                             const raster::TileVisibility& vis, TileAttributes<Real>& a,
                             ReflectionWork& work, ShadeWork& shade_work) {
   if (!shade.water_enabled || !shade.terrain_water) {
@@ -31,16 +34,39 @@ void tile_water_reflections(const TileShadows<Real>& shadows, const ShadeParams<
                                     shadows.params != nullptr ? levels : nullptr,
                                     shadows.sky != nullptr ? levels : nullptr};
   const Real level = shade.water_level;
+  constexpr int kRow = raster::kTileSize;
   for (int py = vis.y0; py < vis.y0 + vis.height; ++py) {
-    for (int px = vis.x0; px < vis.x0 + vis.width; ++px) {
-      const std::size_t k = vis.index(px, py);
+    const std::size_t row = vis.index(vis.x0, py);
+    // The rays of the row's pixels with water in front (the water test of core/shade.cc:
+    // ground below the level; its view ray descends there, which the set-up checks again).
+    ReflectionRay<Real> rays[kRow];
+    bool highway = false;
+    if constexpr (std::is_same_v<Real, float>) {
+      if (kind == KernelKind::kHighway) {
+        float sx[kRow], sz[kRow], surface[kRow], rx[kRow], ry[kRow], rz[kRow], weight[kRow];
+        simd::reflection_rays(shade, *resources.lattice, vis.primitive + row, a.dx + row,
+                              a.height + row, a.dz + row, a.water_depth + row, vis.width,
+                              simd::ReflectionRayRow{sx, sz, surface, rx, ry, rz, weight});
+        for (int i = 0; i < vis.width; ++i) {
+          rays[i] = ReflectionRay<float>{
+              {sx[i], level, sz[i]}, {rx[i], ry[i], rz[i]}, surface[i], weight[i]};
+        }
+        highway = true;
+      }
+    }
+    for (int i = 0; !highway && i < vis.width; ++i) {
+      const std::size_t k = row + std::size_t(i);
+      if (vis.primitive[k] != raster::kNoPrimitive && a.height[k] < level) {
+        rays[i] = reflection_ray(shade, *resources.lattice, a.dx[k], a.height[k], a.dz[k],
+                                 a.water_depth[k]);
+      }
+    }
+    for (int i = 0; i < vis.width; ++i) {
+      const std::size_t k = row + std::size_t(i);
       Vec3<Real> radiance{0, 0, 0};
       Real weight = 0;
-      // The water test of the shade (core/shade.cc): ground below the level; its view ray
-      // descends there (level < 0), which reflected_terrain checks again.
       if (vis.primitive[k] != raster::kNoPrimitive && a.height[k] < level) {
-        weight = reflected_terrain(scene, a.dx[k], a.height[k], a.dz[k], a.water_depth[k], radiance,
-                                   work, shade_work);
+        weight = reflected_terrain(scene, rays[i], radiance, work, shade_work);
       }
       a.reflection_r[k] = radiance.x;
       a.reflection_g[k] = radiance.y;
@@ -51,11 +77,11 @@ void tile_water_reflections(const TileShadows<Real>& shadows, const ShadeParams<
 }
 
 template void tile_water_reflections<float>(const TileShadows<float>&, const ShadeParams<float>&,
-                                            const ShadeResources&, bool,
+                                            const ShadeResources&, KernelKind, bool,
                                             const raster::TileVisibility&, TileAttributes<float>&,
                                             ReflectionWork&, ShadeWork&);
 template void tile_water_reflections<double>(const TileShadows<double>&, const ShadeParams<double>&,
-                                             const ShadeResources&, bool,
+                                             const ShadeResources&, KernelKind, bool,
                                              const raster::TileVisibility&, TileAttributes<double>&,
                                              ReflectionWork&, ShadeWork&);
 

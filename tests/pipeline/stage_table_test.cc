@@ -108,12 +108,14 @@ void check_pointers_match_kinds(const CpuKernels<Real>& table, const CpuKernels<
       CHECK((table.tiles.sun == KernelKind::kHighway) == highway);
     } else if (name == "sky's share") {
       CHECK((table.tiles.sky == KernelKind::kHighway) == highway);
+    } else if (name == "reflected rays' set-up") {
+      CHECK((table.tiles.reflect == KernelKind::kHighway) == highway);
     } else if (name == "tile shade") {
       CHECK((table.tiles.shade == KernelKind::kHighway) == highway);
     } else if (name == "tile encode") {
       CHECK((table.tiles.encode == KernelKind::kHighway) == highway);
     } else {
-      // A kernel with one kind only (set-up, binning).
+      // A kernel with one kind only (set-up, binning, the reflected rays' march).
       CHECK_FALSE(highway);
     }
   }
