@@ -14,9 +14,11 @@
 // kReflectionBlock x kReflectionBlock cells it stays above it to the block's exit, which it
 // jumps to without a height lookup; above the largest height of a level and the finer ones it
 // jumps to the level's edge; above the largest height of every level it can meet nothing
-// more. Elsewhere it steps half a cell of the finest level holding it and compares its
-// height with the level's bilinear surface; a crossing is refined by bisection. A ray leaving
-// the coarsest level built (past every drawn pixel) or the step budget escapes. The surface is
+// more (the blocks and tops: height_block_maxima.h). Elsewhere it compares its height with the
+// bilinear surface of the finest level holding it: above the cell's four samples it jumps to
+// the cell's exit, else it steps half a cell; a crossing is refined by bisection. A ray leaving
+// the coarsest level (reflections build every level past the nearest water surface:
+// shadow_level_range) or the step budget escapes. The surface is
 // the cache's, raised to the water (raise_to_water_surface): a ray from the surface meets the
 // shore, not the lake bed.
 #pragma once
