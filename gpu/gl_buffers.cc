@@ -136,7 +136,7 @@ void GlShadeResources::upload(const ShadeResources& resources) {
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTextureSubImage3D(skybox_, 0, 0, 0, 0, box.size, box.size, 6, GL_RGB, GL_FLOAT,
                         box.texels.data());
-    // Only texelFetch reads it (sky_water.glsl).
+    // Only texelFetch reads it (sky.glsl).
     glTextureParameteri(skybox_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(skybox_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   }

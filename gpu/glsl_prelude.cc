@@ -4,6 +4,8 @@
 #include <vector>
 
 #include "core/atmosphere.h"
+#include "core/cloud_plan.h"
+#include "core/clouds.h"
 #include "core/det_math.h"
 #include "core/limits.h"
 #include "core/proto_texture.h"
@@ -90,7 +92,9 @@ std::vector<GlslSource> shading_sources() {
           {"wrap_period.glsl", glsl::kWrapPeriod},
           {"shading_lattice.glsl", glsl::kLattice},
           {"proto_texture.glsl", glsl::kProtoTexture},
-          {"sky_water.glsl", glsl::kSkyWater},
+          {"sky.glsl", glsl::kSky},
+          {"clouds.glsl", glsl::kClouds},
+          {"water.glsl", glsl::kWater},
           {"planet_shading.glsl", glsl::kPlanetShading},
           {"gradient_shading.glsl", glsl::kGradientShading},
           {"terrain_shading.glsl", glsl::kTerrainShading}};
@@ -140,6 +144,9 @@ std::string glsl_prelude() {
   constant(out, "kReflectivityDepth", float(kReflectivityDepth));
   constant(out, "kLocalFrameMinCos", float(kLocalFrameMinCos));
   constant(out, "kMaxOpticalDepth", float(kMaxOpticalDepth));
+  constant(out, "kCloudMinSlope", float(kCloudMinSlope));  // clouds.h
+  constant(out, "kCloudSpanFootprint", float(kCloudSpanFootprint));
+  constant(out, "kCloudMinSunSine", float(kCloudMinSunSine));  // cloud_plan.h
   constant(out, "kMaxCameraRelativeDistance", float(limits::kMaxCameraRelativeDistance));
   constant(out, "kGrowthSeriesLimit", float(kGrowthSeriesLimit));
   out += "const int kGrowthTerms = " + std::to_string(kGrowthTerms) + ";\n";

@@ -18,7 +18,9 @@ extern const char* const kWrapPeriod;       // shaders/wrap_period.glsl
 extern const char* const kShadeParams;      // shaders/shade_params.glsl.in, generated
 extern const char* const kLattice;          // shaders/shading_lattice.glsl
 extern const char* const kProtoTexture;     // shaders/proto_texture.glsl
-extern const char* const kSkyWater;         // shaders/sky_water.glsl
+extern const char* const kSky;              // shaders/sky.glsl
+extern const char* const kClouds;           // shaders/clouds.glsl
+extern const char* const kWater;            // shaders/water.glsl
 extern const char* const kPlanetShading;    // shaders/planet_shading.glsl.in, generated
 extern const char* const kGradientShading;  // shaders/gradient_shading.glsl
 extern const char* const kTerrainShading;   // shaders/terrain_shading.glsl

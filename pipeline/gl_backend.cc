@@ -333,9 +333,6 @@ std::string gl_missing_feature(const Scene& scene) {
            "false" +
            other;
   }
-  if (scene.sky.clouds) {  // docs/stages.md, "Clouds"
-    return "sky.clouds is set: the GL backend has no cloud layer yet; allowed null" + other;
-  }
   if (scene.terrain.heightfield && scene.terrain.heightfield->geomipmap) {  // kGlHasNoMesh
     return "terrain.heightfield.geomipmap is set: the GL backend draws the projected grid alone "
            "yet; allowed null" +

@@ -25,6 +25,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "eval/frame_comparison.h"
@@ -42,6 +43,10 @@ struct FrameDifference {
   // Channels of same-triangle pixels that differ by more than one sRGB code but lie within the
   // mip-level switch's envelope (bilinear filtering only): compared as equal.
   std::uint64_t level_switch_channels = 0;
+  // Same-triangle pixels whose CPU and GL heights lie on both sides of the water level: water
+  // on one side, dry ground on the other (a step at the shoreline no interpolation bound
+  // makes small): compared as equal.
+  std::uint64_t water_edge_pixels = 0;
   // Pixels whose triangle differs although no 8-neighbour in the CPU's frame has another
   // triangle and the pixel is not on the border: what no sub-pixel snapping explains.
   std::uint64_t unexplained_changes = 0;
@@ -59,9 +64,11 @@ struct FrameDifference {
 // `cpu_trilinear`: the CPU's frame of the scene with trilinear filtering (linear radiance),
 // for a scene that filters bilinearly; null otherwise. `all_pixels`: judge every pixel as idiff
 // judges the two PNG files (no exception where the triangle or the mip level changed; not a
-// verdict that holds on every GL).
+// verdict that holds on every GL). `water_level`: the scene's, in world units (its heights as
+// the frames' world_height output holds them); none: no water, no shoreline explained.
 FrameDifference compare_frames(const FrameImage& cpu, const FrameImage& gl,
                                const CompareThresholds& thresholds,
-                               const FrameImage* cpu_trilinear = nullptr, bool all_pixels = false);
+                               const FrameImage* cpu_trilinear = nullptr, bool all_pixels = false,
+                               std::optional<double> water_level = std::nullopt);
 
 }  // namespace relief

@@ -150,9 +150,9 @@ int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options,
     double trilinear_ms = 0;
     cpu_trilinear = timed_frame(trilinear, resources, options.cpu_backend, 1, trilinear_ms);
   }
-  const FrameDifference frame =
-      compare_frames(cpu.image, gl.image, options.thresholds,
-                     cpu_trilinear ? &cpu_trilinear->image : nullptr, options.all_pixels);
+  const FrameDifference frame = compare_frames(cpu.image, gl.image, options.thresholds,
+                                               cpu_trilinear ? &cpu_trilinear->image : nullptr,
+                                               options.all_pixels, scene.terrain.water_level);
 
   const double amplitude = scene.terrain.amplitude;
   std::ostringstream table;
@@ -180,6 +180,8 @@ int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options,
         << "8 mip level          channels explained by a level switch "
         << frame.level_switch_channels
         << (cpu_trilinear ? "" : " (not judged: trilinear filtering)") << "\n"
+        << "8 water              pixels explained by the shoreline " << frame.water_edge_pixels
+        << "\n"
         << "6-7 depth            max error (same triangle)        " << frame.pixels.max_depth_error
         << "\n"
         << "7 normal             max angle (deg, same triangle)   "
@@ -220,6 +222,7 @@ int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options,
         {"unexplained_changes", frame.unexplained_changes},
         {"boundary_pixels", frame.boundary_pixels},
         {"level_switch_channels", frame.level_switch_channels},
+        {"water_edge_pixels", frame.water_edge_pixels},
         {"max_depth_error", frame.pixels.max_depth_error},
         {"max_normal_angle_deg", frame.pixels.max_normal_angle_deg},
         {"max_height_error", frame.pixels.max_height_error},

@@ -182,8 +182,8 @@ const Schema<SkySettings>& sky_schema() {
       optional_section_field("clouds", &S::clouds, clouds_schema(), "", "",
                              {"",
                               "a fractal cloud layer over the sky and the terrain, shadowing the "
-                              "ground (docs/stages.md, \"Clouds\"; not on planets, not on the GL "
-                              "backend); `null`: a clear sky"}),
+                              "ground (docs/stages.md, \"Clouds\"; not on planets); `null`: a "
+                              "clear sky"}),
   });
   return schema;
 }

@@ -20,11 +20,13 @@ vec3 gradient_albedo(float h) {
   return color;
 }
 
-// No cast shadows on the GL side: the sun's share is 1.
-vec3 gouraud_light(vec3 albedo, float lambert, float ny) {
+// `sun_share`: what the cloud layer passes (1 without one); no cast shadows or sky light on
+// the GL side, so the C++'s sky share is 1 (x 1 changes no bit).
+vec3 gouraud_light(vec3 albedo, float lambert, float ny, float sun_share) {
+  precise float sunlit = lambert * sun_share;
   precise float up = 0.5 + 0.5 * ny;
   const vec3 hemisphere = lerp3(f3(P.ground_light), f3(P.sky_light), up);
   const float ambient = P.ambient;
-  precise vec3 radiance = albedo * (f3(P.sun) * lambert + hemisphere + vec3(ambient));
+  precise vec3 radiance = albedo * (f3(P.sun) * sunlit + hemisphere + vec3(ambient));
   return radiance;
 }

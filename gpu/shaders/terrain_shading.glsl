@@ -97,28 +97,31 @@ vec3 facing_normal(vec3 n, vec3 view) {
   return normalize_or(perpendicular, -view);
 }
 
-// Sun (Lambert, Phong), hemispherical sky light and ambient (Scape).
-vec3 light(vec3 albedo, vec3 n, vec3 view, float specular) {
+// Sun (Lambert, Phong) times the share `sun_share` of it the cloud layer passes (1 without
+// one; no cast shadows on the GL side, and x 1 changes no bit), hemispherical sky light and
+// ambient (Scape). shade.cc, light, with its sky share 1.
+vec3 light(vec3 albedo, vec3 n, vec3 view, float specular, float sun_share) {
   const vec3 to_sun = f3(P.sun_direction);
   const vec3 sun = f3(P.sun);
   precise float ndl = max_cpp(0.0, dot3(n, to_sun));
+  precise float sunlit = ndl * sun_share;
   precise float up = 0.5 + 0.5 * n.y;
   const vec3 hemisphere = lerp3(f3(P.ground_light), f3(P.sky_light), up);
   const float ambient = P.ambient;
-  precise vec3 radiance = albedo * (sun * ndl + hemisphere + vec3(ambient));
-  if ((specular > 0.0 || P.always_specular != 0) && ndl > 0.0) {
+  precise vec3 radiance = albedo * (sun * sunlit + hemisphere + vec3(ambient));
+  if ((specular > 0.0 || P.always_specular != 0) && sunlit > 0.0) {
     precise vec3 reflected = n * (2.0 * ndl) - to_sun;
     precise float rv = -dot3(reflected, view);
     if (rv > 0.0) {
       precise float power = exp2_det(P.shininess * log2_det(rv));
-      radiance = radiance + sun * (specular * power);
+      radiance = radiance + sun * ((specular * sun_share) * power);
     }
   }
   return radiance;
 }
 
 // §4.2's proto-texture shading (shading.mode = textures, shade.cc's textured_radiance).
-vec3 textured_radiance(Attributes a, float distance, vec3 view) {
+vec3 textured_radiance(Attributes a, float distance, vec3 view, float sun_share) {
   const float relative_y = a.height;
   const vec3 n = normalize_or(vec3(a.nx, a.ny, a.nz), vec3(0.0, 1.0, 0.0));
 
@@ -149,7 +152,7 @@ vec3 textured_radiance(Attributes a, float distance, vec3 view) {
   }
   albedo = albedo * divide(1.0, used);
   precise float shininess_weight = divide(specular, used);
-  return light(albedo, facing_normal(n, view), view, shininess_weight);
+  return light(albedo, facing_normal(n, view), view, shininess_weight, sun_share);
 }
 
 vec3 terrain_radiance(Attributes a) {
@@ -160,11 +163,18 @@ vec3 terrain_radiance(Attributes a) {
   const vec3 position = vec3(a.dx, position_y, a.dz);
   precise float distance = square_root(dot3(position, position));
   const vec3 view = normalize_or(position, f3(P.camera_forward));
+  // shade.cc, lit_terrain: the cloud layer's shadow, the sun's share passed through it at the
+  // pixel's footprint.
+  float sun_share = 1.0;
+  if (P.clouds != 0) {
+    precise float footprint = distance * P.pixel_angle;
+    sun_share = cloud_sun_share(position, footprint);
+  }
   precise vec3 radiance;
   if (P.gradient_enabled != 0) {  // gradient_shading.glsl
-    radiance = gouraud_light(gradient_albedo(relative_y), a.lambert, a.ny);
+    radiance = gouraud_light(gradient_albedo(relative_y), a.lambert, a.ny, sun_share);
   } else {
-    radiance = textured_radiance(a, distance, view);
+    radiance = textured_radiance(a, distance, view, sun_share);
   }
 
   precise float fog_distance = distance;
@@ -183,10 +193,13 @@ vec3 terrain_radiance(Attributes a) {
         shade_water(water_view, surface, max_cpp(0.0, a.water_depth), radiance, footprint);
     fog_distance = surface;
   }
-  if (P.fog_enabled == 0) {
-    return radiance;
+  if (P.fog_enabled != 0) {
+    radiance = apply_fog(radiance, view, fog_distance);
   }
-  return apply_fog(radiance, view, fog_distance);
+  if (P.clouds != 0) {
+    return clouds_over(radiance, view, fog_distance);
+  }
+  return radiance;
 }
 
 // No terrain at pixel (px, py): the view ray in double, rounded once (shade.cc).
@@ -201,19 +214,29 @@ vec3 background_radiance(int px, int py) {
   if (P.planet_center_distance > 0.0LF) {
     return planet_background(r0, r1, r2, d);
   }
-  if (d.y < 0.0) {
-    if (P.water_enabled != 0) {
-      precise float surface = divide(P.water_level, d.y);
-      const float footprint = surface_footprint(surface, d);
-      const vec3 open = shade_water(d, surface, kOpenWaterDepth, vec3(0.0), footprint);
-      if (P.fog_enabled == 0) {
-        return open;
-      }
-      return apply_fog(open, d, surface);
+  // The sky and the fog lie beyond every distance; open water at its surface; terrain past
+  // the far distance no lower than the frame's lowest (cloud_ground, where there are clouds).
+  precise float end = kMaxCameraRelativeDistance;
+  precise vec3 radiance;
+  if (d.y < 0.0 && P.water_enabled != 0) {
+    end = divide(P.water_level, d.y);
+    const float footprint = surface_footprint(end, d);
+    radiance = shade_water(d, end, kOpenWaterDepth, vec3(0.0), footprint);
+    if (P.fog_enabled != 0) {
+      radiance = apply_fog(radiance, d, end);
     }
-    return fog_color(d);
+  } else if (d.y < 0.0) {
+    radiance = fog_color(d);
+    if (P.clouds != 0) {
+      end = min_cpp(end, divide(P.cloud_ground, d.y));  // d.y < 0
+    }
+  } else {
+    radiance = sky_radiance(d);
   }
-  return sky_radiance(d);
+  if (P.clouds != 0) {
+    return clouds_over(radiance, d, end);
+  }
+  return radiance;
 }
 
 // Stage 9 (core/srgb.h, srgb_byte): the number of decision points t_k at or below x, from

@@ -3,8 +3,10 @@
 // changed triangle fails only away from a triangle boundary of the CPU's frame; a bilinear
 // mip-level switch is explained by the trilinear frame's distance and nothing beyond it.
 // Also the file identity behind every command's refusal of outputs that alias (distinct_paths.h).
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -128,6 +130,37 @@ TEST_CASE("aBilinearLevelSwitchIsExplainedWithinTheTrilinearFramesReach", "[cros
   FrameImage gl = cpu;
   set_code(gl, pixel, 2);
   CHECK(compare_frames(cpu, gl, kDefault, &cpu).verdict == CompareVerdict::kFailure);
+}
+
+TEST_CASE("aShorelineStepIsExplainedOnlyWhereTheHeightsStraddleTheWaterLevel", "[crosscheck]") {
+  // One pixel's colours differ by far more than a code. Where the CPU's height and GL's lie on
+  // both sides of the water level (within a float ulp), one is water and the other dry ground:
+  // explained. Elsewhere, without water, or with every pixel judged: not explained.
+  const std::size_t pixel = at(5, 4);
+  const auto judge = [&](float cpu_height, float gl_height, std::optional<double> level,
+                         bool all_pixels = false) {
+    FrameImage cpu = halves(0.2f), gl = halves(0.2f);
+    cpu.world_height[pixel] = cpu_height;
+    gl.world_height[pixel] = gl_height;
+    for (int c = 0; c < 3; ++c) {
+      gl.linear[3 * pixel + c] = 0.45f;
+      gl.srgb[3 * pixel + c] = srgb_byte(0.45f);
+    }
+    return compare_frames(cpu, gl, kDefault, nullptr, all_pixels, level);
+  };
+  const float below = std::nextafter(0.0f, -1.0f);
+  const FrameDifference shore = judge(below, 0.0f, 0.0);
+  CHECK(shore.verdict == CompareVerdict::kPass);
+  CHECK(shore.water_edge_pixels == 1);
+  CHECK(judge(0.0f, below, 0.0).verdict == CompareVerdict::kPass);  // either way round
+  CHECK(judge(9.0f, 10.0f, 9.5).verdict == CompareVerdict::kPass);  // a level between them
+  CHECK(judge(below, 0.0f, std::nullopt).verdict == CompareVerdict::kFailure);  // no water
+  CHECK(judge(below, 0.0f, 0.0, true).verdict == CompareVerdict::kFailure);     // every pixel
+  const FrameDifference dry = judge(10.0f, 10.0f, 0.0);                         // both above
+  CHECK(dry.verdict == CompareVerdict::kFailure);
+  CHECK(dry.water_edge_pixels == 0);
+  CHECK(judge(9.0f, 10.0f, 10.01).verdict == CompareVerdict::kFailure);  // beyond both
+  CHECK(judge(-5.0f, -4.0f, 0.0).verdict == CompareVerdict::kFailure);   // both under water
 }
 
 TEST_CASE("pathsNamingOneFileAreFoundThroughLinksAndSpellings", "[crosscheck]") {

@@ -61,9 +61,10 @@ struct FrameDifference {
 
 // Per pixel of the CPU's frame with terrain, how far GL's value may lie from it
 // (tests/oracles/gl_interpolation_bound.h): depth, camera-relative height, the three normal
-// components (3 per pixel) and the octave count.
+// components (3 per pixel), the octave count and the position's x and z.
 struct ReferenceTolerances {
   std::vector<double> depth, height, normal, octaves;
+  std::vector<double> dx, dz;  // the camera-relative x and z (the cloud layer reads them)
 };
 
 // |d/dx| + |d/dy| of each channel of the CPU's linear image, from its neighbours (the larger

@@ -1,6 +1,6 @@
 // The presets the GL backend draws: every preset but those with what it has no GLSL twin of
-// yet (cast shadows, the cloud layer: pipeline/gl_backend.h, gl_missing_feature), which it
-// refuses (tested in gl_refusals_test.cc).
+// yet (cast shadows, sky light, terrain reflections, a GeoMipMap mesh: pipeline/gl_backend.h,
+// gl_missing_feature), which it refuses (tested in gl_refusals_test.cc).
 #pragma once
 
 #include <string>

@@ -147,21 +147,4 @@ TEST_CASE("theGlBackendRefusesTerrainReflectionsItCannotDraw", "[gl]") {
   CHECK_FALSE(std::filesystem::exists(out));
 }
 
-TEST_CASE("theGlBackendRefusesTheCloudLayerItCannotDraw", "[gl]") {
-  // No GLSL twin of the cloud layer yet (docs/stages.md, "Clouds"): refused with the field
-  // named; the stress suite skips its GL rows with the same reason.
-  test::TempDir dir("gl-clouds");
-  const std::string out = (dir.path() / "clouds.png").string();
-  const CliResult r =
-      run({"render", "default", "--set", "sky.clouds={}", "--backend", "gl", "-o", out});
-  INFO(r.err << r.out);
-  CHECK(r.code == 2);
-  CHECK_THAT(r.err, Contains("sky.clouds is set: the GL backend has no cloud layer yet"));
-  CHECK_FALSE(std::filesystem::exists(out));
-  Scene scene = resolve_scene("default", {});
-  CHECK(gl_missing_feature(scene).empty());
-  scene.sky.clouds = CloudSettings{};
-  CHECK_THAT(gl_missing_feature(scene), Contains("sky.clouds"));
-}
-
 }  // namespace relief

@@ -9,6 +9,7 @@
 #include <limits>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -22,6 +23,7 @@
 #include "pipeline/scene_resources.h"
 #include "raster/rasterize.h"
 #include "raster/topology.h"
+#include "tests/gl/gl_cloud_envelope.h"
 #include "tests/gl/gl_frame_compare.h"
 #include "tests/gl/gl_presets.h"
 #include "tests/gl/gl_test_context.h"
@@ -86,6 +88,8 @@ test::ReferenceTolerances reference_tolerances(const FrameInputs& in, const Fram
   tol.height.assign(pixels, INFINITY);
   tol.normal.assign(3 * pixels, INFINITY);
   tol.octaves.assign(pixels, INFINITY);
+  tol.dx.assign(pixels, INFINITY);
+  tol.dz.assign(pixels, INFINITY);
   const raster::GridTriangles triangles = in.terrain.triangles();
   const GridBuffers<float>& g = in.terrain.grid;
   for (std::size_t k = 0; k < pixels; ++k) {
@@ -110,6 +114,10 @@ test::ReferenceTolerances reference_tolerances(const FrameInputs& in, const Fram
     tol.height[k] = test::attribute_tolerance(t, a, u, w);
     values(g.nu, a);
     tol.octaves[k] = test::attribute_tolerance(t, a, u, w);
+    values(g.dx, a);
+    tol.dx[k] = test::attribute_tolerance(t, a, u, w);
+    values(g.dz, a);
+    tol.dz[k] = test::attribute_tolerance(t, a, u, w);
     // The normal output is renormalised: a component moves by its own error and its share of
     // the length's, over the length.
     const AlignedVector<float>* n[3] = {&g.nx, &g.ny, &g.nz};
@@ -208,10 +216,22 @@ void check_preset(const std::string& preset, const std::vector<std::string>& siz
     envelope =
         test::level_switch_envelope(cpu.image, render_frame(trilinear, resources, request).image);
   }
-  const test::FrameDifference d =
-      test::compare_frames(cpu.image, gl, in.camera_y, reference_tolerances(in, cpu.image),
-                           edge_rule(in, cpu.image, gl), envelope);
-  INFO(test::gl_context().renderer() << ", " << preset << ": " << d);
+  const test::ReferenceTolerances tolerances = reference_tolerances(in, cpu.image);
+  if (scene.sky.clouds) {  // the layer's staircase over GL's positions (gl_cloud_envelope.h)
+    const std::vector<double> clouds = test::cloud_position_envelope(
+        in.terrain, in.shade, resources, tolerances.dx, tolerances.dz, tolerances.height);
+    envelope.resize(clouds.size(), 0.0);
+    for (std::size_t i = 0; i < clouds.size(); ++i) {
+      envelope[i] += clouds[i];
+    }
+  }
+  const test::FrameDifference d = test::compare_frames(cpu.image, gl, in.camera_y, tolerances,
+                                                       edge_rule(in, cpu.image, gl), envelope);
+  std::string setting;  // what the call sets beyond the size
+  for (std::size_t i = kSize.size(); i < size.size(); ++i) {
+    setting += " with " + size[i];
+  }
+  INFO(test::gl_context().renderer() << ", " << preset << setting << ": " << d);
   CHECK(d.unexplained == 0);
   CHECK(d.encode_mismatches == 0);
   CHECK(d.srgb_beyond == 0);
@@ -237,6 +257,35 @@ TEST_CASE("glFramesOfEveryPresetMatchTheCpuFrameWithinTheDocumentedBounds", "[gl
     std::vector<std::string> gradient = kSize;
     gradient.push_back("shading.mode=\"gradient\"");
     check_preset(preset, gradient);
+  }
+  // The cloud layer (clouds.glsl) beside the clouds preset's view from above: seen from below
+  // over open water, under the atmosphere, over the gradient's Gouraud light.
+  const std::pair<const char*, const char*> clouded[] = {{"lake", "sky.clouds={\"altitude\": 900}"},
+                                                         {"clouds", "sky.atmosphere={}"},
+                                                         {"clouds", "shading.mode=\"gradient\""}};
+  for (const auto& [preset, setting] : clouded) {
+    std::vector<std::string> size = kSize;
+    size.push_back(setting);
+    check_preset(preset, size);
+  }
+}
+
+TEST_CASE("glCloudLayersInHostileSettingsMatchTheCpuFrameWithinTheDocumentedBounds", "[gl]") {
+  // The camera inside an opaque layer, a layer reaching through the terrain, a layer under the
+  // camera, an octave-rich warped one; each under a zenith sun, a set sun and one on the
+  // horizon (clouds.glsl's guards: the sun's floored sine, the path's floored slope).
+  for (const char* clouds :
+       {"sky.clouds={\"altitude\": 650, \"thickness\": 100, \"density\": 100, \"coverage\": 1}",
+        "sky.clouds={\"altitude\": -500, \"thickness\": 3000, \"coverage\": 0.7}",
+        "sky.clouds={\"altitude\": 150, \"thickness\": 250, \"coverage\": 0.5}",
+        "sky.clouds={\"octaves\": 8, \"warp\": 16, \"scale\": 400}"}) {
+    for (const char* sun : {"lighting.sun_elevation_deg=90", "lighting.sun_elevation_deg=-30",
+                            "lighting.sun_elevation_deg=0"}) {
+      std::vector<std::string> size = kSize;
+      size.push_back(sun);
+      size.push_back(clouds);
+      check_preset("default", size);
+    }
   }
 }
 

@@ -1,4 +1,4 @@
-// The skybox on the GL backend (gpu/shaders/sky_water.glsl) against the CPU's (core/skybox.cc):
+// The skybox on the GL backend (gpu/shaders/sky.glsl) against the CPU's (core/skybox.cc):
 // the same face, texels and filter, so every background pixel (the sky, and open water
 // reflecting it) has the CPU's bits where the draw divides as the CPU does (llvmpipe). On a
 // GL whose division is not correctly rounded (GLSL 4.50 §4.7.1 allows 2.5 ulps) a face
