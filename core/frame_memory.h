@@ -3,10 +3,11 @@
 // kernel costs a page fault and the zeroing of each 4 KiB page, which on the default frame
 // took several milliseconds of serial time in the buffers' value-initialisation. Here blocks of
 // a megabyte or more come from 2 MiB-aligned mappings that Linux may back with transparent
-// huge pages (madvise), and freed ones are kept, up to kMaxCachedBytes, for the next
-// allocation of the same size: the next frame finds its buffers mapped. Smaller blocks, other
-// systems and sanitizer builds (which must see every block) take operator new. Where a buffer
-// lies never changes what is stored in it.
+// huge pages (madvise), those of at most a megabyte two to a huge page (frame_memory.cc), each
+// fresh block's pages faulted in by one call (MADV_POPULATE_WRITE), and freed ones are kept, up
+// to kMaxCachedBytes, for the next allocation of the same size: the next frame finds its
+// buffers mapped. Smaller blocks, other systems and sanitizer builds (which must see every
+// block) take operator new. Where a buffer lies never changes what is stored in it.
 #pragma once
 
 #include <cstddef>
@@ -40,7 +41,8 @@ void* map_aligned(std::size_t bytes, std::size_t align);
 void unmap(void* block, std::size_t bytes);
 
 // Like operator new / delete with alignment `align` (at most kHugePageBytes); `bytes` and
-// `align` the same in both calls. Throws std::bad_alloc.
+// `align` the same in both calls. Throws std::bad_alloc. A fresh block is resident at once:
+// for buffers written in full (a value-initialised vector, an image).
 void* allocate_frame_buffer(std::size_t bytes, std::size_t align);
 void free_frame_buffer(void* block, std::size_t bytes, std::size_t align) noexcept;
 

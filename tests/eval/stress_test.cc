@@ -144,6 +144,38 @@ TEST_CASE("aFrameBufferJustOverAMebibyteKeepsNoMoreResidentThanItHolds", "[stres
   CHECK(*peak - *before <= bytes + (std::size_t{256} << 10));
 }
 
+TEST_CASE("mebibyteFrameBuffersShareHugePagesWithoutDoublingTheirMemory", "[stress][memory]") {
+  // A 512 x 512 grid's planes are 1 MiB each: two share a 2 MiB huge page (core/frame_memory.cc),
+  // so eleven of them keep at most the eleven MiB they hold and the last huge page's free half
+  // resident, not twice that as one huge page each would; every byte reads back as written.
+  if (!peak_memory_measurable()) {
+    SUCCEED("no /proc peak measurement here (sanitizer build or not Linux)");
+    return;
+  }
+  release_free_memory();
+  constexpr std::size_t kBytes = std::size_t{1} << 20;
+  constexpr int kBlocks = 11;
+  const std::optional<std::uintmax_t> before = start_peak_measurement();
+  REQUIRE(before.has_value());
+  unsigned char* blocks[kBlocks];
+  for (int b = 0; b < kBlocks; ++b) {
+    blocks[b] = static_cast<unsigned char*>(allocate_frame_buffer(kBytes, 64));
+    std::memset(blocks[b], b + 1, kBytes);
+  }
+  const std::optional<std::uintmax_t> peak = peak_resident_bytes();
+  bool intact = true;
+  for (int b = 0; b < kBlocks; ++b) {
+    intact = intact && blocks[b][0] == b + 1 && blocks[b][kBytes - 1] == b + 1;
+  }
+  for (int b = 0; b < kBlocks; ++b) {
+    free_frame_buffer(blocks[b], kBytes, 64);
+  }
+  release_free_memory();
+  CHECK(intact);
+  REQUIRE(peak.has_value());
+  CHECK(*peak - *before <= kBlocks * kBytes + kBytes + (std::size_t{256} << 10));
+}
+
 TEST_CASE("reliefStressPrintsTheTableAndExitsZeroWhenEveryCheckHolds", "[stress][cli]") {
   const test::CliResult r = test::run(
       {"stress", "--axis", "pitch", "--backend", "simd", "--viewport", "32", "24", "--grid", "16"});
