@@ -6,6 +6,7 @@
 #include <sys/mman.h>
 
 #include <cstdint>
+#include <limits>
 #include <mutex>
 #endif
 
@@ -33,7 +34,8 @@ BlockCache& cache() {
   return *state;
 }
 
-// Blocks of at most half a huge page share one: a block takes the next bytes of the current
+// Blocks of at most half a huge page (so, from kMinMappedBytes up, those of exactly a
+// mebibyte) aligned to at most a page share one: a block takes the next bytes of the current
 // 2 MiB arena where they fit, so that the default grid's 1 MiB streams (and clip coordinates)
 // lie two to a huge page (a huge page faults in at once; each 4 KiB page of a 1 MiB mapping
 // faulted alone: 10 MiB of grid streams took some 30 ms of page faults and first writes on a
@@ -112,12 +114,17 @@ void* allocate_frame_buffer(std::size_t bytes, std::size_t align) {
   if (bytes < kMinMappedBytes) {
     return ::operator new(bytes, std::align_val_t(align));
   }
+  if (bytes > std::numeric_limits<std::size_t>::max() - 2 * kHugePageBytes) {
+    throw std::bad_alloc();  // round_up and map_aligned's padding would wrap
+  }
   const std::size_t size = round_up(bytes, kPageBytes);
   BlockCache& c = cache();
   {
     const std::lock_guard<std::mutex> lock(c.mutex);
     for (int k = c.count - 1; k >= 0; --k) {
-      if (c.size[k] == size) {
+      // An arena's block is page-aligned, not huge-page-aligned: reused only where it is
+      // aligned as asked.
+      if (c.size[k] == size && reinterpret_cast<std::uintptr_t>(c.block[k]) % align == 0) {
         void* const block = c.block[k];
         for (int m = k; m + 1 < c.count; ++m) {
           c.block[m] = c.block[m + 1];
@@ -129,8 +136,9 @@ void* allocate_frame_buffer(std::size_t bytes, std::size_t align) {
       }
     }
   }
-  void* const block =
-      size <= kHugePageBytes / 2 ? arena_block(size) : map_aligned(size, kHugePageBytes);
+  void* const block = size <= kHugePageBytes / 2 && align <= kPageBytes
+                          ? arena_block(size)
+                          : map_aligned(size, kHugePageBytes);
   populate(block, size);
   return block;
 }

@@ -47,30 +47,37 @@ bool level_switch(const FrameImage& cpu, const FrameImage& gl, const FrameImage&
   return gl.srgb[i] >= low && gl.srgb[i] <= high;
 }
 
-// Whether the CPU's and GL's heights at pixel k lie on both sides of `water_level` (each
-// within a float ulp): shade.cc's test `height < water_level` may then answer differently
-// (water on one side, the dry ground on the other) for heights within the interpolants' bound
-// of each other. Heights are finite where terrain covers the pixel.
 // The distance from |x| (as a float) to the next float up.
 double float_spacing_at(double x) {
   const float f = std::abs(static_cast<float>(x));
   return double(std::nextafter(f, INFINITY)) - double(f);
 }
 
-bool water_edge(const FrameImage& cpu, const FrameImage& gl, double water_level, std::size_t k) {
+// Whether the CPU's and GL's heights at pixel k lie on both sides of the water level (each
+// within a float ulp) and within kShorelineUlps of each other, measured from the camera as
+// the frame decides: shade.cc's `height < water_level` may then answer differently (water on
+// one side, the dry ground on the other). Heights that are not finite explain nothing.
+bool water_edge(const FrameImage& cpu, const FrameImage& gl, const Shoreline& shore,
+                std::size_t k) {
   if (cpu.world_height.empty() || gl.world_height.empty()) {
     return false;
   }
-  const double a = cpu.world_height[k], b = gl.world_height[k];
-  const double slack = std::max(float_spacing_at(a), float_spacing_at(b));
-  return std::min(a, b) - slack <= water_level && water_level <= std::max(a, b) + slack;
+  const double a = double(cpu.world_height[k]) - shore.camera_y;
+  const double b = double(gl.world_height[k]) - shore.camera_y;
+  const double level = shore.water_level - shore.camera_y;
+  if (!std::isfinite(a) || !std::isfinite(b) || !std::isfinite(level)) {
+    return false;
+  }
+  const double ulp = std::max(float_spacing_at(a), float_spacing_at(b));
+  return std::abs(a - b) <= kShorelineUlps * ulp && std::min(a, b) - ulp <= level &&
+         level <= std::max(a, b) + ulp;
 }
 
 }  // namespace
 
 FrameDifference compare_frames(const FrameImage& cpu, const FrameImage& gl,
                                const CompareThresholds& thresholds, const FrameImage* cpu_trilinear,
-                               bool all_pixels, std::optional<double> water_level) {
+                               bool all_pixels, std::optional<Shoreline> shoreline) {
   FrameDifference d;
   const FloatImage cpu_srgb = srgb_image(cpu), gl_srgb = srgb_image(gl);
   d.srgb_all = compare_images(cpu_srgb, gl_srgb, thresholds);
@@ -91,8 +98,7 @@ FrameDifference compare_frames(const FrameImage& cpu, const FrameImage& gl,
       const bool boundary = on_triangle_boundary(cpu, x, y);
       d.boundary_pixels += boundary;
       if (cpu.primitive[k] == gl.primitive[k]) {
-        if (water_level && cpu.primitive[k] != 0xffffffffu &&
-            water_edge(cpu, gl, *water_level, k)) {
+        if (shoreline && cpu.primitive[k] != 0xffffffffu && water_edge(cpu, gl, *shoreline, k)) {
           ++d.water_edge_pixels;
           std::copy_n(cpu_srgb.pixels.begin() + std::ptrdiff_t(3 * k), 3,
                       gl_same.pixels.begin() + std::ptrdiff_t(3 * k));

@@ -38,14 +38,26 @@ namespace relief {
 // the documented float difference is 4e-4 of a level; 1/16 leaves room for a GL's own log2.
 inline constexpr double kLodTolerance = 1.0 / 16;
 
+// How far apart, in float ulps of the camera-relative height, the CPU's and GL's heights may
+// lie for a shoreline step to be explained: llvmpipe's interpolated heights lie up to 24 ulps
+// from the CPU's (docs/gl-shading.md, "Interpolated outputs"), and a GL's plane set-up of its
+// own may round a few more times.
+inline constexpr double kShorelineUlps = 64;
+
+// The water's level and the camera's height (world units): where a pixel is water.
+struct Shoreline {
+  double water_level = 0;
+  double camera_y = 0;
+};
+
 struct FrameDifference {
   PixelDifference pixels;
   // Channels of same-triangle pixels that differ by more than one sRGB code but lie within the
   // mip-level switch's envelope (bilinear filtering only): compared as equal.
   std::uint64_t level_switch_channels = 0;
-  // Same-triangle pixels whose CPU and GL heights lie on both sides of the water level: water
-  // on one side, dry ground on the other (a step at the shoreline no interpolation bound
-  // makes small): compared as equal.
+  // Same-triangle pixels whose CPU and GL heights lie on both sides of the water level and
+  // within kShorelineUlps of each other: water on one side, dry ground on the other (a step
+  // at the shoreline no interpolation bound makes small): compared as equal.
   std::uint64_t water_edge_pixels = 0;
   // Pixels whose triangle differs although no 8-neighbour in the CPU's frame has another
   // triangle and the pixel is not on the border: what no sub-pixel snapping explains.
@@ -64,11 +76,12 @@ struct FrameDifference {
 // `cpu_trilinear`: the CPU's frame of the scene with trilinear filtering (linear radiance),
 // for a scene that filters bilinearly; null otherwise. `all_pixels`: judge every pixel as idiff
 // judges the two PNG files (no exception where the triangle or the mip level changed; not a
-// verdict that holds on every GL). `water_level`: the scene's, in world units (its heights as
-// the frames' world_height output holds them); none: no water, no shoreline explained.
+// verdict that holds on every GL). `shoreline`: the scene's water level and camera height, in
+// world units (as the frames' world_height output holds heights); none: no water, no
+// shoreline explained.
 FrameDifference compare_frames(const FrameImage& cpu, const FrameImage& gl,
                                const CompareThresholds& thresholds,
                                const FrameImage* cpu_trilinear = nullptr, bool all_pixels = false,
-                               std::optional<double> water_level = std::nullopt);
+                               std::optional<Shoreline> shoreline = std::nullopt);
 
 }  // namespace relief

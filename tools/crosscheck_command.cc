@@ -150,9 +150,13 @@ int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options,
     double trilinear_ms = 0;
     cpu_trilinear = timed_frame(trilinear, resources, options.cpu_backend, 1, trilinear_ms);
   }
+  std::optional<Shoreline> shoreline;
+  if (scene.terrain.water_level) {
+    shoreline = Shoreline{*scene.terrain.water_level, cpu_terrain.plan.camera.position.y};
+  }
   const FrameDifference frame = compare_frames(cpu.image, gl.image, options.thresholds,
                                                cpu_trilinear ? &cpu_trilinear->image : nullptr,
-                                               options.all_pixels, scene.terrain.water_level);
+                                               options.all_pixels, shoreline);
 
   const double amplitude = scene.terrain.amplitude;
   std::ostringstream table;

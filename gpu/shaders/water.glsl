@@ -10,7 +10,10 @@ vec3 wave_normal(float x, float z, float strength, float footprint) {
       continue;
     }
     float dx, dz;
-    lattice_gradient_quintic(P.wave_offset_x[o] + x * inv, P.wave_offset_z[o] + z * inv, dx, dz);
+    // The coordinates in precise variables, not as call arguments: a * b + c unfused there on
+    // every compiler, not only on one that carries `precise` through inlining.
+    precise float px = P.wave_offset_x[o] + x * inv, pz = P.wave_offset_z[o] + z * inv;
+    lattice_gradient_quintic(px, pz, dx, dz);
     precise float a = P.wave_amplitude[o] * fade;
     gx = gx + a * dx;
     gz = gz + a * dz;

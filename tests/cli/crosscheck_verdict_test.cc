@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -133,11 +134,15 @@ TEST_CASE("aBilinearLevelSwitchIsExplainedWithinTheTrilinearFramesReach", "[cros
 }
 
 TEST_CASE("aShorelineStepIsExplainedOnlyWhereTheHeightsStraddleTheWaterLevel", "[crosscheck]") {
-  // One pixel's colours differ by far more than a code. Where the CPU's height and GL's lie on
-  // both sides of the water level (within a float ulp), one is water and the other dry ground:
-  // explained. Elsewhere, without water, or with every pixel judged: not explained.
+  // One pixel's colours differ by far more than a code. The camera stands 2600 above a water
+  // level of 0 (the clouds preset). Where the CPU's height and GL's lie on both sides of the
+  // level (each within a float ulp) and within kShorelineUlps ulps of the camera-relative
+  // height (2.4e-4 at 2600) of each other, one is water and the other dry ground: explained.
+  // Elsewhere, without water, with every pixel judged, or with heights that are not finite:
+  // not explained.
   const std::size_t pixel = at(5, 4);
-  const auto judge = [&](float cpu_height, float gl_height, std::optional<double> level,
+  const Shoreline shore{0.0, 2600.0};
+  const auto judge = [&](float cpu_height, float gl_height, std::optional<Shoreline> s,
                          bool all_pixels = false) {
     FrameImage cpu = halves(0.2f), gl = halves(0.2f);
     cpu.world_height[pixel] = cpu_height;
@@ -146,21 +151,27 @@ TEST_CASE("aShorelineStepIsExplainedOnlyWhereTheHeightsStraddleTheWaterLevel", "
       gl.linear[3 * pixel + c] = 0.45f;
       gl.srgb[3 * pixel + c] = srgb_byte(0.45f);
     }
-    return compare_frames(cpu, gl, kDefault, nullptr, all_pixels, level);
+    return compare_frames(cpu, gl, kDefault, nullptr, all_pixels, s);
   };
-  const float below = std::nextafter(0.0f, -1.0f);
-  const FrameDifference shore = judge(below, 0.0f, 0.0);
-  CHECK(shore.verdict == CompareVerdict::kPass);
-  CHECK(shore.water_edge_pixels == 1);
-  CHECK(judge(0.0f, below, 0.0).verdict == CompareVerdict::kPass);  // either way round
-  CHECK(judge(9.0f, 10.0f, 9.5).verdict == CompareVerdict::kPass);  // a level between them
+  const float below = -0.000244140625f;  // one ulp of 2600 below the level
+  const FrameDifference shore_step = judge(below, 0.0f, shore);
+  CHECK(shore_step.verdict == CompareVerdict::kPass);
+  CHECK(shore_step.water_edge_pixels == 1);
+  CHECK(judge(0.0f, below, shore).verdict == CompareVerdict::kPass);       // either way round
+  CHECK(judge(-0.01f, 0.005f, shore).verdict == CompareVerdict::kPass);    // 62 ulps apart
+  CHECK(judge(-0.01f, 0.01f, shore).verdict == CompareVerdict::kFailure);  // 82 ulps apart
+  CHECK(judge(9.0f, 10.0f, Shoreline{9.5, 2600.0}).verdict == CompareVerdict::kFailure);
   CHECK(judge(below, 0.0f, std::nullopt).verdict == CompareVerdict::kFailure);  // no water
-  CHECK(judge(below, 0.0f, 0.0, true).verdict == CompareVerdict::kFailure);     // every pixel
-  const FrameDifference dry = judge(10.0f, 10.0f, 0.0);                         // both above
+  CHECK(judge(below, 0.0f, shore, true).verdict == CompareVerdict::kFailure);   // every pixel
+  const FrameDifference dry = judge(10.0f, 10.0f, shore);                       // both above
   CHECK(dry.verdict == CompareVerdict::kFailure);
   CHECK(dry.water_edge_pixels == 0);
-  CHECK(judge(9.0f, 10.0f, 10.01).verdict == CompareVerdict::kFailure);  // beyond both
-  CHECK(judge(-5.0f, -4.0f, 0.0).verdict == CompareVerdict::kFailure);   // both under water
+  CHECK(judge(-5.0f, -4.0f, shore).verdict == CompareVerdict::kFailure);  // both under water
+  const float inf = std::numeric_limits<float>::infinity();
+  for (const float bad : {inf, -inf, std::numeric_limits<float>::quiet_NaN()}) {
+    CHECK(judge(below, bad, shore).verdict == CompareVerdict::kFailure);
+    CHECK(judge(bad, 0.0f, shore).verdict == CompareVerdict::kFailure);
+  }
 }
 
 TEST_CASE("pathsNamingOneFileAreFoundThroughLinksAndSpellings", "[crosscheck]") {

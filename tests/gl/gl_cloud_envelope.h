@@ -9,12 +9,16 @@
 // pixel scale.
 //
 // So where the scene has clouds, each covered pixel's radiance is also allowed the spread of
-// the CPU's own shading (core/shade.h, terrain_radiance) over the box of positions GL's
-// interpolants may give (the interpolants' bound, tests/oracles/gl_interpolation_bound.h, on
-// the camera-relative x, z and height): its extremes and middle on each axis, 27 positions,
-// every other attribute the CPU's. The staircase's steps are a few levels at a pixel, so 27
-// positions meet them; the spread is what the CPU's frame itself does under a change of its
-// inputs that small.
+// the CPU's own shading (core/shade.h, terrain_radiance) over the box of positions the GL's
+// interpolation arithmetic may give: the arithmetic part of the interpolants' bound
+// (attribute_rounding, tests/oracles/gl_interpolation_bound.h: the planes' roundings and the
+// final ones) on the camera-relative x, z and height, at the box's extremes and middle on
+// each axis, 27 positions, every other attribute the CPU's. The sample's shift (up to 1/256
+// px) moves every attribute together along the surface and is the shifted-sample term's
+// already. The box is a few ulps wide on each axis and the staircase a few levels at a pixel,
+// so 27 positions meet them: an estimate of the spread, as the level-switch envelope is, not a
+// proof. A sample that is not finite (which the CPU's shading never gives) leaves the pixel
+// no envelope.
 #pragma once
 
 #include <algorithm>
@@ -31,14 +35,15 @@
 namespace relief::test {
 
 // Per channel of each pixel (3 per pixel, as FrameImage::linear): the spread of the CPU's
-// linear radiance (times the exposure) over the box [a - tolerance, a + tolerance] of the
-// pixel's dx, dz and height; 0 where no terrain covers the pixel or a tolerance is not finite.
+// linear radiance (times the exposure) over the box [a - rounding, a + rounding] of the
+// pixel's dx, dz and height; 0 where no terrain covers the pixel, a rounding is not finite or
+// a sample is not finite.
 inline std::vector<double> cloud_position_envelope(const TerrainFrame& frame,
                                                    const ShadeParams<float>& params,
                                                    const SceneResources& resources,
-                                                   const std::vector<double>& dx_tolerance,
-                                                   const std::vector<double>& dz_tolerance,
-                                                   const std::vector<double>& height_tolerance) {
+                                                   const std::vector<double>& dx_rounding,
+                                                   const std::vector<double>& dz_rounding,
+                                                   const std::vector<double>& height_rounding) {
   const raster::ResolvedFrame resolved = resolve_for_shading(frame);
   const ShadingInputs inputs = shading_inputs(frame, resolved);
   const ShadeResources shade{&resources.lattice, resources.textures};
@@ -46,13 +51,14 @@ inline std::vector<double> cloud_position_envelope(const TerrainFrame& frame,
   std::vector<double> envelope(3 * pixels, 0.0);
   ShadeWork work;
   for (std::size_t k = 0; k < pixels; ++k) {
-    const double tolerance[3] = {dx_tolerance[k], dz_tolerance[k], height_tolerance[k]};
+    const double tolerance[3] = {dx_rounding[k], dz_rounding[k], height_rounding[k]};
     if (inputs.primitive[k] == 0xffffffffu || !std::isfinite(tolerance[0]) ||
         !std::isfinite(tolerance[1]) || !std::isfinite(tolerance[2])) {
       continue;
     }
     const PixelAttributes<float> a = inputs.at<float>(k);
     double low[3] = {INFINITY, INFINITY, INFINITY}, high[3] = {-INFINITY, -INFINITY, -INFINITY};
+    bool finite = true;
     for (int sx = -1; sx <= 1; ++sx) {
       for (int sz = -1; sz <= 1; ++sz) {
         for (int sh = -1; sh <= 1; ++sh) {
@@ -65,13 +71,14 @@ inline std::vector<double> cloud_position_envelope(const TerrainFrame& frame,
           const float linear[3] = {radiance.x * params.exposure, radiance.y * params.exposure,
                                    radiance.z * params.exposure};
           for (int c = 0; c < 3; ++c) {
+            finite = finite && std::isfinite(linear[c]);
             low[c] = std::min(low[c], double(linear[c]));
             high[c] = std::max(high[c], double(linear[c]));
           }
         }
       }
     }
-    for (int c = 0; c < 3; ++c) {
+    for (int c = 0; c < 3 && finite; ++c) {
       envelope[3 * k + c] = high[c] - low[c];
     }
   }

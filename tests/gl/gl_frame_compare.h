@@ -61,10 +61,12 @@ struct FrameDifference {
 
 // Per pixel of the CPU's frame with terrain, how far GL's value may lie from it
 // (tests/oracles/gl_interpolation_bound.h): depth, camera-relative height, the three normal
-// components (3 per pixel), the octave count and the position's x and z.
+// components (3 per pixel), the octave count; and the position's arithmetic part.
 struct ReferenceTolerances {
   std::vector<double> depth, height, normal, octaves;
-  std::vector<double> dx, dz;  // the camera-relative x and z (the cloud layer reads them)
+  // The arithmetic part of the position's bound (attribute_rounding): camera-relative x, z
+  // and height, the box the cloud layer's envelope spans (gl_cloud_envelope.h).
+  std::vector<double> dx_rounding, dz_rounding, height_rounding;
 };
 
 // |d/dx| + |d/dy| of each channel of the CPU's linear image, from its neighbours (the larger

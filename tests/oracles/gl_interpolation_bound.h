@@ -52,20 +52,38 @@ struct WindowTriangle {
   double x[3], y[3], inv_w[3];
 };
 
-// The tolerance for a perspective-correct attribute with vertex values a[3] at (u, v).
-inline double attribute_tolerance(const WindowTriangle& t, const double a[3], double u, double v) {
+// The two parts of a perspective-correct attribute's tolerance (vertex values a[3], at
+// (u, v)): the sample's shift and the arithmetic (the planes' roundings and the final ones).
+struct AttributeTolerance {
+  double shift = INFINITY, rounding = INFINITY;  // infinite: not in front of the camera
+};
+
+inline AttributeTolerance attribute_parts(const WindowTriangle& t, const double a[3], double u,
+                                          double v) {
   const double over_w[3] = {a[0] * t.inv_w[0], a[1] * t.inv_w[1], a[2] * t.inv_w[2]};
   const Plane top(t.x, t.y, over_w), bottom(t.x, t.y, t.inv_w);
   const double w_inv = bottom.at(u, v);
   if (!(w_inv > 0.0)) {
-    return INFINITY;  // not in front of the camera here: nothing claimed
+    return {};  // not in front of the camera here: nothing claimed
   }
   const double value = top.at(u, v) / w_inv;
   const double gx = (top.px - value * bottom.px) / w_inv;
   const double gy = (top.py - value * bottom.py) / w_inv;
   const double rounding = kPlaneRoundings * kFloatEpsilon *
                           (top.terms(u, v) + std::abs(value) * bottom.terms(u, v)) / w_inv;
-  return kSampleShift * (std::abs(gx) + std::abs(gy)) + rounding + kValueUlps * float_ulp(value);
+  return {kSampleShift * (std::abs(gx) + std::abs(gy)), rounding + kValueUlps * float_ulp(value)};
+}
+
+// The tolerance for a perspective-correct attribute with vertex values a[3] at (u, v).
+inline double attribute_tolerance(const WindowTriangle& t, const double a[3], double u, double v) {
+  const AttributeTolerance parts = attribute_parts(t, a, u, v);
+  return parts.shift + parts.rounding;
+}
+
+// Of attribute_tolerance, the arithmetic alone, without the sample's shift (which moves every
+// attribute together along the surface).
+inline double attribute_rounding(const WindowTriangle& t, const double a[3], double u, double v) {
+  return attribute_parts(t, a, u, v).rounding;
 }
 
 // The tolerance for the window depth z/w, affine in x, y (depths z_i of the vertices).
