@@ -1,4 +1,5 @@
-// The cloud layer (core/clouds.cc; docs/stages.md, "Clouds"), operation for operation: a band
+// The cloud layer (castledragmire's and Miller's fractal cloud layers; core/clouds.cc,
+// docs/stages.md, "Clouds"), operation for operation: a band
 // of heights [cloud_bottom, cloud_top] whose density over (x, z) is domain-warped fBm of the
 // terrain's own lattice (sample_lattice_cubic), read at cloud_steps points of a path through
 // it, and the light behind it dimmed by Beer-Lambert's e^-tau (exp2_det of tau / ln 2).

@@ -3,6 +3,8 @@
 // estimate, refusals where expected; and the allocator fix the suite found.
 #include <algorithm>
 #include <cstring>
+#include <limits>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -174,6 +176,22 @@ TEST_CASE("mebibyteFrameBuffersShareHugePagesWithoutDoublingTheirMemory", "[stre
   CHECK(intact);
   REQUIRE(peak.has_value());
   CHECK(*peak - *before <= kBlocks * kBytes + kBytes + (std::size_t{256} << 10));
+}
+
+TEST_CASE("aFrameBufferTooLargeToMapIsRefusedAsOutOfMemory", "[stress][memory]") {
+  // Sizes whose rounding to whole pages (and the mapping's alignment padding) would wrap
+  // around: refused with std::bad_alloc, which every command reports as out of memory, never
+  // a null or wrapped block. Only where frames are mapped (a sanitizer's operator new reports
+  // such a request itself).
+#ifdef RELIEF_FRAME_MAPPINGS
+  for (const std::size_t bytes :
+       {std::numeric_limits<std::size_t>::max(), std::numeric_limits<std::size_t>::max() - 100,
+        std::numeric_limits<std::size_t>::max() - (std::size_t{1} << 20)}) {
+    CHECK_THROWS_AS(allocate_frame_buffer(bytes, 64), std::bad_alloc);
+  }
+#else
+  SUCCEED("frames are not mapped in this build");
+#endif
 }
 
 TEST_CASE("reliefStressPrintsTheTableAndExitsZeroWhenEveryCheckHolds", "[stress][cli]") {
