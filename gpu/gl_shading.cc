@@ -95,8 +95,9 @@ GlTerrainDraw::GlTerrainDraw()
 }
 
 GlTerrainDraw::~GlTerrainDraw() {
-  const GLuint buffers[] = {shade_block_, transform_block_, srgb_steps_, index_buffer_, no_need_};
-  glDeleteBuffers(5, buffers);
+  const GLuint buffers[] = {shade_block_,  transform_block_, srgb_steps_,
+                            index_buffer_, no_need_,         mesh_indices_};
+  glDeleteBuffers(6, buffers);
   const GLuint arrays[] = {terrain_vao_, empty_vao_};
   glDeleteVertexArrays(2, arrays);
   glDeleteFramebuffers(1, &framebuffer_);
@@ -136,6 +137,18 @@ void GlTerrainDraw::build_indices(const GlGridStreams& grid, std::uint32_t trian
   glMemoryBarrier(GL_ELEMENT_ARRAY_BARRIER_BIT);
 }
 
+void GlTerrainDraw::upload_mesh_indices(std::span<const std::uint32_t> indices) {
+  const std::size_t bytes = std::max<std::size_t>(1, indices.size()) * sizeof(std::uint32_t);
+  if (bytes > mesh_index_bytes_) {
+    glDeleteBuffers(1, &mesh_indices_);
+    mesh_indices_ = immutable_buffer(GLsizeiptr(bytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    mesh_index_bytes_ = bytes;
+  }
+  if (!indices.empty()) {
+    glNamedBufferSubData(mesh_indices_, 0, GLsizeiptr(indices.size_bytes()), indices.data());
+  }
+}
+
 void GlTerrainDraw::release_frame_objects() {
   glDeleteRenderbuffers(6, targets_);
   for (GLuint& target : targets_) {
@@ -146,6 +159,9 @@ void GlTerrainDraw::release_frame_objects() {
   glDeleteBuffers(1, &index_buffer_);
   index_buffer_ = 0;
   index_triangles_ = 0;
+  glDeleteBuffers(1, &mesh_indices_);
+  mesh_indices_ = 0;
+  mesh_index_bytes_ = 0;
   std::vector<std::uint8_t>().swap(srgb_staging_);
 }
 
@@ -253,18 +269,32 @@ GlFrameImage GlTerrainDraw::draw(const GlGridStreams& grid, const TransformParam
                                 std::to_string(shade.height) + "; this GL allows 1 to " +
                                 std::to_string(largest) + " a side");
   }
-  const std::uint32_t triangles = 2u * static_cast<std::uint32_t>(layout.width - 1) *
-                                  static_cast<std::uint32_t>(layout.height - 1);
-  GlPassTimer* const timer = options.timer;
-  if (timer != nullptr) {
-    timer->begin("triangle indices (triangles.comp)");
+  if (options.indexed && options.indices.size() % 3 != 0) {
+    throw std::invalid_argument("gpu: the index list holds " +
+                                std::to_string(options.indices.size()) +
+                                " indices, not 3 per triangle");
   }
-  build_indices(grid, triangles);
-  if (timer != nullptr) {
-    timer->end();
+  const std::uint32_t triangles = options.indexed
+                                      ? static_cast<std::uint32_t>(options.indices.size() / 3)
+                                      : 2u * static_cast<std::uint32_t>(layout.width - 1) *
+                                            static_cast<std::uint32_t>(layout.height - 1);
+  GlPassTimer* const timer = options.timer;
+  if (!options.indexed) {
+    if (timer != nullptr) {
+      timer->begin("triangle indices (triangles.comp)");
+    }
+    build_indices(grid, triangles);
+    if (timer != nullptr) {
+      timer->end();
+    }
+  } else {
+    upload_mesh_indices(options.indices);
   }
   set_up_targets(shade.width, shade.height, options.readback);
   bind_vertex_streams(grid);
+  if (options.indexed) {
+    glVertexArrayElementBuffer(terrain_vao_, mesh_indices_);
+  }
   // The parameter structs as bytes: the blocks mirror their layout (shade_params.glsl).
   glNamedBufferSubData(shade_block_, 0, sizeof shade, &shade);
   glNamedBufferSubData(transform_block_, 0, sizeof transform, &transform);
@@ -309,7 +339,9 @@ GlFrameImage GlTerrainDraw::draw(const GlGridStreams& grid, const TransformParam
   if (timer != nullptr) {
     timer->begin("terrain (terrain.vert, terrain.frag)");
   }
-  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(3 * triangles), GL_UNSIGNED_INT, nullptr);
+  if (triangles > 0) {
+    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(3 * triangles), GL_UNSIGNED_INT, nullptr);
+  }
   if (timer != nullptr) {
     timer->end();
   }

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "core/stage_params.h"
@@ -53,6 +54,11 @@ struct GlDrawOptions {
   // The passes' GPU times (gl_pass_timer.h): the triangle indices, the background and the
   // terrain, each a pass; null: not timed.
   GlPassTimer* timer = nullptr;
+  // true: draw `indices` (3 per triangle, vertex indices into the streams; GeoMipMapping's
+  // stitched mesh, pipeline/frame_mesh.h), their triangle t as primitive t, instead of the
+  // grid's triangulation; none when empty.
+  bool indexed = false;
+  std::span<const std::uint32_t> indices;
 };
 
 class GlTerrainDraw {
@@ -89,6 +95,8 @@ class GlTerrainDraw {
 
  private:
   void build_indices(const GlGridStreams& grid, std::uint32_t triangles);
+  // Uploads a mesh's index list into mesh_indices_ (kept while it is large enough).
+  void upload_mesh_indices(std::span<const std::uint32_t> indices);
   void set_up_targets(int width, int height, const GlReadback& readback);
   void bind_vertex_streams(const GlGridStreams& grid);
   GlFrameImage read_back(int width, int height, const GlReadback& readback);  // gl_readback.cc
@@ -97,6 +105,8 @@ class GlTerrainDraw {
   std::uint32_t shade_block_ = 0, transform_block_ = 0, srgb_steps_ = 0;
   std::uint32_t index_buffer_ = 0, no_need_ = 0;
   std::uint32_t index_triangles_ = 0;  // the index buffer's size: kept while the grid's is
+  std::uint32_t mesh_indices_ = 0;     // GlDrawOptions::indices, uploaded
+  std::size_t mesh_index_bytes_ = 0;   // its size
   std::int64_t max_block_bytes_ = 0;   // GL_MAX_SHADER_STORAGE_BLOCK_SIZE
   int max_renderbuffer_size_ = 0;      // GL_MAX_RENDERBUFFER_SIZE
   std::uint32_t terrain_vao_ = 0, empty_vao_ = 0;

@@ -22,6 +22,7 @@
 
 #include "core/grid_buffers.h"
 #include "core/height_sketch.h"
+#include "core/heightfield/field_mesh.h"
 #include "core/lattice.h"
 #include "core/stage_params.h"
 #include "gpu/gl_objects.h"
@@ -88,6 +89,20 @@ class GlTerrain {
   void bend_vertices(const PlanetParams<float>& planet);
   void bend_normals(const PlanetParams<float>& planet);
 
+  // GeoMipMapping's vertex stages (terrain.heightfield.geomipmap; gl_terrain_mesh.cc,
+  // shaders/mesh.comp), the GLSL twins of mesh_domain, mesh_heights and mesh_surface of
+  // core/heightfield/field_mesh.h, in this order, over a mesh whose vertices fill the streams
+  // flat (k = row * pitch + column; those after them padding, valid 0). set_mesh_vertices
+  // uploads the frame's vertices (the field lattice's column and row of each); the texels the
+  // heights and normals read are the sketch's (the constructor's or set_sketch's), which must
+  // be `field`'s. Throws std::invalid_argument where the vertices do not fit the streams (rows
+  // of whole work groups), the two spans differ in length, a pass comes before the vertices or
+  // (heights, normals) there is no sketch; GlError where they exceed a storage block.
+  void set_mesh_vertices(std::span<const std::int32_t> column, std::span<const std::int32_t> row);
+  void mesh_domain(const FieldMesh& field, double camera_x, double camera_z);
+  void mesh_heights(double camera_above_base);
+  void mesh_surface(const FieldMesh& field, const SurfaceParams<float>& params);
+
   // Replace stage 3's lattice or the sketch (null: none), with the constructor's checks, keeping
   // the streams: a later frame of another scene on the same grid. Each upload is checked for
   // GL errors whatever set_error_checks says (it happens once per scene, not per frame).
@@ -136,6 +151,8 @@ class GlTerrain {
   void bind_stream(GlStream stream) const;
   void dispatch(unsigned int program, int groups_x, int groups_y, const std::string& what) const;
   void upload_planet(const PlanetParams<float>& planet);
+  void bind_mesh(unsigned int program, bool texels) const;  // gl_terrain_mesh.cc
+  void require_mesh(const char* who, bool texels) const;
 
   GridLayout layout_;
   void* context_ = nullptr;           // the EGL context the objects belong to
@@ -149,10 +166,12 @@ class GlTerrain {
   GlName planet_params_;
   GlName sketch_;  // the sketch's texel heights, when there is one
   int sketch_width_ = 0, sketch_height_ = 0;
-  GlName rows_;     // DomainRows: descent, x0, step_x
-  GlName lattice_;  // GlLatticeHeader, then the values
-  GlName reach_;    // octave_reach's extents per finest octave (float bits)
-  GlName need_;     // the need flags, when set
+  GlName rows_;           // DomainRows: descent, x0, step_x
+  GlName lattice_;        // GlLatticeHeader, then the values
+  GlName reach_;          // octave_reach's extents per finest octave (float bits)
+  GlName need_;           // the need flags, when set
+  GlName mesh_vertices_;  // set_mesh_vertices': column, row per vertex
+  std::size_t mesh_vertex_count_ = 0, mesh_vertex_bytes_ = 0;
   bool use_need_ = false;
   GlName streams_[kGlStreamCount];
 };

@@ -32,6 +32,9 @@ std::vector<GlProgramBlocks> terrain_program_blocks() {
       {"surface", {surface_params_layout()}},
       {"bend", {planet_params_layout()}},
       {"bend_normals", {planet_params_layout()}},
+      {"mesh_domain", {}},
+      {"mesh_heights", {}},
+      {"mesh_surface", {}},
   };
 }
 
@@ -60,6 +63,15 @@ unsigned int program_named(const GlTerrainPrograms& programs, std::string_view n
   if (name == "bend_normals") {
     return programs.bend_normals.get();
   }
+  if (name == "mesh_domain") {
+    return programs.mesh_domain.get();
+  }
+  if (name == "mesh_heights") {
+    return programs.mesh_heights.get();
+  }
+  if (name == "mesh_surface") {
+    return programs.mesh_surface.get();
+  }
   throw GlError("no terrain program named " + std::string(name));
 }
 
@@ -78,6 +90,14 @@ GlTerrainPrograms build_terrain_programs() {
   p.bend = build(prelude, "bend.comp (a planet's bend)", {"det_math.glsl", "bend.comp"});
   p.bend_normals = build(prelude, "bend_normals.comp (a planet's normals)",
                          {"det_math.glsl", "bend_normals.comp"});
+  // mesh.comp's three stages, each its own program (the prelude names the stage).
+  const auto mesh = [&](int stage, const std::string& what) {
+    return build(prelude + "#define RELIEF_MESH_STAGE " + std::to_string(stage) + "\n", what,
+                 {"mesh.comp"});
+  };
+  p.mesh_domain = mesh(2, "mesh.comp (stage 2, GeoMipMapping)");
+  p.mesh_heights = mesh(3, "mesh.comp (stage 3, GeoMipMapping)");
+  p.mesh_surface = mesh(4, "mesh.comp (stage 4, GeoMipMapping)");
   for (const GlProgramBlocks& entry : terrain_program_blocks()) {
     std::string problems;
     for (const GlBlockLayout& block : entry.blocks) {

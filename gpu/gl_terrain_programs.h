@@ -21,6 +21,8 @@ struct GlTerrainPrograms {
   GlName surface;       // stage 4: surface.comp
   GlName bend;          // a planet's bend after stage 3: bend.comp
   GlName bend_normals;  // a planet's normals into the bent frame after stage 4
+  // GeoMipMapping's vertex stages 2, 3 and 4: mesh.comp, one program per stage.
+  GlName mesh_domain, mesh_heights, mesh_surface;
 
   // The EGL context they were built in (current_egl_context()): a GlTerrain given them checks
   // that it is its own.

@@ -43,8 +43,8 @@ CpuBackend<Real>::CpuBackend(const Scene& scene, const NoiseLattice& lattice,
       shadow_plan_(make_shadow_plan(scene, plan_)),
       shadow_(make_shadow_params<Real>(shadow_plan_)) {
   shadow_.skip_lit = request.skips.lit_shadows ? 1 : 0;
-  // Drawn without its mesh the field would come out as the projected grid without a word
-  // (relief stages, which shades nothing, runs the grid's stages 1-4 on purpose).
+  // Without its mesh the field would be drawn as the projected grid without a word (relief
+  // stages, which shades nothing, runs the grid's stages 1-4 on purpose).
   if (scene.terrain.heightfield && scene.terrain.heightfield->geomipmap && !textures.empty() &&
       field_mesh == nullptr) {
     throw std::invalid_argument(
@@ -56,9 +56,8 @@ template <class Real>
 std::size_t CpuBackend<Real>::units(StageId id) const {
   switch (id) {
     case StageId::kOutcodes:
-      if (mesh_mode()) {  // the quadtree culled the tiles (prepare_mesh)
+      if (mesh_mode())  // the quadtree culled the tiles (prepare_mesh)
         return 0;
-      }
       // A planet frame evaluates every valid vertex: the height bounds' segments are vertical
       // in the unbent frame, not in the bent one (docs/planet.md).
       return request_.skips.unseen_vertices && !planet()
@@ -380,6 +379,8 @@ void CpuBackend<Real>::after(StageId id) {
 template <class Real>
 void CpuBackend<Real>::finish(Frame& frame) {
   frame.image = std::move(image_);
+  if (mesh_mode())  // the mesh's stable triangle numbers: the same with occlusion culling off
+    geomipmap::stable_primitive_ids(mesh_, frame.image.primitive);
   frame.stats.raster = raster_stats_;
   frame.stats.kernels = kernel_reports(mesh_mode() ? mesh_kernel_choices() : kernels_.choices,
                                        std::is_same_v<Real, double>);

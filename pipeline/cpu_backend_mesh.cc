@@ -14,6 +14,7 @@
 #include "core/input_file.h"
 #include "core/vertex_culling.h"
 #include "pipeline/cpu_backend.h"
+#include "pipeline/frame_mesh.h"
 #include "pipeline/memory_budget.h"
 
 namespace relief {
@@ -36,16 +37,7 @@ constexpr std::uintmax_t kMeshTriangleBytes = 3 * sizeof(std::uint32_t);
 
 template <class Real>
 std::uintmax_t CpuBackend<Real>::check_mesh_memory(const geomipmap::Selection& selection) const {
-  // At most (T / 2^L + 1)^2 vertices and 2 (T / 2^L)^2 triangles per drawn tile at level L.
-  std::uintmax_t vertices = 0, triangles = 0;
-  const int cells = field_mesh_->map.tile_cells;
-  for (std::size_t tile = 0; tile < selection.drawn.size(); ++tile) {
-    if (selection.drawn[tile] != 0) {
-      const std::uintmax_t side = std::uintmax_t(cells >> selection.level[tile]);
-      vertices += (side + 1) * (side + 1);
-      triangles += 2 * side * side;
-    }
-  }
+  const auto [vertices, triangles] = mesh_size_bound(*field_mesh_, selection);
   const std::uintmax_t bytes = vertices * kMeshVertexBytes<Real> + triangles * kMeshTriangleBytes;
   if (bytes > request_.max_bin_bytes) {
     throw MemoryLimitError("the GeoMipMap mesh of this view (up to " + std::to_string(vertices) +
@@ -60,15 +52,8 @@ std::uintmax_t CpuBackend<Real>::check_mesh_memory(const geomipmap::Selection& s
 
 template <class Real>
 void CpuBackend<Real>::prepare_mesh() {
-  const GeoMipMapSettings& settings = *scene_.terrain.heightfield->geomipmap;
-  geomipmap::View view;
-  view.camera = plan_.camera;  // its height above the base: the lattice's frame (field_mesh.h)
-  view.camera.position.y = camera_above_base();
-  view.width = scene_.viewport.width;
-  view.height = scene_.viewport.height;
-  view.pixel_error = settings.pixel_error;
-  // Occlusion culling removes only tiles no pixel sees (geomipmap_select.cc): a skip.
-  view.occlusion = settings.occlusion && request_.skips.occluded_tiles;
+  const geomipmap::View view =
+      frame_mesh_view(scene_, plan_, request_.skips.occluded_tiles);  // camera above the base
   const geomipmap::Selection selection = geomipmap::select_levels(field_mesh_->map, view);
   mesh_counts_ = selection.counts;
   mesh_bytes_ = check_mesh_memory(selection);  // the bins get what is left (tally_setup)
@@ -133,21 +118,7 @@ void CpuBackend<Real>::run_mesh(StageId id, RowRange rows) {
 
 template <class Real>
 void CpuBackend<Real>::describe_mesh(StageTime& time) const {
-  const geomipmap::SelectionCounts& c = mesh_counts_;
-  const auto count = [&](std::string name, std::uint64_t value) {
-    time.counters.push_back({std::move(name), value});
-  };
-  count("GeoMipMap tiles", std::uint64_t(field_mesh_->map.tiles.size()));
-  count("quadtree nodes visited", c.nodes_visited);
-  count("quadtree nodes culled", c.nodes_culled);
-  count("tiles outside the frustum", c.tiles_culled);
-  count("occlusion cells covered by a floor", c.occlusion_cells);
-  count("tiles occluded", c.tiles_occluded);
-  count("tiles drawn", c.tiles_drawn);
-  for (int level = 0; level < field_mesh_->map.levels; ++level) {
-    count("tiles drawn at level " + std::to_string(level), c.tiles_per_level[level]);
-  }
-  count("mesh vertices", std::uint64_t(mesh_.vertex_column.size()));
+  add_mesh_counters(*field_mesh_, mesh_counts_, std::uint64_t(mesh_.vertex_column.size()), time);
 }
 
 template <class Real>

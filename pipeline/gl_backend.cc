@@ -9,7 +9,9 @@
 #include "core/frame_plan.h"
 #include "core/shading_plan.h"
 #include "core/stage_params.h"
+#include "pipeline/frame_mesh.h"
 #include "pipeline/frame_skips.h"
+#include "pipeline/memory_budget.h"
 #include "pipeline/parallel_rows.h"
 #include "pipeline/stage_table.h"
 #include "raster/topology.h"
@@ -19,6 +21,7 @@
 #include "gpu/gl_checks.h"
 #include "gpu/gl_shading.h"
 #include "gpu/gl_terrain.h"
+#include "pipeline/gl_frame_mesh.h"
 #include "pipeline/gl_scene_cache.h"
 #endif
 
@@ -37,6 +40,8 @@ void guarded(GlSession& s, const char* what, Work&& work) {
   } catch (const GlBackendError&) {
     s.cache.forget_scene();
     throw;
+  } catch (const MemoryLimitError&) {
+    throw;  // refused before any GL work (a GeoMipMap mesh too large): the caller's exit
   } catch (const std::exception& e) {
     s.cache.forget_scene();
     throw GlBackendError(std::string("the GL backend's ") + what + ": " + e.what());
@@ -75,6 +80,13 @@ class GlBackend final : public FrameBackend {
       gpu::clear_gl_errors();
       timer_ = &s.cache.pass_timer();
       timer_->clear();  // a failed frame's passes
+      if (mesh_mode()) {
+        if (resources_.field_mesh_or_null() == nullptr) {
+          throw GlBackendError(
+              "terrain.heightfield.geomipmap is set; the scene's resources hold no field mesh");
+        }
+        return;  // the mesh's streams: stage 2 (prepare_mesh)
+      }
       if (params_.domain.terrain_visible != 0) {
         terrain_ = &s.cache.terrain(plan_.layout, resources_);
       }
@@ -93,7 +105,7 @@ class GlBackend final : public FrameBackend {
       case StageId::kProjectedDomain:
       case StageId::kFractal:
       case StageId::kSurface:
-        return terrain_ != nullptr ? 1 : 0;
+        return terrain_ != nullptr || mesh_mode() ? 1 : 0;
       case StageId::kTiles:
         return 1;
       default:
@@ -109,6 +121,12 @@ class GlBackend final : public FrameBackend {
       return;
     }
     GlSession& s = gl_session();
+    if (mesh_mode() && id <= StageId::kSurface) {
+      guarded(s, "GeoMipMap mesh", [&] {
+        terrain_ = mesh_.run(s.cache, id, scene_, resources_, plan_, request_, params_.surface);
+      });
+      return;
+    }
     switch (id) {
       case StageId::kProjectedDomain:
         guarded(s, "projected domain", [&] {
@@ -143,17 +161,31 @@ class GlBackend final : public FrameBackend {
     if (id == StageId::kTiles && time.ran) {
       time.name = "GL draw, stages 5-9";
     }
+    if (id == StageId::kProjectedDomain && mesh_mode() && time.ran) {
+      add_mesh_counters(*resources_.field_mesh, mesh_.counts(),
+                        std::uint64_t(mesh_.mesh().vertex_column.size()), time);
+    }
   }
 
   void finish(Frame& frame) override {
     frame.image = std::move(image_);
+    if (mesh_mode()) {  // the mesh's stable triangle numbers, as the CPU backends give them
+      geomipmap::stable_primitive_ids(mesh_.mesh(), frame.image.primitive);
+    }
     frame.stats.gpu_passes = std::move(passes_);
-    // GL draws the grid's two triangles per cell (raster/topology.h); its rasteriser has no
-    // set-up pieces or bins to count (the report says so rather than printing 0).
-    frame.stats.raster.triangles = raster::GridTriangles{plan_.layout, {}, {}}.count();
+    // GL draws the grid's two triangles per cell (raster/topology.h), or the mesh's index list;
+    // its rasteriser has no set-up pieces or bins to count (the report says so rather than
+    // printing 0).
+    frame.stats.raster.triangles = mesh_mode()
+                                       ? std::uint32_t(mesh_.mesh().indices.size() / 3)
+                                       : raster::GridTriangles{plan_.layout, {}, {}}.count();
   }
 
  private:
+  bool mesh_mode() const {
+    return scene_.terrain.heightfield && scene_.terrain.heightfield->geomipmap;
+  }
+
   void draw(GlSession& s) {
     const ShadingPlan shading = make_shading_plan(scene_, plan_, resources_.lattice.size);
     ShadeParams<float> shade = make_shade_params<float>(shading);
@@ -163,7 +195,7 @@ class GlBackend final : public FrameBackend {
     apply_skips(request_.skips, true, shade);
     const FrameOutputs& o = request_.outputs;
     gpu::GlGridStreams streams;
-    streams.layout = plan_.layout;
+    streams.layout = terrain_ != nullptr ? terrain_->layout() : plan_.layout;
     if (terrain_ != nullptr) {
       const auto name = [&](gpu::GlStream stream) { return terrain_->buffer(stream); };
       // On a planet the bent positions (docs/planet.md): stage 5 transforms them, stage 8
@@ -192,6 +224,8 @@ class GlBackend final : public FrameBackend {
     gpu::GlDrawOptions options;
     options.readback = {o.linear, o.depth, o.primitive, o.normal, o.world_height, o.octaves};
     options.timer = timer_;
+    options.indexed = mesh_mode();
+    options.indices = mesh_.mesh().indices;  // the mesh's (none drawn where every tile was culled)
     // Gradient shading lights the vertices in the vertex shader (terrain.vert, stage 5).
     TransformParams<float> transform = params_.transform;
     add_gouraud_lighting(shading, transform);
@@ -216,10 +250,10 @@ class GlBackend final : public FrameBackend {
     // bytes a vertex, the indices' 24 a cell) are freed when it ends, so that at most
     // kKeptFrameBytes of each stays between frames.
     const std::uintmax_t pixels = std::uintmax_t(gl.width) * std::uintmax_t(gl.height);
-    if (pixels * 56 > kKeptFrameBytes) {
-      s.cache.draw().release_frame_objects();
+    if (pixels * 56 > kKeptFrameBytes || options.indices.size_bytes() > kKeptFrameBytes) {
+      s.cache.draw().release_frame_objects();  // a GeoMipMap mesh's index buffer too
     }
-    if (std::uintmax_t(plan_.layout.size()) * (44 + 24) > kKeptFrameBytes) {
+    if (std::uintmax_t(streams.layout.size()) * (44 + 24) > kKeptFrameBytes) {
       s.cache.forget_scene();
     }
   }
@@ -240,6 +274,7 @@ class GlBackend final : public FrameBackend {
   std::unique_ptr<gpu::GlGridUpload> upload_;
   FrameImage image_;
   std::vector<StageTime> passes_;
+  GlFrameMesh mesh_;  // a GeoMipMap frame's (terrain.heightfield.geomipmap)
 };
 
 }  // namespace
@@ -313,6 +348,10 @@ GridBuffers<float> gl_terrain_stages(const Scene&, const NoiseLattice&, const He
   throw GlBackendError("this build of Relief has no GL side (configured with RELIEF_WITH_GL=OFF)");
 }
 
+GridBuffers<float> gl_mesh_stages(const Scene&, const SceneResources&, const FrameSkips&) {
+  throw GlBackendError("this build of Relief has no GL side (configured with RELIEF_WITH_GL=OFF)");
+}
+
 void forget_gl_scene() {}
 
 #endif
@@ -331,11 +370,6 @@ std::string gl_missing_feature(const Scene& scene) {
   if (scene.water.reflect_terrain && scene.terrain.water_level) {  // the same cache
     return "water.reflect_terrain = true: the GL backend has no terrain reflections yet; allowed "
            "false" +
-           other;
-  }
-  if (scene.terrain.heightfield && scene.terrain.heightfield->geomipmap) {  // kGlHasNoMesh
-    return "terrain.heightfield.geomipmap is set: the GL backend draws the projected grid alone "
-           "yet; allowed null" +
            other;
   }
   return {};

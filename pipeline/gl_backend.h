@@ -57,6 +57,13 @@ std::unique_ptr<FrameBackend> make_gl_backend(const Scene& scene, const SceneRes
 GridBuffers<float> gl_terrain_stages(const Scene& scene, const NoiseLattice& lattice,
                                      const HeightSketch* sketch = nullptr);
 
+// Stages 2-4 of the GeoMipMap mesh a frame of `scene` draws (terrain.heightfield.geomipmap;
+// skips as `skips`) on the GL side (gpu/shaders/mesh.comp), its streams read back in the GL's
+// layout: rows of kMeshRowVertices, vertex k at k as in cpu_mesh_stages (pipeline/frame_mesh.h),
+// a power of two of rows (the padding invalid). Throws GlBackendError as a frame does.
+GridBuffers<float> gl_mesh_stages(const Scene& scene, const SceneResources& resources,
+                                  const FrameSkips& skips = {});
+
 // Drops what GL frames keep of the last scene (its uploads and the grid's streams; the compiled
 // programs stay), so that the next frame starts as a process's first does. For tests; frames
 // never need it (gl_scene_cache.h).

@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,10 @@ class GlSceneCache {
   // does, a new one (the old one's streams freed first) otherwise. Its GL errors are the
   // caller's to check (gpu::GlErrorChecks::kByCaller) and its passes timed by pass_timer().
   gpu::GlTerrain& terrain(GridLayout layout, const SceneResources& resources);
+  // The layout of the kept terrain stages' streams; none when there are none.
+  std::optional<GridLayout> terrain_layout() const {
+    return terrain_ != nullptr ? std::optional<GridLayout>(terrain_->layout()) : std::nullopt;
+  }
   // The shading's lattice and proto-textures of `resources`, uploaded where they are not kept.
   const gpu::GlShadeResources& shading(const SceneResources& resources);
   gpu::GlTerrainDraw& draw();

@@ -75,14 +75,13 @@ inline constexpr const char* kGlHasNoShadows =
     "none: not built yet; the GL backend refuses a scene with lighting.shadows or "
     "lighting.sky_occlusion";
 
-// A height field drawn by GeoMipMapping (terrain.heightfield.geomipmap) runs the same table on
-// the CPU backends: stage 2's entry selects the tiles and lays the stitched mesh's vertices out
-// in the grid buffers, stages 3 and 4 read the field at them (core/heightfield/field_mesh.cc,
-// portable in every CPU backend, pipeline/cpu_backend_mesh.cc), the outcodes have no work (the
-// quadtree culled the tiles), and set-up onwards draws the mesh's index list. The GL backend
-// has no twin yet and refuses such a scene: kGlHasNoMesh.
-inline constexpr const char* kGlHasNoMesh =
-    "none: not built yet; the GL backend refuses a scene with terrain.heightfield.geomipmap";
+// A height field drawn by GeoMipMapping (terrain.heightfield.geomipmap) runs the same table:
+// stage 2's entry selects the tiles and stitches the mesh on the CPU (pipeline/frame_mesh.h),
+// and lays the mesh's vertices out in the grid buffers (or streams) in rows; stages 3 and 4 read
+// the field at them (core/heightfield/field_mesh.cc, portable in every CPU backend,
+// pipeline/cpu_backend_mesh.cc; on the GL side gpu/shaders/mesh.comp, pipeline/gl_frame_mesh.h);
+// the outcodes have no work (the quadtree culled the tiles), and set-up onwards (the GL draw)
+// draws the mesh's index list.
 
 inline constexpr StageInfo kFrameStages[] = {
     {StageId::kProjectedDomain,

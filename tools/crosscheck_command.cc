@@ -7,6 +7,7 @@
 #include <ostream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -15,6 +16,7 @@
 #include "image/image_io.h"
 #include "pipeline/build_info.h"
 #include "pipeline/frame.h"
+#include "pipeline/frame_mesh.h"
 #include "pipeline/gl_backend.h"
 #include "pipeline/job_memory.h"
 #include "pipeline/scene_resources.h"
@@ -136,10 +138,21 @@ int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options,
   double cpu_ms = 0, gl_ms = 0;
   const Frame cpu = timed_frame(scene, resources, options.cpu_backend, options.repeat, cpu_ms);
   const Frame gl = timed_frame(scene, resources, Backend::kGl, options.repeat, gl_ms);
-  const TerrainRun<float> cpu_terrain = run_terrain_stages<float>(
-      scene, resources.terrain_values(), Backend::kReference, resources.sketch_or_null());
-  const GridBuffers<float> gl_grid =
-      gl_terrain_stages(scene, resources.terrain_values(), resources.sketch_or_null());
+  TerrainRun<float> cpu_terrain{{}, GridBuffers<float>(GridLayout{}), {}};
+  GridBuffers<float> gl_grid{GridLayout{}};
+  if (scene.terrain.heightfield && scene.terrain.heightfield->geomipmap) {
+    // GeoMipMapping: the mesh's vertices, both sides' stages 2-4 (pipeline/frame_mesh.h).
+    MeshStages mesh = cpu_mesh_stages(scene, resources);
+    cpu_terrain.plan =
+        make_frame_plan(scene, resources.terrain_values(), resources.sketch_or_null());
+    cpu_terrain.plan.layout = mesh.grid.layout;
+    cpu_terrain.grid = std::move(mesh.grid);
+    gl_grid = gl_mesh_stages(scene, resources);
+  } else {
+    cpu_terrain = run_terrain_stages<float>(scene, resources.terrain_values(), Backend::kReference,
+                                            resources.sketch_or_null());
+    gl_grid = gl_terrain_stages(scene, resources.terrain_values(), resources.sketch_or_null());
+  }
   const GridDifference grid = compare_grids(cpu_terrain.grid, gl_grid);
   // Bilinear filtering switches mip level in a step: the CPU's trilinear frame sizes the step
   // (crosscheck.h).
@@ -164,7 +177,9 @@ int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options,
   table << "relief crosscheck: " << backend_label(options.cpu_backend) << " against gl on "
         << renderer << "\n"
         << scene.viewport.width << "x" << scene.viewport.height << " image, "
-        << cpu_terrain.plan.layout.width << "x" << cpu_terrain.plan.layout.height << " grid\n"
+        << cpu_terrain.plan.layout.width << "x" << cpu_terrain.plan.layout.height
+        << (cpu_terrain.grid.layout.width == kMeshRowVertices ? " GeoMipMap mesh rows\n"
+                                                              : " grid\n")
         << "frame time (median of " << options.repeat << "): cpu " << cpu_ms << " ms, gl " << gl_ms
         << " ms, gl / cpu " << gl_ms / cpu_ms << "\n"
         << "stage                measure                          value\n"

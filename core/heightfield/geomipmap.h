@@ -98,6 +98,8 @@ struct Selection {
                                     // neighbours stitch to it, so culling removes
                                     // triangles and changes none)
   std::vector<std::uint8_t> drawn;  // per tile: 1 drawn, 0 culled or occluded
+  // Per tile: 1 where occlusion culling removed it (drawn 0); empty where it did not run.
+  std::vector<std::uint8_t> occluded;
   SelectionCounts counts;
 };
 
@@ -119,7 +121,16 @@ struct Mesh {
   std::vector<std::uint32_t> indices;
   // The drawn tiles in order, and where each one's triangles begin (one more entry: the end).
   std::vector<std::uint32_t> tiles, tile_first_triangle;
+  // Per drawn tile (one more entry: the end), the stable number of its first triangle: its
+  // place in the list the selection would give without occlusion culling (an occluded tile's
+  // triangles counted as if drawn), so that the frame's primitive output is the same with the
+  // skip on or off (stable_primitive_ids).
+  std::vector<std::uint32_t> tile_first_id;
 };
 Mesh stitched_mesh(const GeoMipMap& map, const Selection& selection);
+
+// Triangle numbers of `mesh`'s list turned into its stable ones (Mesh::tile_first_id), in
+// place; raster::kNoPrimitive (0xffffffff) and numbers past the list stay as they are.
+void stable_primitive_ids(const Mesh& mesh, std::span<std::uint32_t> primitive);
 
 }  // namespace relief::geomipmap

@@ -1,6 +1,7 @@
 // GeoMipMapping's stitched triangle list (core/heightfield/geomipmap.h), its triangles from
 // core/heightfield/geomipmap_triangles.h.
 #include <algorithm>
+#include <array>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -108,33 +109,64 @@ Mesh stitched_mesh(const GeoMipMap& map, const Selection& selection) {
       return -1;
     return selection.level[static_cast<std::size_t>(tz) * map.tiles_x + tx];
   };
+  // The stable number of the next triangle: occluded tiles' triangles counted as if drawn.
+  std::uint32_t next_id = 0;
   for (int tz = 0; tz < map.tiles_z; ++tz) {
     for (int tx = 0; tx < map.tiles_x; ++tx) {
-      const bool drawn = selection.drawn[static_cast<std::size_t>(tz) * map.tiles_x + tx] != 0;
-      if (!drawn) {
-        builder.end_tile(tx, false);
-        continue;
-      }
-      builder.begin_tile(
-          tx, map.tiles_x,
-          tx > 0 && selection.drawn[static_cast<std::size_t>(tz) * map.tiles_x + tx - 1] != 0);
+      const std::size_t tile = static_cast<std::size_t>(tz) * map.tiles_x + tx;
+      const bool drawn = selection.drawn[tile] != 0;
+      const bool occluded = !selection.occluded.empty() && selection.occluded[tile] != 0;
       const int level = level_at(tx, tz);
       // Each side at the coarser spacing of the two tiles that share it, drawn or not (the
       // field's edge: this tile's own).
       const auto side = [&](int nx, int nz) { return 1 << std::max(level, level_at(nx, nz)); };
-      mesh.tiles.push_back(static_cast<std::uint32_t>(tz * map.tiles_x + tx));
-      mesh.tile_first_triangle.push_back(static_cast<std::uint32_t>(mesh.indices.size() / 3));
+      const std::array<int, 4> sides = {side(tx, tz - 1), side(tx + 1, tz), side(tx, tz + 1),
+                                        side(tx - 1, tz)};
+      if (!drawn) {
+        if (occluded) {  // the triangles it would have drawn (the levels do not depend on it)
+          tile_triangles(map.tile_cells, 1 << level, sides,
+                         [&](LatticeStep, LatticeStep, LatticeStep) { ++next_id; });
+        }
+        builder.end_tile(tx, false);
+        continue;
+      }
+      builder.begin_tile(tx, map.tiles_x, tx > 0 && selection.drawn[tile - 1] != 0);
+      mesh.tiles.push_back(static_cast<std::uint32_t>(tile));
+      const auto first = static_cast<std::uint32_t>(mesh.indices.size() / 3);
+      mesh.tile_first_triangle.push_back(first);
+      mesh.tile_first_id.push_back(next_id);
       builder.c0 = tx * map.tile_cells;
       builder.r0 = tz * map.tile_cells;
-      tile_triangles(map.tile_cells, 1 << level,
-                     {side(tx, tz - 1), side(tx + 1, tz), side(tx, tz + 1), side(tx - 1, tz)},
-                     builder);
+      tile_triangles(map.tile_cells, 1 << level, sides, builder);
+      next_id += static_cast<std::uint32_t>(mesh.indices.size() / 3) - first;
       builder.end_tile(tx, true);
     }
     std::swap(builder.above, builder.current);
   }
   mesh.tile_first_triangle.push_back(static_cast<std::uint32_t>(mesh.indices.size() / 3));
+  mesh.tile_first_id.push_back(next_id);
   return mesh;
+}
+
+void stable_primitive_ids(const Mesh& mesh, std::span<std::uint32_t> primitive) {
+  const std::vector<std::uint32_t>& first = mesh.tile_first_triangle;
+  if (first.size() < 2 || mesh.tile_first_id.size() != first.size()) {
+    return;  // nothing drawn
+  }
+  const std::uint32_t end = first.back();
+  std::size_t tile = 0;  // neighbouring pixels mostly show one tile: tried first
+  for (std::uint32_t& id : primitive) {
+    if (id >= end) {
+      continue;  // no triangle (kNoPrimitive)
+    }
+    if (!(first[tile] <= id && id < first[tile + 1])) {
+      // The last tile whose first triangle is at most id (first[0] = 0 <= id).
+      tile = static_cast<std::size_t>(std::upper_bound(first.begin(), first.end(), id) -
+                                      first.begin()) -
+             1;
+    }
+    id = mesh.tile_first_id[tile] + (id - first[tile]);
+  }
 }
 
 }  // namespace relief::geomipmap

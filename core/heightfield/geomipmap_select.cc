@@ -25,6 +25,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/frustum_polytope.h"
@@ -310,6 +311,7 @@ void occlusion_cull(const GeoMipMap& map, const View& view, Selection& out) {
       ++out.counts.tiles_occluded;
     }
   }
+  out.occluded = std::move(occluded);  // the mesh's stable triangle numbers count them
 }
 
 }  // namespace

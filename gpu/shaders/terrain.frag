@@ -40,7 +40,7 @@ void main() {
   precise vec3 rgb = radiance * P.exposure;
   out_linear = vec4(rgb, 1.0);
   out_srgb = uvec4(srgb_byte(rgb.r), srgb_byte(rgb.g), srgb_byte(rgb.b), 255u);
-  out_primitive = uint(gl_PrimitiveID);  // the index buffer lists every grid triangle in order
+  out_primitive = uint(gl_PrimitiveID);  // the index list's order: the grid's, or the mesh's
   out_normal = vec4(normalize_or(vec3(v_nx, v_ny, v_nz), vec3(0.0, 1.0, 0.0)), 0.0);
   out_height_octaves = vec2(float(u_camera_y + double(a.height)), v_nu);
 }

@@ -53,6 +53,10 @@ struct GlArithmetic {
   bool basic_as_cpu = true;
   // A precise a * b + c gave float(float(a * b) + c) on every input (not fused).
   bool precise_unfused = true;
+  // double + - * / sqrt, a precise double a * b + c (not fused) and double(float) gave the
+  // CPU's double bits on every input (IEEE's correctly rounded results; GLSL 4.50 promises
+  // double operations only the precision of float).
+  bool double_as_cpu = true;
   std::size_t inputs = 0;
 
   // The compute stages' division and square roots as the CPU's: GLSL functions built of them
@@ -110,6 +114,19 @@ void main() {
   out_values[8u * count + 3u * i] = quotient_cr;
   out_values[8u * count + 3u * i + 1u] = reciprocal_cr;
   out_values[8u * count + 3u * i + 2u] = root_cr;
+  // Doubles with all their mantissa bits (the sums round as IEEE's would on an exact GL).
+  precise double da = double(a) + double(c) * 0.0009765625LF;
+  precise double db = double(b) + double(a) * 0.00000095367431640625LF;
+  precise double dq = da / db;
+  precise double dr = sqrt(abs(da));
+  precise double dp = da * db;
+  precise double df = da * db + double(c);
+  const double results[5] = double[](da, db, dq, dr, df);
+  for (uint k = 0u; k < 5u; ++k) {
+    const uvec2 words = unpackDouble2x32(results[k]);
+    out_values[11u * count + 10u * i + 2u * k] = uintBitsToFloat(words.x);
+    out_values[11u * count + 10u * i + 2u * k + 1u] = uintBitsToFloat(words.y);
+  }
 }
 )";
   // Operands whose quotients, products and sums stay normal (GLSL may flush subnormals) and
@@ -123,7 +140,7 @@ void main() {
     in.push_back(draw_float(draws, -40, 40));
   }
   const std::vector<float> out =
-      run_compute(gpu::shader_prelude(), "", main, in, count, 11 * count);
+      run_compute(gpu::shader_prelude(), "", main, in, count, 21 * count);
 
   GlArithmetic r;
   r.inputs = count;
@@ -151,6 +168,18 @@ void main() {
     const float* cr = &out[8 * count + 3 * k];
     r.stage_divide_as_cpu = r.stage_divide_as_cpu && same(cr[0], a / b) && same(cr[1], 1.0f / b);
     r.stage_sqrt_as_cpu = r.stage_sqrt_as_cpu && same(cr[2], std::sqrt(std::abs(a)));
+    const double da = double(a) + double(c) * 0.0009765625;
+    const double db = double(b) + double(a) * 0.00000095367431640625;
+    const double dp = da * db;
+    const double df = dp + double(c);
+    const double expected[5] = {da, db, da / db, std::sqrt(std::abs(da)), df};
+    const float* words = &out[11 * count + 10 * k];
+    for (int j = 0; j < 5; ++j) {
+      const std::uint64_t bits = std::uint64_t(std::bit_cast<std::uint32_t>(words[2 * j])) |
+                                 std::uint64_t(std::bit_cast<std::uint32_t>(words[2 * j + 1]))
+                                     << 32;
+      r.double_as_cpu = r.double_as_cpu && bits == std::bit_cast<std::uint64_t>(expected[j]);
+    }
   }
   return r;
 }

@@ -19,7 +19,8 @@ TEST_CASE("thisGlRoundsWithinTheGlslSpecificationsPrecisionRules", "[gl]") {
                                << " ulp, sqrt " << a.sqrt_ulps << " ulp, inversesqrt "
                                << a.inversesqrt_ulps
                                << " ulp; the stages' divide, square_root as the CPU: "
-                               << a.stage_divide_as_cpu << ", " << a.stage_sqrt_as_cpu);
+                               << a.stage_divide_as_cpu << ", " << a.stage_sqrt_as_cpu
+                               << "; double + - * / sqrt as the CPU: " << a.double_as_cpu);
   // Correctly rounded: + - * (and the conversions the probe's literals take).
   CHECK(a.basic_as_cpu);
   // precise: a * b + c in two roundings, never one FMA.

@@ -30,6 +30,12 @@ against the DEM itself, independently of Relief:
   together they see where the field lies, and that its rows run north to south.
 - the simd backend's PNG is the reference's byte for byte.
 
+Then the same DEM drawn by GeoMipMapping (terrain.heightfield.geomipmap) in each backend:
+every pixel within the extremes of its tile's samples (a tile's triangles interpolate its own
+lattice points, each the B-spline at a texel centre), the placement check against the DEM
+moved half a sample (the mesh is linear between texel centres: measured 1.02 m from the
+B-spline against 6 m), the simd PNG the reference's.
+
 Python 3's standard library only (the .npz is a zip of .npy arrays, read here).
 """
 import ast
@@ -46,6 +52,10 @@ import zipfile
 METRES_PER_DEGREE = 111200.0  # matplotlib's hill-shading example
 VIEW = {"width": 320, "height": 288}
 ALTITUDE = 21000.0  # above the origin: about one sample a pixel
+# GeoMipMapping: tiles of 16 samples, levels whose error seen from the camera is at most 0.01
+# px (de Boer's metric takes vertical error at the distance; looking straight down that is
+# 0.84 m at 21 km, so a coarse level's plane stays within a fraction of the samples' spread).
+GEOMIPMAP = {"tile_cells": 16, "pixel_error": 0.01}
 
 
 def read_npy(data):
@@ -95,8 +105,8 @@ def write_pfm(path, heights):
         f.write(out.getvalue())
 
 
-def scene_for(pfm_name, extent, low, high):
-    return {
+def scene_for(pfm_name, extent, low, high, geomipmap=None):
+    scene = {
         "camera": {"position": [0.0, ALTITUDE, 0.0], "yaw_deg": 0.0, "pitch_deg": -90.0,
                    "fov_y_deg": 60.0, "near": 1.0, "far": 60000.0},
         "viewport": VIEW,
@@ -104,6 +114,9 @@ def scene_for(pfm_name, extent, low, high):
         "terrain": {"base_height": 0.0, "water_level": low - 100.0,
                     "heightfield": {"file": pfm_name, "extent": extent, "height": [0.0, 1.0]}},
     }
+    if geomipmap is not None:
+        scene["terrain"]["heightfield"]["geomipmap"] = geomipmap
+    return scene
 
 
 def read_float_pfm(path):
@@ -163,6 +176,37 @@ def hull_failures(points, heights, extent, flip=False):
     return failures
 
 
+def mesh_hull_failures(points, heights, extent, tile):
+    """GeoMipMapping: a pixel interpolates its triangle's vertices, lattice points of the tile
+    that holds it (every vertex of a tile's triangles is one of its (T + 1)^2 points, at texel
+    centres), each the B-spline there, within the extremes of the 3 x 3 samples around it. So
+    a pixel's height lies within the extremes of the samples of its tile widened by one sample;
+    taken here over the tiles two either side of the pixel's (blocks of T samples)."""
+    rows, columns = len(heights), len(heights[0])
+    cell_x = (extent[2] - extent[0]) / columns
+    cell_z = (extent[3] - extent[1]) / rows
+    blocks_x, blocks_z = (columns + tile - 1) // tile, (rows + tile - 1) // tile
+    block = {}
+    for bz in range(blocks_z):
+        for bx in range(blocks_x):
+            values = [heights[r][c] for r in range(bz * tile, min(rows, (bz + 1) * tile))
+                      for c in range(bx * tile, min(columns, (bx + 1) * tile))]
+            block[(bx, bz)] = (min(values), max(values))
+    failures = 0
+    for x, z, h in points:
+        tx = math.floor(((x - extent[0]) / cell_x - 0.5) / tile)
+        tz = math.floor(((z - extent[1]) / cell_z - 0.5) / tile)
+        low, high = math.inf, -math.inf
+        for bz in range(tz - 2, tz + 3):
+            for bx in range(tx - 2, tx + 3):
+                b = block[(min(max(bx, 0), blocks_x - 1), min(max(bz, 0), blocks_z - 1))]
+                low, high = min(low, b[0]), max(high, b[1])
+        slack = 1e-5 * max(1.0, abs(h))
+        if not (low - slack <= h <= high + slack):
+            failures += 1
+    return failures
+
+
 def bspline_weights(t):
     u = 1 - t
     return [u * u * u / 6, ((3 * t - 6) * t * t + 4) / 6, (((3 - 3 * t) * t + 3) * t + 1) / 6,
@@ -190,6 +234,19 @@ def mean_bspline_difference(points, heights, extent, shift=0.0):
     return total / len(points)
 
 
+def render_points(relief, scene, backend, work, name):
+    """`scene` rendered straight down by `backend`: its PNG's bytes, each covered pixel's world
+    point and the share of pixels covered."""
+    png = os.path.join(work, name + ".png")
+    heights_pfm = os.path.join(work, name + "-height.pfm")
+    run([relief, "render", scene, "--backend", backend, "--threads", "2", "-o", png,
+         "--height", heights_pfm])
+    with open(png, "rb") as f:
+        data = f.read()
+    points = pixel_points(read_float_pfm(heights_pfm))
+    return data, points, len(points) / (VIEW["width"] * VIEW["height"])
+
+
 def run(cmd):
     result = subprocess.run(cmd, capture_output=True, text=True)
     if result.returncode != 0:
@@ -204,6 +261,9 @@ def write_scene(directory, npz):
     scene = scene_for("jacksboro.pfm", extent, min(flat), max(flat))
     with open(os.path.join(directory, "jacksboro.json"), "w") as f:
         json.dump(scene, f, indent=2)
+    mesh = scene_for("jacksboro.pfm", extent, min(flat), max(flat), GEOMIPMAP)
+    with open(os.path.join(directory, "jacksboro-geomipmap.json"), "w") as f:
+        json.dump(mesh, f, indent=2)
     return heights, extent
 
 
@@ -224,14 +284,7 @@ def main(argv):
         scene = os.path.join(work, "jacksboro.json")
         pngs = {}
         for backend in backends:
-            png = os.path.join(work, backend + ".png")
-            heights_pfm = os.path.join(work, backend + "-height.pfm")
-            run([relief, "render", scene, "--backend", backend, "--threads", "2", "-o", png,
-                 "--height", heights_pfm])
-            with open(png, "rb") as f:
-                pngs[backend] = f.read()
-            points = pixel_points(read_float_pfm(heights_pfm))
-            covered = len(points) / (VIEW["width"] * VIEW["height"])
+            pngs[backend], points, covered = render_points(relief, scene, backend, work, backend)
             outside = hull_failures(points, heights, extent)
             print("%s: %d pixels covered (%.1f %%), %d outside the 6 x 6 samples' extremes" %
                   (backend, len(points), 100 * covered, outside))
@@ -247,6 +300,24 @@ def main(argv):
                 failed = True
         if pngs["simd"] != pngs["reference"]:
             print("FAILED: the simd backend's PNG differs from the reference's")
+            failed = True
+        # The same DEM drawn by GeoMipMapping (docs/heightfields.md), in every backend.
+        mesh_scene = os.path.join(work, "jacksboro-geomipmap.json")
+        for backend in backends:
+            pngs[backend + " geomipmap"], points, covered = render_points(
+                relief, mesh_scene, backend, work, backend + "-geomipmap")
+            outside = mesh_hull_failures(points, heights, extent, GEOMIPMAP["tile_cells"])
+            # The mesh is linear between texel centres (1.02 m from the B-spline on average where
+            # the grid's finer vertices give 0.50): judged against the DEM moved half a sample.
+            here = mean_bspline_difference(points, heights, extent)
+            moved = mean_bspline_difference(points, heights, extent, shift=0.5)
+            print("%s, GeoMipMapping: %d pixels covered (%.1f %%), %d outside their tiles' "
+                  "samples' extremes; mean |height - B-spline| %.3f m, the DEM moved half a "
+                  "sample %.3f m" % (backend, len(points), 100 * covered, outside, here, moved))
+            if covered < 0.999 or outside != 0 or not here < moved / 3:
+                failed = True
+        if pngs["simd geomipmap"] != pngs["reference geomipmap"]:
+            print("FAILED: the simd backend's GeoMipMap PNG differs from the reference's")
             failed = True
     print("FAILED" if failed else "passed")
     return 1 if failed else 0

@@ -2,121 +2,32 @@
 // of cameras no pixel shows the background where its ray must meet the field (the seam test of
 // tests/raster/geomipmap_seam_test.cc, now through every stage of a frame); every CPU backend
 // draws it (simd the reference's bytes, reference-double close); occlusion culling is a skip
-// (the same outputs, fewer tiles); the scene rules and the GL backend refuse what is not built.
+// (the same outputs, fewer tiles); the scene rules refuse what is not built. The GL backend's
+// mesh: tests/gl/gl_geomipmap_test.cc.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <fstream>
 #include <string>
 #include <vector>
 
 #include <catch2/catch.hpp>
 
-#include "core/camera.h"
 #include "core/scene/scene_json.h"
 #include "pipeline/frame.h"
-#include "pipeline/gl_backend.h"
 #include "pipeline/scene_resources.h"
 #include "raster/raster_types.h"
-#include "tests/support/cli_support.h"
+#include "tests/support/field_scene.h"
 #include "tests/support/frame_counters.h"
-#include "tests/support/heightfield_files.h"
 #include "tests/support/test_support.h"
 
 namespace relief {
 namespace {
 
-constexpr int kSide = 257;  // 16 tiles of 16 cells: the lattice is the texel centres
-constexpr double kHalfExtent = 2000.0;
-
-// Ridges at several scales and a little noise (levels differ between neighbours everywhere),
-// or a plateau at 400 over z > 1000 before a valley at 0 (the plateau hides the valley from
-// a camera standing on it).
-std::vector<float> field_samples(bool plateau) {
-  std::vector<float> h(std::size_t(kSide) * kSide);
-  for (int r = 0; r < kSide; ++r) {
-    for (int c = 0; c < kSide; ++c) {
-      std::uint64_t x = std::uint64_t(r) * 7919u + std::uint64_t(c);
-      x = (x ^ (x >> 31)) * 0xbf58476d1ce4e5b9ull;
-      x ^= x >> 29;
-      const double noise = double(x % 4096) / 4096.0 - 0.5;
-      const double ridges = 120.0 * std::sin(0.031 * c) * std::cos(0.027 * r) +
-                            35.0 * std::sin(0.19 * c + 0.11 * r) + 4.0 * noise;
-      const double z = -kHalfExtent + (r + 0.5) * 2 * kHalfExtent / kSide;  // row 0 at z0
-      h[std::size_t(r) * kSide + c] = float(plateau ? (z > 1000.0 ? 400.0 : 0.2 * ridges) : ridges);
-    }
-  }
-  return h;
-}
-
-struct FieldScene {
-  test::TempDir dir{"geomipmap-frame"};
-  std::vector<float> samples;
-  Scene scene;
-};
-
-void build(FieldScene& f, bool plateau, double pixel_error) {
-  f.samples = field_samples(plateau);
-  const std::filesystem::path file = f.dir.path() / "field.pfm";
-  std::ofstream(file, std::ios::binary) << test::pfm_bytes(kSide, kSide, f.samples);
-  HeightFieldSettings field;
-  field.image = file.string();
-  field.extent = {-kHalfExtent, -kHalfExtent, kHalfExtent, kHalfExtent};
-  field.height = {0.0, 1.0};  // the PFM's floats are world heights
-  field.geomipmap = GeoMipMapSettings{16, pixel_error, true};
-  f.scene.terrain.heightfield = field;
-  f.scene.terrain.base_height = 0.0;
-  f.scene.terrain.water_level.reset();
-  f.scene.viewport.width = 320;
-  f.scene.viewport.height = 240;
-  f.scene.camera.near = 0.5;
-  f.scene.camera.far = 60000.0;
-}
-
-// A view from near the field's edge over its ridges: most tiles in view, at several levels.
-void look_over_the_ridges(Scene& scene) {
-  scene.camera.position = {300.0, 400.0, 1800.0};
-  scene.camera.pitch_deg = -14.0;
-}
-
-FrameRequest geometry_request(Backend backend, FrameSkips skips = {}) {
-  FrameRequest request;
-  request.backend = backend;
-  request.skips = skips;
-  request.outputs.primitive = true;
-  request.outputs.depth = true;
-  request.outputs.world_height = true;
-  return request;
-}
-
-// Pixels whose ray, from a camera above every sample, reaches the plane of the lowest sample
-// inside the texel centres' rectangle: it crosses the surface on the way (the mesh lies between
-// the lowest and the highest sample, continuous over that rectangle), so a triangle must cover
-// them. Returns (must cover, holes).
-std::pair<std::uint64_t, std::uint64_t> seam_holes(const Scene& scene, const Frame& frame,
-                                                   double lowest) {
-  const CameraFrame cam = make_camera_frame(scene.camera, scene.viewport);
-  const int width = scene.viewport.width, height = scene.viewport.height;
-  const double inner = kHalfExtent * (1.0 - 1.0 / kSide) * (1.0 - 1e-6);
-  std::uint64_t must_cover = 0, holes = 0;
-  for (int py = 0; py < height; ++py) {
-    for (int px = 0; px < width; ++px) {
-      const double ndc_x = (px + 0.5) / width * 2 - 1, ndc_y = (py + 0.5) / height * 2 - 1;
-      const glm::dvec3 ray = cam.forward + ndc_x * cam.tan_half_fov_x * cam.right +
-                             ndc_y * cam.tan_half_fov_y * cam.up;
-      if (!(ray.y < 0)) {
-        continue;
-      }
-      const glm::dvec3 hit = cam.position + ((lowest - cam.position.y) / ray.y) * ray;
-      if (std::abs(hit.x) >= inner || std::abs(hit.z) >= inner) {
-        continue;
-      }
-      ++must_cover;
-      holes += frame.image.primitive[std::size_t(py) * width + px] == raster::kNoPrimitive;
-    }
-  }
-  return {must_cover, holes};
-}
+using test::build;
+using test::FieldScene;
+using test::geometry_request;
+using test::look_over_the_ridges;
+using test::seam_holes;
 
 TEST_CASE("aGeoMipMapFrameShowsNoBackgroundThroughAnySeamOverACameraSweep", "[geomipmap]") {
   FieldScene f;
@@ -126,12 +37,7 @@ TEST_CASE("aGeoMipMapFrameShowsNoBackgroundThroughAnySeamOverACameraSweep", "[ge
   std::uint64_t checked = 0, coarse = 0, culled = 0;
   for (int view = 0; view < 12; ++view) {
     Scene& scene = f.scene;
-    const double a = 0.7 * view;
-    scene.camera.position = {1500.0 * std::sin(a), highest + 20.0 + 37.0 * (view % 5),
-                             1500.0 * std::cos(1.3 * a)};
-    scene.camera.yaw_deg = 29.0 * view;
-    scene.camera.pitch_deg = view < 9 ? -25.0 - 5.0 * view : -4.0 - view;
-    scene.terrain.heightfield->geomipmap->pixel_error = 0.5 + (view % 4) * 2.5;
+    test::sweep_view(scene, view, highest);
     const SceneResources resources = load_scene_resources(scene);
     const Frame frame = render_frame(scene, resources, geometry_request(Backend::kReference));
     const auto [must_cover, holes] = seam_holes(scene, frame, lowest);
@@ -203,13 +109,7 @@ TEST_CASE("aGeoMipMapFrameOnAHighBaseHeightKeepsItsGeometryExactly", "[geomipmap
 TEST_CASE("occlusionCullingOfGeoMipMapTilesChangesNoOutputAndSkipsTiles", "[geomipmap][skip]") {
   FieldScene f;
   build(f, true, 1.0);
-  // On the plateau, looking toward the valley below its edge. The occluders are whole tiles'
-  // floors in front of the near plane: the camera stands just inside the last row of tiles
-  // (lattice rows 240..256 begin at z = 1743.5), over the middle of a column of tiles (x from
-  // 0 to 249), so the floor of the plateau tile before it covers the valley's tiles.
-  f.scene.camera.position = {125.0, 420.0, 1752.0};
-  f.scene.camera.yaw_deg = 0.0;
-  f.scene.camera.pitch_deg = -2.0;
+  test::look_from_the_plateau(f.scene);
   const SceneResources resources = load_scene_resources(f.scene);
   FrameSkips without;
   without.occluded_tiles = false;
@@ -220,9 +120,9 @@ TEST_CASE("occlusionCullingOfGeoMipMapTilesChangesNoOutputAndSkipsTiles", "[geom
     CHECK(on.image.srgb == off.image.srgb);
     CHECK(on.image.depth == off.image.depth);
     CHECK(on.image.world_height == off.image.world_height);
-    // The primitive output names the triangle in the frame's drawn mesh, which the occluded
-    // tiles leave: the ids after them differ (docs/heightfields.md), the pixels they name not.
-    CHECK(on.image.primitive.size() == off.image.primitive.size());
+    // The primitive output numbers the triangles stably (Mesh::tile_first_id): an occluded
+    // tile's triangles keep their numbers, so the ids after them do not shift.
+    CHECK(on.image.primitive == off.image.primitive);
     CHECK(test::frame_counter(on, "tiles occluded") > 20);
     CHECK(test::frame_counter(off, "tiles occluded") == 0);
     CHECK(test::frame_counter(on, "tiles drawn") < test::frame_counter(off, "tiles drawn"));
@@ -266,22 +166,6 @@ TEST_CASE("geomipmapIsRefusedWhereItIsNotBuiltNamingTheField", "[geomipmap]") {
   // null: the projected grid again.
   CHECK_FALSE(resolve_scene("default", {field, "terrain.heightfield.geomipmap=null"})
                   .terrain.heightfield->geomipmap.has_value());
-}
-
-TEST_CASE("theGlBackendRefusesAGeoMipMapSceneRatherThanDrawTheGrid", "[geomipmap]") {
-  FieldScene f;
-  build(f, false, 1.0);
-  const std::filesystem::path scene = f.dir.path() / "scene.json";
-  std::ofstream(scene) << scene_json_text(f.scene);
-  const std::filesystem::path out = f.dir.path() / "gl.png";
-  const test::CliResult r =
-      test::run({"render", scene.string(), "--backend", "gl", "-o", out.string()});
-  INFO(r.out << r.err);
-  CHECK(r.code != 0);
-  CHECK_FALSE(std::filesystem::exists(out));
-  if (gl_backend_built() && r.err.find("no GL context") == std::string::npos) {
-    test::require_refused(r, "terrain.heightfield.geomipmap is set", out);
-  }
 }
 
 TEST_CASE("aGeoMipMapFrameBeyondTheMemoryBudgetIsRefusedBeforeItsMeshIsBuilt", "[geomipmap]") {
