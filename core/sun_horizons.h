@@ -216,6 +216,17 @@ DrawnExtent drawn_extent(const ShadowPlan& plan, const GridLayout& layout, RowRa
                          std::span<const Real> height, std::span<const std::uint8_t> valid,
                          std::span<const std::uint8_t> need);
 
+// The same over a mesh's triangles (GeoMipMapping, core/heightfield/field_mesh.h): triangles
+// [first, end) of `indices` (3 vertex indices each into the streams). The Chebyshev distance is
+// convex, so a triangle's points lie no farther than its farthest vertex and no nearer than its
+// nearest vertex less its longest edge in that norm; widened by that edge too (a covered pixel
+// may lie a little outside its snapped triangle) and by 1e-4 as above; the lowest height its
+// vertices'. Every vertex of the list is drawn and valid (mesh_domain).
+template <class Real>
+DrawnExtent mesh_drawn_extent(const ShadowPlan& plan, std::span<const std::uint32_t> indices,
+                              std::size_t first, std::size_t end, std::span<const Real> dx,
+                              std::span<const Real> dz, std::span<const Real> height);
+
 // The levels a frame with pixels within `drawn` builds, [first, end): from the finest whose
 // square reaches the nearest pixel (every finer square lies nearer than any pixel; with water,
 // the nearest water surface a pixel's ray can meet in front of its ground) to the one

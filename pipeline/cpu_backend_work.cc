@@ -99,12 +99,21 @@ void CpuBackend<Real>::tally_draws(RowRange rows, const NeedCount& count) {
       lowest = std::min(lowest, double(grid_.height[k]));
     }
   }
-  // Where pixels can lie in the sun's frame: the cache levels built (core/sun_horizons.h).
-  const DrawnExtent drawn =
-      shadow_rows() > 0 && (request_.skips.unread_shadow_levels || shadow_.reflections != 0)
-          ? drawn_extent<Real>(shadow_plan_, plan_.layout, rows, grid_.dx, grid_.dz, grid_.height,
-                               grid_.valid, need_)
-          : DrawnExtent{};
+  // Where pixels can lie in the sun's frame: the cache levels built (core/sun_horizons.h). A
+  // mesh's triangles are taken in the rows' share of its list (every row range a disjoint
+  // share, together the whole list).
+  DrawnExtent drawn;
+  if (shadow_rows() > 0 && (request_.skips.unread_shadow_levels || shadow_.reflections != 0)) {
+    if (mesh_mode()) {
+      const std::size_t triangles = mesh_.indices.size() / 3, height = plan_.layout.height;
+      drawn = mesh_drawn_extent<Real>(
+          shadow_plan_, mesh_.indices, triangles * std::size_t(rows.begin) / height,
+          triangles * std::size_t(rows.end) / height, grid_.dx, grid_.dz, grid_.height);
+    } else {
+      drawn = drawn_extent<Real>(shadow_plan_, plan_.layout, rows, grid_.dx, grid_.dz, grid_.height,
+                                 grid_.valid, need_);
+    }
+  }
   const std::lock_guard<std::mutex> lock(work_mutex_);
   draws_.evaluate += count.evaluate;
   draws_.draw += count.draw;

@@ -122,8 +122,7 @@ const Schema<HeightFieldSettings>& heightfield_schema() {
           {"",
            "draw the field by GeoMipMapping (tiles at levels of detail, stitched, culled by a "
            "quadtree and by occlusion) instead of the projected grid; null: the projected grid",
-           "needs fractal and level_of_detail false, the plane, no "
-           "lighting.shadows, lighting.sky_occlusion or water.reflect_terrain, a CPU backend"}),
+           "needs fractal and level_of_detail false, the plane"}),
   });
   return schema;
 }
@@ -146,24 +145,6 @@ void validate_geomipmap(const Scene& scene) {
     throw SceneError("terrain.planet.radius",
                      "terrain.planet.radius = " + format_number(t.planet->radius) + why +
                          "a field is flat; allowed 0");
-  }
-  if (scene.lighting.shadows) {
-    throw SceneError("lighting.shadows",
-                     "lighting.shadows = true" + why +
-                         "the shadows' horizon cache is planned over the projected grid and is "
-                         "not built for the mesh yet; allowed false");
-  }
-  if (scene.lighting.sky_occlusion) {  // the same cache (core/sky_horizons.h)
-    throw SceneError("lighting.sky_occlusion",
-                     "lighting.sky_occlusion = true" + why +
-                         "sky light reads the shadows' horizon cache, which is not built for the "
-                         "mesh yet; allowed false");
-  }
-  if (scene.water.reflect_terrain && t.water_level) {  // the same cache (water_reflection.h)
-    throw SceneError("water.reflect_terrain",
-                     "water.reflect_terrain = true" + why +
-                         "the reflected rays march over the shadows' horizon cache, which is not "
-                         "built for the mesh yet; allowed false");
   }
 }
 
