@@ -85,7 +85,7 @@ class GlBackend final : public FrameBackend {
           throw GlBackendError(
               "terrain.heightfield.geomipmap is set; the scene's resources hold no field mesh");
         }
-        return;  // the mesh's streams: stage 2 (prepare_mesh)
+        return;  // the mesh's streams: stage 2 (GlFrameMesh::run)
       }
       if (params_.domain.terrain_visible != 0) {
         terrain_ = &s.cache.terrain(plan_.layout, resources_);
