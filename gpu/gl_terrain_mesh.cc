@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
-#include <vector>
 
 #include <epoxy/gl.h>
 
@@ -49,14 +48,11 @@ void GlTerrain::set_mesh_vertices(std::span<const std::int32_t> column,
     mesh_vertices_ = make_storage_buffer(bytes, "the mesh's vertices");
     mesh_vertex_bytes_ = bytes;
   }
-  std::vector<std::int32_t> pairs(2 * column.size());
-  for (std::size_t k = 0; k < column.size(); ++k) {
-    pairs[2 * k] = column[k];
-    pairs[2 * k + 1] = row[k];
-  }
-  if (!pairs.empty()) {
-    glNamedBufferSubData(mesh_vertices_.get(), 0, GLsizeiptr(pairs.size() * sizeof(std::int32_t)),
-                         pairs.data());
+  // The columns, then the rows (mesh.comp reads row k at vertices + k): two uploads, no copy.
+  if (!column.empty()) {
+    glNamedBufferSubData(mesh_vertices_.get(), 0, GLsizeiptr(column.size_bytes()), column.data());
+    glNamedBufferSubData(mesh_vertices_.get(), GLintptr(column.size_bytes()),
+                         GLsizeiptr(row.size_bytes()), row.data());
   }
   mesh_vertex_count_ = column.size();
   checkpoint("uploading the mesh's vertices");

@@ -59,10 +59,10 @@ MeshStages cpu_mesh_stages(const Scene& scene, const SceneResources& resources,
   if (field == nullptr || resources.sketch_or_null() == nullptr) {
     throw std::invalid_argument("cpu_mesh_stages: the scene's resources hold no field mesh");
   }
-  const FramePlan plan =
-      make_frame_plan(scene, resources.terrain_values(), resources.sketch_or_null());
-  const SurfaceParams<float> surface = make_terrain_params<float>(plan).surface;
   MeshStages out;
+  out.plan = make_frame_plan(scene, resources.terrain_values(), resources.sketch_or_null());
+  const FramePlan& plan = out.plan;
+  const SurfaceParams<float> surface = make_terrain_params<float>(plan).surface;
   const geomipmap::Selection selection =
       geomipmap::select_levels(field->map, frame_mesh_view(scene, plan, skips.occluded_tiles));
   out.mesh = geomipmap::stitched_mesh(field->map, selection);

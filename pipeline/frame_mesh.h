@@ -35,8 +35,10 @@ void add_mesh_counters(const FieldMesh& field, const geomipmap::SelectionCounts&
 
 // Stages 2-4 of the mesh a frame of `scene` draws (skips as `skips`), on the CPU in float (the
 // portable loops every CPU backend runs): the mesh and its vertices' streams in the frame's
-// layout (mesh_layout). What relief crosscheck compares the GL side's with.
+// layout (mesh_layout), and the frame's plan they were made from. What relief crosscheck compares
+// the GL side's with.
 struct MeshStages {
+  FramePlan plan;
   geomipmap::Mesh mesh;
   GridBuffers<float> grid{GridLayout{}};
 };

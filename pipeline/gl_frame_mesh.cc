@@ -16,12 +16,12 @@ namespace relief {
 namespace {
 
 // Bytes the GL side holds for a mesh (host memory under llvmpipe, the GPU's otherwise: counted
-// either way, as job_memory.cc counts the grid's): per vertex its lattice ids on the host, their
-// interleaved copy and the uploaded buffer (8 each) and the driver's transformed vertex
+// either way, as job_memory.cc counts the grid's): per vertex its lattice ids on the host and
+// in the uploaded buffer (8 each) and the driver's transformed vertex
 // (llvmpipe keeps the vertex shader's outputs: 192, job_memory.cc's figure); per vertex of the
 // padded streams ten floats and the valid byte (41); per triangle its indices on the host and
 // in the index buffer (12 each).
-constexpr std::uintmax_t kGlMeshVertexBytes = 8 + 8 + 8 + 192;
+constexpr std::uintmax_t kGlMeshVertexBytes = 8 + 8 + 192;
 constexpr std::uintmax_t kGlStreamVertexBytes = 41;
 constexpr std::uintmax_t kGlMeshTriangleBytes = 12 + 12;
 

@@ -143,8 +143,7 @@ int run_crosscheck_command(const Scene& scene, const CrosscheckOptions& options,
   if (scene.terrain.heightfield && scene.terrain.heightfield->geomipmap) {
     // GeoMipMapping: the mesh's vertices, both sides' stages 2-4 (pipeline/frame_mesh.h).
     MeshStages mesh = cpu_mesh_stages(scene, resources);
-    cpu_terrain.plan =
-        make_frame_plan(scene, resources.terrain_values(), resources.sketch_or_null());
+    cpu_terrain.plan = std::move(mesh.plan);
     cpu_terrain.plan.layout = mesh.grid.layout;
     cpu_terrain.grid = std::move(mesh.grid);
     gl_grid = gl_mesh_stages(scene, resources);

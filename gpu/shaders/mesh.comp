@@ -4,12 +4,12 @@
 // streams laid out as rows of kMeshRowVertices, gl_terrain.h). The CPU chooses the tiles, their
 // levels and the stitched index list once per frame (de Boer's GeoMipMapping and Scape choose
 // levels on the CPU and draw index buffers on the GPU); vertex k is the field lattice's point
-// (column, row) = mesh_vertex[2k], mesh_vertex[2k + 1]. One file, three programs: the prelude
+// (column, row) = mesh_vertex[k], mesh_vertex[u_vertices + k]. One file, three programs: the prelude
 // defines RELIEF_MESH_STAGE (2, 3 or 4), so each declares only the blocks it binds.
 layout(local_size_x = RELIEF_GROUP_SIZE) in;
 
 layout(std430, binding = RELIEF_BINDING_ROWS) readonly buffer MeshVertexBlock {
-  int mesh_vertex[];  // column, row per vertex
+  int mesh_vertex[];  // every vertex's column, then every vertex's row
 };
 
 uniform int u_vertices;  // the mesh's vertices: those after them are padding
@@ -47,8 +47,8 @@ void main() {
   precise float dx = 0.0, dz = 0.0, sigma = 0.0;
   if (vertex) {
     // FieldLattice::position: the divisions by columns - 1 >= 1 and rows - 1 >= 1.
-    precise double fx = double(mesh_vertex[2 * k]) / double(u_lattice.x - 1);
-    precise double fz = double(mesh_vertex[2 * k + 1]) / double(u_lattice.y - 1);
+    precise double fx = double(mesh_vertex[k]) / double(u_lattice.x - 1);
+    precise double fz = double(mesh_vertex[u_vertices + k]) / double(u_lattice.y - 1);
     precise double x = u_extent.x + (u_extent.z - u_extent.x) * fx;
     precise double z = u_extent.y + (u_extent.w - u_extent.y) * fz;
     precise double relative_x = x - u_camera_xz.x;
@@ -94,7 +94,7 @@ void main() {
   const int k = vertex_index();
   float height = 0.0;
   if (k < u_vertices) {
-    const int c = mesh_vertex[2 * k], r = mesh_vertex[2 * k + 1];
+    const int c = mesh_vertex[k], r = mesh_vertex[u_vertices + k];
     // build_field_mesh's lattice height: the B-spline at the texel centre, summed in double
     // in its order and rounded once to float; then mesh_heights' difference, in double.
     precise double sum = 0.0LF;
@@ -130,7 +130,7 @@ void main() {
   const int k = vertex_index();
   float nx = 0.0, ny = 1.0, nz = 0.0, slope = 0.0, water_depth = 0.0;
   if (k < u_vertices) {
-    const int c = mesh_vertex[2 * k], r = mesh_vertex[2 * k + 1];
+    const int c = mesh_vertex[k], r = mesh_vertex[u_vertices + k];
     // The B-spline's gradient at the knot: central differences of the texels on either side,
     // weighted (1, 4, 1) / 6 across (mesh_surface).
     precise double gx = 0.0LF, gz = 0.0LF;
